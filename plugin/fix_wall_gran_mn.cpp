@@ -1,0 +1,273 @@
+/* ----------------------------------------------------------------------
+   fix wall/gran/mn: LAMMPS glue around mn_contact.h for flat walls.
+   The per-atom u_t history follows LAMMPS's fix wall/gran (grow/exchange/restart).
+------------------------------------------------------------------------- */
+
+#include "fix_wall_gran_mn.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "granmn_glue.h"
+#include "memory.h"
+#include "modify.h"
+#include "pair_gran_mn.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+// fix ID group wall/gran/mn xplane|yplane lo hi [kn K] [e E] [beta B] [mu MU]
+//                                                  [limit_damping] [coulomb_cutback]
+FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), options_given(false), own_law(false), use_history(false), ut(nullptr),
+    force_reduced(false)
+{
+  if (domain->dimension != 2)
+    error->all(FLERR, "Fix wall/gran/mn is a 2D law: it requires dimension 2");
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "Fix wall/gran/mn requires atom attributes radius, rmass, omega, torque "
+                      "(atom_style sphere)");
+  if (narg < 6) error->all(FLERR, "Illegal fix wall/gran/mn command: expected xplane|yplane lo hi");
+
+  if (strcmp(arg[3], "xplane") == 0)
+    axis = 0;
+  else if (strcmp(arg[3], "yplane") == 0)
+    axis = 1;
+  else
+    error->all(FLERR, "Illegal fix wall/gran/mn command: unknown wall style {} "
+                      "(expected xplane or yplane)", arg[3]);
+  has_lo = strcmp(arg[4], "NULL") != 0;
+  has_hi = strcmp(arg[5], "NULL") != 0;
+  lo = has_lo ? utils::numeric(FLERR, arg[4], false, lmp) : 0.0;
+  hi = has_hi ? utils::numeric(FLERR, arg[5], false, lmp) : 0.0;
+  if (!has_lo && !has_hi) error->all(FLERR, "Illegal fix wall/gran/mn command: both walls are NULL");
+  if (has_lo && has_hi && lo >= hi)
+    error->all(FLERR, "Illegal fix wall/gran/mn command: lower wall {} not below upper wall {}",
+               lo, hi);
+
+  const char *names[4] = {"kn", "e", "beta", "mu"};
+  double *values[4] = {&material.kn, &material.e, &material.beta, &material.mu};
+  for (int k = 0; k < 4; k++) given[k] = false;
+  int iarg = 6;
+  while (iarg < narg) {
+    int which = -1;
+    for (int k = 0; k < 4; k++)
+      if (strcmp(arg[iarg], names[k]) == 0) which = k;
+    if (which >= 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "Illegal fix wall/gran/mn command: {} needs a value", names[which]);
+      *values[which] = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      given[which] = true;
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "limit_damping") == 0) {
+      options.limit_damping = true;
+      options_given = true;
+      iarg++;
+    } else if (strcmp(arg[iarg], "coulomb_cutback") == 0) {
+      options.coulomb_cutback = true;
+      options_given = true;
+      iarg++;
+    } else {
+      error->all(FLERR, "Illegal fix wall/gran/mn command: unknown keyword {}", arg[iarg]);
+    }
+  }
+  resolve_law();
+  use_history = law.mu > 0.0;
+
+  vector_flag = 1;
+  size_vector = 2;    // force exerted by the particles on the walls (x, y)
+  global_freq = 1;
+  extvector = 1;
+  create_attribute = 1;
+  restart_peratom = use_history ? 1 : 0;
+  if (use_history) {
+    grow_arrays(atom->nmax);
+    atom->add_callback(Atom::GROW);
+    atom->add_callback(Atom::RESTART);
+    for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+  }
+  wall_force[0] = wall_force[1] = 0.0;
+}
+
+FixWallGranMN::~FixWallGranMN()
+{
+  if (use_history) {
+    atom->delete_callback(id, Atom::GROW);
+    atom->delete_callback(id, Atom::RESTART);
+  }
+  memory->destroy(ut);
+}
+
+int FixWallGranMN::setmask()
+{
+  return POST_FORCE;
+}
+
+// Material from the fix line where given, else from pair_style gran/mn.
+void FixWallGranMN::resolve_law()
+{
+  PairGranMN *pair = dynamic_cast<PairGranMN *>(force->pair_match("gran/mn", 1));
+  const bool all_given = given[0] && given[1] && given[2] && given[3];
+  if (!pair && !all_given)
+    error->all(FLERR, "Fix wall/gran/mn takes its kn, e, beta, mu from pair_style gran/mn: "
+                      "define that pair style first or give all four on the fix line");
+  mn::Material m = material;
+  mn::Options o = options;
+  own_law = true;
+  if (pair) {
+    const mn::Material &pm = pair->contact_material();
+    if (!given[0]) m.kn = pm.kn;
+    if (!given[1]) m.e = pm.e;
+    if (!given[2]) m.beta = pm.beta;
+    if (!given[3]) m.mu = pm.mu;
+    if (!options_given) o = pair->contact_law().options;
+    own_law = given[0] || given[1] || given[2] || given[3] || options_given;
+  }
+  const char *problem = mn::material_error(m);
+  if (problem) error->all(FLERR, "Illegal fix wall/gran/mn command: {}", problem);
+  law = mn::derive(m, o);
+}
+
+void FixWallGranMN::init()
+{
+  resolve_law();
+  if (law.mu > 0.0 && !use_history)
+    error->all(FLERR, "Fix wall/gran/mn was defined with mu = 0 and keeps no tangential "
+                      "history; define it again after giving mu > 0");
+  // The pair style already checked the time step against the same law.
+  if (own_law)
+    granmn::check_timestep(lmp, "fix wall/gran/mn", update->dt,
+                           mn::max_stable_dt(law, granmn::integrator_in_use(modify)), law.tau_c,
+                           granmn::integrator_in_use(modify));
+}
+
+void FixWallGranMN::setup(int vflag)
+{
+  post_force(vflag);
+}
+
+void FixWallGranMN::post_force(int)
+{
+  const double dt_history = update->setupflag ? 0.0 : update->dt;
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
+  const double *radius = atom->radius;
+  const double *rmass = atom->rmass;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  wall_force[0] = wall_force[1] = 0.0;
+  force_reduced = false;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    for (int side = 0; side < 2; side++) {
+      if (side == 0 ? !has_lo : !has_hi) continue;
+      // distance from the wall to the centre, along the wall's inward normal
+      const double dist = side == 0 ? x[i][axis] - lo : hi - x[i][axis];
+      if (dist >= radius[i]) {
+        if (use_history) ut[i][side] = 0.0;
+        continue;
+      }
+      if (dist <= 0.0)
+        error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the wall at {} "
+                          "(time step too large for the contact stiffness?)",
+                   atom->tag[i], side == 0 ? lo : hi);
+      const double normal = side == 0 ? 1.0 : -1.0;
+      const double dx = axis == 0 ? normal * dist : 0.0;
+      const double dy = axis == 1 ? normal * dist : 0.0;
+      const mn::Kinematics kin =
+          mn::kinematics(dx, dy, dist, radius[i], v[i][0], v[i][1], radius[i] * omega[i][2]);
+      const mn::Force fc = mn::contact_force(law, rmass[i], kin,
+                                             use_history ? &ut[i][side] : nullptr, dt_history);
+      const double fx = fc.fn * kin.nx - fc.ft * kin.ny;
+      const double fy = fc.fn * kin.ny + fc.ft * kin.nx;
+      f[i][0] += fx;
+      f[i][1] += fy;
+      torque[i][2] -= radius[i] * fc.ft;
+      wall_force[0] -= fx;
+      wall_force[1] -= fy;
+    }
+  }
+}
+
+double FixWallGranMN::compute_vector(int n)
+{
+  if (!force_reduced) {
+    MPI_Allreduce(wall_force, wall_force_all, 2, MPI_DOUBLE, MPI_SUM, world);
+    force_reduced = true;
+  }
+  return wall_force_all[n];
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixWallGranMN::memory_usage()
+{
+  return use_history ? 2.0 * atom->nmax * sizeof(double) : 0.0;
+}
+
+void FixWallGranMN::grow_arrays(int nmax)
+{
+  memory->grow(ut, nmax, 2, "wall/gran/mn:ut");
+}
+
+void FixWallGranMN::copy_arrays(int i, int j, int)
+{
+  ut[j][0] = ut[i][0];
+  ut[j][1] = ut[i][1];
+}
+
+void FixWallGranMN::set_arrays(int i)
+{
+  if (use_history) ut[i][0] = ut[i][1] = 0.0;
+}
+
+int FixWallGranMN::pack_exchange(int i, double *buf)
+{
+  buf[0] = ut[i][0];
+  buf[1] = ut[i][1];
+  return 2;
+}
+
+int FixWallGranMN::unpack_exchange(int nlocal, double *buf)
+{
+  ut[nlocal][0] = buf[0];
+  ut[nlocal][1] = buf[1];
+  return 2;
+}
+
+int FixWallGranMN::pack_restart(int i, double *buf)
+{
+  buf[0] = 3;    // count including itself, as the restart layout of per-atom fix data requires
+  buf[1] = ut[i][0];
+  buf[2] = ut[i][1];
+  return 3;
+}
+
+void FixWallGranMN::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
+  ut[nlocal][0] = extra[nlocal][m + 1];
+  ut[nlocal][1] = extra[nlocal][m + 2];
+}
+
+int FixWallGranMN::size_restart(int)
+{
+  return 3;
+}
+
+int FixWallGranMN::maxsize_restart()
+{
+  return 3;
+}

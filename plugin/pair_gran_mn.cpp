@@ -1,0 +1,416 @@
+/* ----------------------------------------------------------------------
+   pair_style gran/mn: LAMMPS glue around mn_contact.h.
+   Structure follows LAMMPS's pair gran/hooke/history (neighbor history through
+   FixNeighHistory, created in init_style in place of a placeholder fix).
+------------------------------------------------------------------------- */
+
+#include "pair_gran_mn.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_dummy.h"
+#include "fix_neigh_history.h"
+#include "force.h"
+#include "granmn_glue.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neigh_request.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+PairGranMN::PairGranMN(LAMMPS *lmp) :
+    Pair(lmp), exclusion_added(false), law_reported(false), max_radius(nullptr),
+    fix_history(nullptr)
+{
+  single_enable = 1;
+  no_virial_fdotr_compute = 1;
+  centroidstressflag = CENTROID_NOTAVAIL;
+  finitecutflag = 1;
+  restartinfo = 1;
+  history = 0;
+  size_history = 1;    // u_t, a scalar along t
+  // u_t is symmetric under i <-> j (t and v_ij both flip), so the history is copied,
+  // not negated as LAMMPS's default transfer does for shear vectors.
+  nondefault_history_transfer = 1;
+
+  single_extra = 5;
+  svector = new double[single_extra];
+
+  // Placeholder so that the history fix, created in init_style, keeps this position among fixes.
+  fix_dummy = (FixDummy *) modify->add_fix("NEIGH_HISTORY_GRANMN_DUMMY" +
+                                           std::to_string(instance_me) + " all DUMMY");
+}
+
+PairGranMN::~PairGranMN()
+{
+  delete[] svector;
+  if (!fix_history)
+    modify->delete_fix("NEIGH_HISTORY_GRANMN_DUMMY" + std::to_string(instance_me));
+  else
+    modify->delete_fix("NEIGH_HISTORY_GRANMN" + std::to_string(instance_me));
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    delete[] max_radius;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairGranMN::mass_scale(int i, int j) const
+{
+  const double *rmass = atom->rmass;
+  const int *type = atom->type;
+  if (is_wall_type[type[j]]) return rmass[i];
+  if (is_wall_type[type[i]]) return rmass[j];
+  return 2.0 * rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
+}
+
+void PairGranMN::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+
+  // forces re-evaluated in setup must not advance u_t a second time
+  const double dt_history = update->setupflag ? 0.0 : update->dt;
+
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
+  const double *radius = atom->radius;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  int **firsttouch = history ? fix_history->firstflag : nullptr;
+  double **firstut = history ? fix_history->firstvalue : nullptr;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double radi = radius[i];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    int *touch = history ? firsttouch[i] : nullptr;
+    double *ut_all = history ? firstut[i] : nullptr;
+
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = x[i][0] - x[j][0];
+      const double dy = x[i][1] - x[j][1];
+      const double rsq = dx * dx + dy * dy;
+      const double radsum = radi + radius[j];
+
+      if (rsq >= radsum * radsum) {
+        if (history) {
+          touch[jj] = 0;
+          ut_all[jj] = 0.0;
+        }
+        continue;
+      }
+
+      const double r = sqrt(rsq);
+      const mn::Kinematics kin =
+          mn::kinematics(dx, dy, r, radsum, v[i][0] - v[j][0], v[i][1] - v[j][1],
+                         radi * omega[i][2] + radius[j] * omega[j][2]);
+      double *ut = nullptr;
+      if (history) {
+        touch[jj] = 1;
+        ut = &ut_all[jj];
+      }
+      const mn::Force fc = mn::contact_force(law, mass_scale(i, j), kin, ut, dt_history);
+
+      const double fx = fc.fn * kin.nx - fc.ft * kin.ny;
+      const double fy = fc.fn * kin.ny + fc.ft * kin.nx;
+      f[i][0] += fx;
+      f[i][1] += fy;
+      torque[i][2] -= radi * fc.ft;
+      if (newton_pair || j < nlocal) {
+        f[j][0] -= fx;
+        f[j][1] -= fy;
+        torque[j][2] -= radius[j] * fc.ft;
+      }
+      if (evflag) ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fx, fy, 0.0, dx, dy, 0.0);
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranMN::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) setflag[i][j] = 0;
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  max_radius = new double[n + 1];
+}
+
+void PairGranMN::derive_law()
+{
+  const char *problem = mn::material_error(material);
+  if (problem) error->all(FLERR, "Illegal pair_style gran/mn command: {}", problem);
+  law = mn::derive(material, options);
+  history = (material.mu > 0.0 || fix_history) ? 1 : 0;
+  law_reported = false;
+}
+
+// pair_style gran/mn kn K e E beta B mu MU [wall_types T ...] [limit_damping] [coulomb_cutback]
+void PairGranMN::settings(int narg, char **arg)
+{
+  bool given[4] = {false, false, false, false};
+  const char *names[4] = {"kn", "e", "beta", "mu"};
+  double *values[4] = {&material.kn, &material.e, &material.beta, &material.mu};
+  options = mn::Options();
+  wall_types.clear();
+
+  int iarg = 0;
+  while (iarg < narg) {
+    int which = -1;
+    for (int k = 0; k < 4; k++)
+      if (strcmp(arg[iarg], names[k]) == 0) which = k;
+    if (which >= 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "Illegal pair_style gran/mn command: {} needs a value", names[which]);
+      *values[which] = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      given[which] = true;
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "wall_types") == 0) {
+      iarg++;
+      while (iarg < narg && utils::is_integer(arg[iarg]))
+        wall_types.push_back(utils::inumeric(FLERR, arg[iarg++], false, lmp));
+      if (wall_types.empty())
+        error->all(FLERR, "Illegal pair_style gran/mn command: wall_types needs atom types");
+    } else if (strcmp(arg[iarg], "limit_damping") == 0) {
+      options.limit_damping = true;
+      iarg++;
+    } else if (strcmp(arg[iarg], "coulomb_cutback") == 0) {
+      options.coulomb_cutback = true;
+      iarg++;
+    } else {
+      error->all(FLERR, "Illegal pair_style gran/mn command: unknown keyword {}", arg[iarg]);
+    }
+  }
+  for (int k = 0; k < 4; k++)
+    if (!given[k])
+      error->all(FLERR, "Illegal pair_style gran/mn command: {} must be given", names[k]);
+  derive_law();
+  if (domain->box_exist) check_wall_types();
+}
+
+void PairGranMN::check_wall_types()
+{
+  is_wall_type.assign(atom->ntypes + 1, 0);
+  for (int t : wall_types) {
+    if (t < 1 || t > atom->ntypes)
+      error->all(FLERR, "pair_style gran/mn: wall type {} is out of range 1..{}", t, atom->ntypes);
+    is_wall_type[t] = 1;
+  }
+}
+
+void PairGranMN::coeff(int narg, char **arg)
+{
+  if (narg != 2)
+    error->all(FLERR, "Incorrect args for pair coefficients: pair_style gran/mn takes "
+                      "pair_coeff * * with no further arguments");
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo, i); j <= jhi; j++) {
+      setflag[i][j] = 1;
+      count++;
+    }
+  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients");
+  check_wall_types();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranMN::init_style()
+{
+  if (domain->dimension != 2)
+    error->all(FLERR, "Pair style gran/mn is a 2D law: it requires dimension 2");
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "Pair style gran/mn requires atom attributes radius, rmass, omega, torque "
+                      "(atom_style sphere)");
+  if (comm->ghost_velocity == 0)
+    error->all(FLERR, "Pair style gran/mn requires ghost atoms store velocity "
+                      "(comm_modify vel yes)");
+  check_wall_types();
+
+  const double dt = update->dt;
+  const mn::Integrator integrator = granmn::integrator_in_use(modify);
+  const double dt_max = mn::max_stable_dt(law, integrator);
+  if (!law_reported && comm->me == 0) {
+    utils::logmesg(lmp,
+                   "pair_style gran/mn: kn = {:.8g} e = {} beta = {} mu = {}\n"
+                   "  eta_n = {:.8g} kt = {:.8g} eta_t = {:.8g}\n"
+                   "  tau_c = {:.8g} tau_w = {:.8g} e_w = {:.8g}\n"
+                   "  largest stable dt: {:.6g} (velocity Verlet), {:.6g} (Adams-Bashforth 2)\n",
+                   law.kn, material.e, material.beta, law.mu, law.eta_n, law.kt, law.eta_t,
+                   law.tau_c, law.tau_w, law.e_w,
+                   mn::max_stable_dt(law, mn::Integrator::VelocityVerlet),
+                   mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
+    law_reported = true;
+  }
+  granmn::check_timestep(lmp, "pair_style gran/mn", dt, dt_max, law.tau_c, integrator);
+
+  int irequest = neighbor->request(this, instance_me);
+  neighbor->requests[irequest]->size = 1;
+  if (history) neighbor->requests[irequest]->history = 1;
+
+  if (history && !fix_history) {
+    auto cmd = fmt::format("NEIGH_HISTORY_GRANMN{} all NEIGH_HISTORY {}", instance_me,
+                           size_history);
+    fix_history = (FixNeighHistory *) modify->replace_fix(
+        "NEIGH_HISTORY_GRANMN_DUMMY" + std::to_string(instance_me), cmd, 1);
+    fix_history->pair = this;
+  }
+
+  // Two immobile boundary elements never interact: keep such pairs out of the list.
+  if (!exclusion_added) {
+    for (size_t a = 0; a < wall_types.size(); a++)
+      for (size_t b = a; b < wall_types.size(); b++) {
+        std::string ti = std::to_string(wall_types[a]), tj = std::to_string(wall_types[b]);
+        char *words[4] = {(char *) "exclude", (char *) "type", &ti[0], &tj[0]};
+        neighbor->modify_params(4, words);
+      }
+    exclusion_added = true;
+  }
+
+  // Cutoffs follow the largest radius of each type.
+  std::vector<double> local_max(atom->ntypes + 1, 0.0);
+  for (int i = 0; i < atom->nlocal; i++)
+    local_max[atom->type[i]] = MAX(local_max[atom->type[i]], atom->radius[i]);
+  MPI_Allreduce(&local_max[1], &max_radius[1], atom->ntypes, MPI_DOUBLE, MPI_MAX, world);
+}
+
+double PairGranMN::init_one(int i, int j)
+{
+  if (!allocated) allocate();
+  if (is_wall_type[i] && is_wall_type[j]) return 0.0;
+  return max_radius[i] + max_radius[j];
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranMN::write_restart_settings(FILE *fp)
+{
+  const double values[4] = {material.kn, material.e, material.beta, material.mu};
+  fwrite(values, sizeof(double), 4, fp);
+  const int flags[3] = {options.limit_damping, options.coulomb_cutback, (int) wall_types.size()};
+  fwrite(flags, sizeof(int), 3, fp);
+  if (!wall_types.empty()) fwrite(wall_types.data(), sizeof(int), wall_types.size(), fp);
+}
+
+void PairGranMN::read_restart_settings(FILE *fp)
+{
+  double values[4];
+  int flags[3];
+  if (comm->me == 0) {
+    utils::sfread(FLERR, values, sizeof(double), 4, fp, nullptr, error);
+    utils::sfread(FLERR, flags, sizeof(int), 3, fp, nullptr, error);
+  }
+  MPI_Bcast(values, 4, MPI_DOUBLE, 0, world);
+  MPI_Bcast(flags, 3, MPI_INT, 0, world);
+  wall_types.resize(flags[2]);
+  if (comm->me == 0 && flags[2] > 0)
+    utils::sfread(FLERR, wall_types.data(), sizeof(int), flags[2], fp, nullptr, error);
+  if (flags[2] > 0) MPI_Bcast(wall_types.data(), flags[2], MPI_INT, 0, world);
+  material = {values[0], values[1], values[2], values[3]};
+  options.limit_damping = flags[0];
+  options.coulomb_cutback = flags[1];
+  derive_law();
+}
+
+void PairGranMN::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) fwrite(&setflag[i][j], sizeof(int), 1, fp);
+}
+
+void PairGranMN::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  check_wall_types();
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (comm->me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranMN::transfer_history(double *source, double *target)
+{
+  for (int k = 0; k < size_history; k++) target[k] = source[k];
+}
+
+// For compute pair/local: fforce*(dx,dy) is the normal force; svector = ft, delta, vn, vt, ut.
+double PairGranMN::single(int i, int j, int, int, double rsq, double, double, double &fforce)
+{
+  const double radsum = atom->radius[i] + atom->radius[j];
+  if (rsq >= radsum * radsum) {
+    fforce = 0.0;
+    for (int m = 0; m < single_extra; m++) svector[m] = 0.0;
+    return 0.0;
+  }
+  double **x = atom->x;
+  double **v = atom->v;
+  double **omega = atom->omega;
+  const double r = sqrt(rsq);
+  const mn::Kinematics kin = mn::kinematics(
+      x[i][0] - x[j][0], x[i][1] - x[j][1], r, radsum, v[i][0] - v[j][0], v[i][1] - v[j][1],
+      atom->radius[i] * omega[i][2] + atom->radius[j] * omega[j][2]);
+
+  double ut = 0.0;
+  if (history) {
+    const int jnum = list->numneigh[i];
+    const int *jlist = list->firstneigh[i];
+    for (int jj = 0; jj < jnum; jj++)
+      if ((jlist[jj] & NEIGHMASK) == j) {
+        ut = fix_history->firstvalue[i][jj];
+        break;
+      }
+  }
+  double ut_copy = ut;    // single() must not alter the stored history
+  const mn::Force fc =
+      mn::contact_force(law, mass_scale(i, j), kin, history ? &ut_copy : nullptr, 0.0);
+  fforce = fc.fn / r;
+  svector[0] = fc.ft;
+  svector[1] = kin.delta;
+  svector[2] = kin.vn;
+  svector[3] = kin.vt;
+  svector[4] = ut;
+  return 0.0;
+}
+
+double PairGranMN::atom2cut(int i)
+{
+  return 2.0 * atom->radius[i];
+}
+
+double PairGranMN::radii2cut(double r1, double r2)
+{
+  return r1 + r2;
+}

@@ -1,0 +1,62 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   pair_style gran/mn: the Mitarai-Nakanishi 2D linear spring-dashpot law.
+   LAMMPS glue only; the law itself is in mn_contact.h.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_PAIR_GRAN_MN_H
+#define LMP_PAIR_GRAN_MN_H
+
+#include "pair.h"
+
+#include "mn_contact.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class PairGranMN : public Pair {
+ public:
+  PairGranMN(class LAMMPS *);
+  ~PairGranMN() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  double single(int, int, int, int, double, double, double, double &) override;
+  void transfer_history(double *, double *) override;
+  double atom2cut(int) override;
+  double radii2cut(double, double) override;
+
+  // The law as derived for the current settings; the wall fix takes it from here.
+  const mn::Law &contact_law() const { return law; }
+  const mn::Material &contact_material() const { return material; }
+
+ private:
+  mn::Material material;
+  mn::Options options;
+  mn::Law law;
+  std::vector<int> wall_types;       // types of immobile boundary elements (bumps)
+  std::vector<char> is_wall_type;    // per type, 1..ntypes
+  int history;                       // 1: per-pair u_t kept (mu > 0)
+  int size_history;
+  bool exclusion_added;
+  bool law_reported;
+  double *max_radius;                // per type, for the cutoffs
+
+  class FixDummy *fix_dummy;
+  class FixNeighHistory *fix_history;
+
+  void allocate();
+  void derive_law();
+  void check_wall_types();
+  double mass_scale(int, int) const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

@@ -1,0 +1,307 @@
+// Unit tests of mn_contact.h: the mapping (k_n, e, beta) -> coefficients, and one contact
+// integrated far more finely than any production run (RK4, dt = tau/2e4), so that the measured
+// restitution and duration must equal the analytic ones to within the integration error.
+#include "mn_contact.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace {
+
+// A disk in the plane with I = m sigma^2 / 8.
+struct Disk {
+  double x, y, vx, vy, w;
+  double m, r;
+  double inertia() const { return 0.5 * m * r * r; }
+};
+
+// Two disks (or one disk and the wall y = 0 when `wall` is set) in contact; u_t is part of the
+// state so that RK4 integrates it like the positions.
+struct Scene {
+  Disk a, b;
+  double ut = 0.0;
+  bool wall = false;
+};
+
+// Time derivatives of a Scene.
+struct Rates {
+  double vx[2], vy[2], ax[2], ay[2], alpha[2], dut;
+};
+
+Rates rates(const mn::Law &law, const Scene &s)
+{
+  Rates d{{s.a.vx, s.b.vx}, {s.a.vy, s.b.vy}, {0, 0}, {0, 0}, {0, 0}, 0};
+  mn::Kinematics k;
+  double mass_scale;
+  if (s.wall) {
+    k = mn::kinematics(0.0, s.a.y, s.a.y, s.a.r, s.a.vx, s.a.vy, s.a.r * s.a.w);
+    mass_scale = s.a.m;
+  } else {
+    const double dx = s.a.x - s.b.x, dy = s.a.y - s.b.y;
+    k = mn::kinematics(dx, dy, std::hypot(dx, dy), s.a.r + s.b.r, s.a.vx - s.b.vx,
+                       s.a.vy - s.b.vy, s.a.r * s.a.w + s.b.r * s.b.w);
+    mass_scale = 2.0 * s.a.m * s.b.m / (s.a.m + s.b.m);
+  }
+  if (k.delta <= 0.0) return d;
+  double ut = s.ut;
+  const mn::Force f = mn::contact_force(law, mass_scale, k, law.mu > 0 ? &ut : nullptr, 0.0);
+  const double fx = f.fn * k.nx - f.ft * k.ny, fy = f.fn * k.ny + f.ft * k.nx;
+  d.ax[0] = fx / s.a.m;
+  d.ay[0] = fy / s.a.m;
+  d.alpha[0] = -s.a.r * f.ft / s.a.inertia();
+  if (!s.wall) {
+    d.ax[1] = -fx / s.b.m;
+    d.ay[1] = -fy / s.b.m;
+    d.alpha[1] = -s.b.r * f.ft / s.b.inertia();
+  }
+  d.dut = k.vt;
+  return d;
+}
+
+Scene advance(const Scene &s, const Rates &d, double h)
+{
+  Scene n = s;
+  Disk *disk[2] = {&n.a, &n.b};
+  for (int i = 0; i < 2; i++) {
+    disk[i]->x += h * d.vx[i];
+    disk[i]->y += h * d.vy[i];
+    disk[i]->vx += h * d.ax[i];
+    disk[i]->vy += h * d.ay[i];
+    disk[i]->w += h * d.alpha[i];
+  }
+  n.ut += h * d.dut;
+  return n;
+}
+
+// RK4 over the whole contact; returns its duration and leaves the scene after separation.
+double collide(const mn::Law &law, Scene &s, double tau)
+{
+  auto overlap = [&](const Scene &q) {
+    if (q.wall) return q.a.r - q.a.y;
+    return q.a.r + q.b.r - std::hypot(q.a.x - q.b.x, q.a.y - q.b.y);
+  };
+  const double h = tau / 2e4;
+  double t = 0.0, t_start = -1.0;
+  for (int step = 0; step < 4000000; step++) {
+    const double before = overlap(s);
+    const Rates k1 = rates(law, s);
+    const Rates k2 = rates(law, advance(s, k1, 0.5 * h));
+    const Rates k3 = rates(law, advance(s, k2, 0.5 * h));
+    const Rates k4 = rates(law, advance(s, k3, h));
+    Rates sum;
+    for (int i = 0; i < 2; i++) {
+      sum.vx[i] = (k1.vx[i] + 2 * k2.vx[i] + 2 * k3.vx[i] + k4.vx[i]) / 6;
+      sum.vy[i] = (k1.vy[i] + 2 * k2.vy[i] + 2 * k3.vy[i] + k4.vy[i]) / 6;
+      sum.ax[i] = (k1.ax[i] + 2 * k2.ax[i] + 2 * k3.ax[i] + k4.ax[i]) / 6;
+      sum.ay[i] = (k1.ay[i] + 2 * k2.ay[i] + 2 * k3.ay[i] + k4.ay[i]) / 6;
+      sum.alpha[i] = (k1.alpha[i] + 2 * k2.alpha[i] + 2 * k3.alpha[i] + k4.alpha[i]) / 6;
+    }
+    sum.dut = (k1.dut + 2 * k2.dut + 2 * k3.dut + k4.dut) / 6;
+    s = advance(s, sum, h);
+    const double after = overlap(s);
+    if (before <= 0 && after > 0) t_start = t + h * (-before) / (after - before);
+    t += h;
+    if (t_start >= 0 && before > 0 && after <= 0)
+      return t - h + h * before / (before - after) - t_start;
+  }
+  ADD_FAILURE() << "contact never ended";
+  return 0.0;
+}
+
+Disk disk(double diameter, double x, double y, double vx, double vy)
+{
+  // mass proportional to area, 1 for the unit disk (LAMMPS: set density/disc 4/pi)
+  return Disk{x, y, vx, vy, 0.0, diameter * diameter, 0.5 * diameter};
+}
+
+// Relative normal and tangential velocity of a with respect to b, in the frame of their
+// current line of centres (SPEC conventions: n from b to a, t = (-n_y, n_x)).
+mn::Kinematics relative_motion(const Scene &s)
+{
+  const double dx = s.a.x - s.b.x, dy = s.a.y - s.b.y;
+  return mn::kinematics(dx, dy, std::hypot(dx, dy), s.a.r + s.b.r, s.a.vx - s.b.vx,
+                        s.a.vy - s.b.vy, s.a.r * s.a.w + s.b.r * s.b.w);
+}
+
+}    // namespace
+
+TEST(Mapping, DerivedCoefficientsSatisfyTheirDefinitions)
+{
+  for (double e : {0.3, 0.7, 1.0})
+    for (double kn : {1e3, 2e5, 1e10}) {
+      const mn::Law law = mn::derive({kn, e, 0.7, 0.5});
+      const double ln_e = std::log(e);
+      // tau_c is the half period of delta'' + 2 eta_n delta' + 2 kn delta = 0
+      EXPECT_NEAR(law.tau_c, mn::PI / std::sqrt(2 * kn - law.eta_n * law.eta_n), 1e-12 * law.tau_c);
+      EXPECT_NEAR(std::exp(-law.eta_n * law.tau_c), e, 1e-12);
+      EXPECT_NEAR(law.eta_t * 3 * law.tau_c, -std::log(0.7), 1e-12);
+      EXPECT_NEAR(6 * law.kt - 9 * law.eta_t * law.eta_t, 2 * kn - law.eta_n * law.eta_n,
+                  1e-12 * kn);
+      EXPECT_NEAR(law.tau_w, mn::PI / std::sqrt(kn - law.eta_n * law.eta_n / 4), 1e-12 * law.tau_w);
+      (void) ln_e;
+    }
+  // SPEC section 3: e = 0.7 gives e_w ~ 0.778
+  EXPECT_NEAR(mn::derive({1e5, 0.7, 0.7, 0.5}).e_w, 0.778, 5e-4);
+}
+
+TEST(Mapping, RejectsOutOfRangeMaterial)
+{
+  EXPECT_NE(mn::material_error({0.0, 0.7, 0.7, 0.5}), nullptr);
+  EXPECT_NE(mn::material_error({-1.0, 0.7, 0.7, 0.5}), nullptr);
+  EXPECT_NE(mn::material_error({1e5, 0.0, 0.7, 0.5}), nullptr);
+  EXPECT_NE(mn::material_error({1e5, 1.01, 0.7, 0.5}), nullptr);
+  EXPECT_NE(mn::material_error({1e5, 0.7, 0.0, 0.5}), nullptr);
+  EXPECT_NE(mn::material_error({1e5, 0.7, 1.5, 0.5}), nullptr);
+  EXPECT_NE(mn::material_error({1e5, 0.7, 0.7, -0.1}), nullptr);
+  EXPECT_NE(mn::material_error({NAN, 0.7, 0.7, 0.5}), nullptr);
+  EXPECT_EQ(mn::material_error({1e5, 1.0, 1.0, 0.0}), nullptr);
+}
+
+// Head-on: e and tau_c for equal and unequal disks (the 2M scaling makes both mass-free).
+TEST(Collision, HeadOnRestitutionAndDuration)
+{
+  for (double e : {0.5, 0.7, 0.9, 1.0})
+    for (double kn : {0.5e5, 256e5})
+      for (double d2 : {1.0, 0.8}) {
+        const mn::Law law = mn::derive({kn, e, 0.7, 0.0});
+        const double gap = 1e-3;
+        Scene s;
+        s.a = disk(1.0, -0.5 - gap, 0, 1.0, 0);
+        s.b = disk(d2, 0.5 * d2 + gap, 0, -1.0, 0);
+        const double duration = collide(law, s, law.tau_c);
+        const double e_measured = -(s.a.vx - s.b.vx) / 2.0;
+        // RK4 error is negligible; the step that straddles the contact's end misplaces at
+        // most eta_n * h of relative velocity: bound 1e-4.
+        EXPECT_NEAR(e_measured, e, 1e-4) << "e=" << e << " kn=" << kn << " d2=" << d2;
+        EXPECT_NEAR(duration / law.tau_c, 1.0, 1e-4) << "e=" << e << " kn=" << kn;
+      }
+}
+
+// Sticking oblique impact: the tangential oscillation has the normal one's half period, so the
+// contact ends after half an oscillation damped by beta. The tangential motion is given as spin
+// and the contact is stiff (tau_c ~ 2e-4), so that the line of centres turns by ~1e-4 rad during
+// the contact: the frame's rotation then changes the measured ratio by ~1e-4, inside 1e-3.
+TEST(Collision, StickingObliqueImpactHasTangentialRestitutionBeta)
+{
+  for (double beta : {0.3, 0.7, 1.0}) {
+    const mn::Law law = mn::derive({1e8, 0.7, beta, 1e6});
+    Scene s;
+    s.a = disk(1.0, -0.5001, 0, 1.0, 0);
+    s.b = disk(1.0, 0.5001, 0, -1.0, 0);
+    s.a.w = s.b.w = 0.6;
+    const double vt_before = relative_motion(s).vt;
+    collide(law, s, law.tau_c);
+    EXPECT_NEAR(-relative_motion(s).vt / vt_before, beta, 1e-3) << "beta=" << beta;
+  }
+}
+
+// Sliding throughout (small mu): the tangential impulse is mu times the normal one. With the
+// normal force clamped at zero, the tangential impulse, read exactly from the change of spin
+// (J_t = -I dw / r), is mu M (1 + e') |v_n|. Stiff contact and spin-only slip as above.
+TEST(Collision, SlidingImpactTransfersMuTimesNormalImpulse)
+{
+  mn::Options clamp;
+  clamp.limit_damping = true;
+  const double mu = 0.01;
+  const mn::Law law = mn::derive({1e8, 0.7, 0.7, mu}, clamp);
+  Scene s;
+  s.a = disk(1.0, -0.5001, 0, 1.0, 0);
+  s.b = disk(1.0, 0.5001, 0, -1.0, 0);
+  s.a.w = s.b.w = 2.0;
+  const double w_before = s.a.w;
+  collide(law, s, law.tau_c);
+  const double e_clamped = relative_motion(s).vn / 2.0;    // v_n went from -2 to 2 e'
+  EXPECT_GT(e_clamped, 0.7);    // no attraction at the end: less is dissipated
+  const double tangential_impulse = -s.a.inertia() * (s.a.w - w_before) / s.a.r;
+  const double reduced_mass = 0.5;
+  EXPECT_NEAR(std::fabs(tangential_impulse), mu * reduced_mass * (1 + e_clamped) * 2.0, 1e-6);
+}
+
+TEST(Collision, BoundaryContactHasDurationTauWAndRestitutionEW)
+{
+  for (double e : {0.5, 0.7, 0.9}) {
+    const mn::Law law = mn::derive({2e5, e, 0.7, 0.0});
+    Scene s;
+    s.wall = true;
+    s.a = disk(1.0, 0, 0.501, 0, -1.0);
+    const double duration = collide(law, s, law.tau_w);
+    EXPECT_NEAR(s.a.vy, law.e_w, 1e-4) << "e=" << e;
+    EXPECT_NEAR(duration / law.tau_w, 1.0, 1e-4) << "e=" << e;
+  }
+}
+
+TEST(Force, NoFrictionNeedsNoHistory)
+{
+  const mn::Law law = mn::derive({1e5, 0.7, 0.7, 0.0});
+  const mn::Kinematics k = mn::kinematics(1.0, 0.0, 1.0, 1.01, -0.5, 0.3, 0.1);
+  const mn::Force f = mn::contact_force(law, 1.0, k, nullptr, 1e-4);
+  EXPECT_EQ(f.ft, 0.0);
+  EXPECT_NEAR(f.fn, law.kn * 0.01 + law.eta_n * 0.5, 1e-9);
+}
+
+TEST(Force, LiteralHistoryKeepsGrowingWhileSlidingCutbackDoesNot)
+{
+  const mn::Law literal = mn::derive({1e5, 0.7, 0.7, 0.1});
+  mn::Options cut;
+  cut.coulomb_cutback = true;
+  const mn::Law cutback = mn::derive({1e5, 0.7, 0.7, 0.1}, cut);
+  const mn::Kinematics k = mn::kinematics(1.0, 0.0, 1.0, 1.001, 0.0, 1.0, 0.0);
+  double ut_literal = 0.0, ut_cutback = 0.0;
+  for (int step = 0; step < 100; step++) {
+    const mn::Force a = mn::contact_force(literal, 1.0, k, &ut_literal, 1e-4);
+    const mn::Force b = mn::contact_force(cutback, 1.0, k, &ut_cutback, 1e-4);
+    EXPECT_TRUE(a.sliding);
+    EXPECT_NEAR(std::fabs(a.ft), 0.1 * std::fabs(a.fn), 1e-12);
+    EXPECT_NEAR(b.ft, a.ft, 1e-12);
+    // after a cut-back the elastic-plus-viscous trial force sits exactly on the cone
+    EXPECT_NEAR(std::fabs(cutback.kt * ut_cutback + cutback.eta_t * k.vt), 0.1 * std::fabs(b.fn),
+                1e-9 * std::fabs(b.fn));
+  }
+  EXPECT_NEAR(ut_literal, 100 * 1e-4 * 1.0, 1e-12);    // the literal integral of v_t
+}
+
+// Velocity Verlet on an undamped oscillator is stable up to dt = 2/omega exactly.
+TEST(Stability, VelocityVerletUndampedLimitIsTwoOverOmega)
+{
+  for (double w2 : {1.0, 2e5, 3e10})
+    EXPECT_NEAR(mn::max_stable_dt(mn::Integrator::VelocityVerlet, w2, 0.0) * std::sqrt(w2), 2.0,
+                1e-6);
+}
+
+// Independent of the eigenvalue computation: iterate the integrators on the oscillator just
+// below and just above the reported limit.
+TEST(Stability, ReportedLimitSeparatesDecayFromGrowth)
+{
+  for (mn::Integrator integrator :
+       {mn::Integrator::VelocityVerlet, mn::Integrator::AdamsBashforth2}) {
+    const mn::Law law = mn::derive({1e5, 0.7, 0.7, 0.5});
+    const double cases[][2] = {{2 * law.kn, 2 * law.eta_n}, {6 * law.kt, 6 * law.eta_t}};
+    for (const auto &mode : cases) {
+      const double dt_max = mn::max_stable_dt(integrator, mode[0], mode[1]);
+      ASSERT_GT(dt_max, 0.0);
+      auto amplitude_after = [&](double dt) {
+        double s[3] = {1.0, 0.0, -mode[0]}, next[3];
+        double amplitude = 1.0;
+        for (int n = 0; n < 20000 && amplitude < 1e6; n++) {
+          mn::detail::step(integrator, mode[0], mode[1], dt, s, next);
+          for (int c = 0; c < 3; c++) s[c] = next[c];
+          amplitude = std::fabs(s[0]) + std::fabs(s[1]) / std::sqrt(mode[0]);
+        }
+        return amplitude;
+      };
+      EXPECT_LT(amplitude_after(0.98 * dt_max), 1.0);
+      EXPECT_GT(amplitude_after(1.02 * dt_max), 1e3);
+    }
+  }
+}
+
+TEST(Stability, LawLimitIsTheStiffestModeAndAboveTheRecommendedStep)
+{
+  const mn::Law law = mn::derive({2e5, 0.7, 0.7, 0.5});
+  const double dt_max = mn::max_stable_dt(law, mn::Integrator::VelocityVerlet);
+  EXPECT_LE(dt_max, mn::max_stable_dt(mn::Integrator::VelocityVerlet, 2 * law.kn, 2 * law.eta_n));
+  EXPECT_GT(dt_max, law.tau_c / 10);    // the paper's tau_c/100 is far inside
+  EXPECT_LT(dt_max, law.tau_c);
+}
