@@ -1,0 +1,94 @@
+"""Run lmp with the gran/mn plugin on a deck and read back what it printed.
+
+The paths come from ctest's environment (GRANMN_LMP, GRANMN_PLUGIN, GRANMN_MPIEXEC)."""
+import os
+import re
+import subprocess
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+LMP = os.environ.get("GRANMN_LMP", "lmp")
+PLUGIN = os.environ.get("GRANMN_PLUGIN", "granmnplugin.so")
+MPIEXEC = os.environ.get("GRANMN_MPIEXEC", "mpirun")
+
+# A 2D disk box with LAMMPS's granular essentials; decks add atoms, styles and runs.
+HEADER = """
+plugin load {plugin}
+units lj
+dimension 2
+atom_style sphere
+atom_modify map array
+boundary p p p
+comm_modify vel yes
+neighbor 0.1 bin
+"""
+
+
+@dataclass
+class Run:
+    returncode: int
+    output: str
+    workdir: Path
+    results: dict = field(default_factory=dict)
+
+    def result(self, name):
+        """Numbers of the line `RESULT name v1 v2 ...` printed by the deck."""
+        if name not in self.results:
+            raise AssertionError(f"deck printed no RESULT {name}; output tail:\n{self.output[-3000:]}")
+        return self.results[name]
+
+    def table(self, filename):
+        return np.loadtxt(self.workdir / filename, ndmin=2)
+
+    def atoms(self, filename="final.txt"):
+        """A LAMMPS text dump (one snapshot, sorted by id) as {column: array}."""
+        lines = (self.workdir / filename).read_text().splitlines()
+        start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))
+        names = lines[start].split()[2:]
+        data = np.loadtxt(lines[start + 1:], ndmin=2)
+        return {name: data[:, k] for k, name in enumerate(names)}
+
+
+def run_lammps(deck, workdir, nprocs=1, header=True, check=True):
+    """Runs `deck` (the HEADER first unless header=False) in workdir with nprocs MPI ranks."""
+    workdir = Path(workdir)
+    workdir.mkdir(parents=True, exist_ok=True)
+    text = (HEADER.format(plugin=PLUGIN) if header else "") + deck
+    (workdir / "in.deck").write_text(text)
+    cmd = [LMP, "-in", "in.deck", "-log", "log.lammps", "-nocite"]
+    if nprocs > 1:
+        cmd = [MPIEXEC, "-np", str(nprocs)] + cmd
+    proc = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          text=True, timeout=1200)
+    run = Run(proc.returncode, proc.stdout, workdir)
+    for line in proc.stdout.splitlines():
+        m = re.match(r"^RESULT (\S+)(.*)$", line)
+        if m:
+            run.results[m.group(1)] = [float(x) for x in m.group(2).split()]
+    if check and proc.returncode != 0:
+        raise AssertionError(f"lmp failed ({proc.returncode}):\n{proc.stdout[-4000:]}")
+    return run
+
+
+def law(kn, e, beta):
+    """The SPEC section 3 mapping, written out independently of the C++ header."""
+    ln_e = np.log(e)
+    eta_n = np.sqrt(2 * kn / ((np.pi / ln_e) ** 2 + 1)) if e < 1 else 0.0
+    tau_c = np.sqrt((np.pi ** 2 + ln_e ** 2) / (2 * kn))
+    eta_t = -np.log(beta) / (3 * tau_c)
+    tau_w = np.pi / np.sqrt(kn - eta_n ** 2 / 4)
+    return dict(eta_n=eta_n, tau_c=tau_c, eta_t=eta_t, tau_w=tau_w,
+                e_w=np.exp(-eta_n * tau_w / 2))
+
+
+def restitution_error_bound(e, dt_over_tau):
+    """How far velocity Verlet may put a measured restitution from the analytic one.
+
+    The damping force switches on and off up to one step away from the true contact start and
+    end (each at most 2 eta v dt of relative velocity, eta the mode's damping rate), and it sees
+    velocities half a step old (eta dt (1+e) v0 over the contact). With eta tau = |ln e| for the
+    mode, |e_measured - e| <= 3 (1 + e) |ln e| dt/tau, plus the second-order error of the
+    smooth part, (dt/tau)^2."""
+    return 3 * (1 + e) * abs(np.log(e)) * dt_over_tau + dt_over_tau ** 2

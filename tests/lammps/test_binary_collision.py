@@ -1,0 +1,76 @@
+"""Binary collisions through lmp: restitution and duration against SPEC section 3."""
+import numpy as np
+import pytest
+
+from collision_decks import contact_interval, two_disks
+from granmn_run import law, restitution_error_bound, run_lammps
+
+KN = [2 ** p * 1e5 for p in (-1, 8, 17)]
+
+
+def collide(tmp_path, name, material, dt_over_tau, **kwargs):
+    tau = law(*material[:3])["tau_c"]
+    dt = tau * dt_over_tau
+    deck, contact = two_disks(material, dt, **kwargs)
+    run = run_lammps(deck, tmp_path / name)
+    a = run.atoms()
+    (x1, x2), (y1, y2), (vx1, vx2), (vy1, vy2), (w1, w2) = (
+        a["x"], a["y"], a["vx"], a["vy"], a["omegaz"])
+    d2 = kwargs.get("d2", 1.0)
+    # normal from 2 to 1 at the end of the contact, t = (-n_y, n_x)
+    n = np.array([x1 - x2, y1 - y2])
+    n /= np.linalg.norm(n)
+    dv = np.array([vx1 - vx2, vy1 - vy2])
+    v_n = n @ dv
+    v_t = -n[1] * dv[0] + n[0] * dv[1] - (0.5 * w1 + 0.5 * d2 * w2)
+    duration, _, _ = contact_interval(run.table("trace.txt"), contact, dt)
+    return dict(v_n=v_n, v_t=v_t, duration=duration, tau=tau, dt=dt)
+
+
+@pytest.mark.parametrize("kn", KN)
+@pytest.mark.parametrize("e", [0.5, 0.7, 0.9])
+def test_head_on_restitution_and_duration(tmp_path, kn, e):
+    errors = []
+    for dt_over_tau in (1 / 100, 1 / 200):
+        c = collide(tmp_path, f"dt{dt_over_tau}", (kn, e, 0.7, 0.5), dt_over_tau)
+        e_measured = c["v_n"] / 1.0    # approach speed 1
+        error = e_measured - e
+        bound = restitution_error_bound(e, dt_over_tau)
+        print(f"kn={kn:g} e={e} dt=tau/{1/dt_over_tau:.0f}: e_measured={e_measured:.6f} "
+              f"error={error:+.2e} bound={bound:.2e} duration/tau_c={c['duration']/c['tau']:.5f}")
+        assert abs(error) <= bound
+        # the contact starts half a step after a step; its end falls between steps too
+        assert abs(c["duration"] - c["tau"]) <= c["dt"]
+        errors.append(error)
+    # first order in dt: halving dt halves the error (same phase of the contact start)
+    assert 1.5 <= errors[0] / errors[1] <= 2.6, errors
+
+
+def test_unequal_masses_keep_tau_c(tmp_path):
+    """Diameters 1.0 and 0.8 (masses 1 and 0.64): with the 2M scaling the duration and the
+    restitution do not depend on the masses."""
+    for dt_over_tau in (1 / 100, 1 / 200):
+        c = collide(tmp_path, f"dt{dt_over_tau}", (2e5, 0.7, 0.7, 0.5), dt_over_tau, d2=0.8)
+        assert abs(c["duration"] - c["tau"]) <= c["dt"]
+        assert abs(c["v_n"] - 0.7) <= restitution_error_bound(0.7, dt_over_tau)
+
+
+@pytest.mark.parametrize("beta", [0.5, 0.7, 0.9])
+def test_sticking_oblique_impact_has_tangential_restitution_beta(tmp_path, beta):
+    """Spin-only slip and mu = 1000: the contact sticks and its tangential relative velocity
+    reverses with factor beta. Tolerance: the restitution bound for the tangential mode, plus
+    2 beta |ln beta| dt/tau_c because the tangential oscillation is cut where the normal
+    contact ends (up to one step off), plus 1e-3 for the turn of the line of centres during
+    the contact (tau_c v_t / sigma ~ 2e-4 at this stiffness)."""
+    kn = 256e5
+    for dt_over_tau in (1 / 100, 1 / 200):
+        c = collide(tmp_path, f"dt{dt_over_tau}", (kn, 0.7, beta, 1000.0), dt_over_tau,
+                    spin=0.6)
+        vt_before = -(0.5 * 0.6 + 0.5 * 0.6)
+        beta_measured = -c["v_t"] / vt_before
+        bound = (restitution_error_bound(beta, dt_over_tau)
+                 + 2 * beta * abs(np.log(beta)) * dt_over_tau + 1e-3)
+        print(f"beta={beta} dt=tau/{1/dt_over_tau:.0f}: measured {beta_measured:.6f} "
+              f"bound {bound:.2e}")
+        assert abs(beta_measured - beta) <= bound
+        assert abs(c["v_n"] - 0.7) <= restitution_error_bound(0.7, dt_over_tau) + 1e-3

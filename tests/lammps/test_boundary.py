@@ -1,0 +1,36 @@
+"""A disk against an immobile boundary element: a bump (a wall-type atom of the pair style)
+and the flat wall of fix wall/gran/mn. Both use m_i for 2M (SPEC section 2), so the contact
+lasts tau_w and has restitution e_w."""
+import numpy as np
+import pytest
+
+from collision_decks import contact_interval, disk_on_boundary
+from granmn_run import law, restitution_error_bound, run_lammps
+
+
+@pytest.mark.parametrize("boundary", ["bump", "wall"])
+@pytest.mark.parametrize("e", [0.5, 0.7, 0.9])
+def test_boundary_contact_duration_and_restitution(tmp_path, boundary, e):
+    kn = 2e5
+    ref = law(kn, e, 0.7)
+    errors = []
+    for dt_over_tau in (1 / 100, 1 / 200):
+        dt = ref["tau_w"] * dt_over_tau
+        deck, contact = disk_on_boundary((kn, e, 0.7, 0.5), dt, boundary)
+        run = run_lammps(deck, tmp_path / f"dt{dt_over_tau}")
+        atoms = run.atoms()
+        mobile = np.argmax(atoms["id"])
+        e_measured = atoms["vy"][mobile] / 1.0
+        duration, _, _ = contact_interval(run.table("trace.txt"), contact, dt)
+        error = e_measured - ref["e_w"]
+        print(f"{boundary} e={e} dt=tau_w/{1/dt_over_tau:.0f}: e_w={ref['e_w']:.5f} "
+              f"measured {e_measured:.5f} duration/tau_w {duration/ref['tau_w']:.5f}")
+        assert abs(error) <= restitution_error_bound(ref["e_w"], dt_over_tau)
+        assert abs(duration - ref["tau_w"]) <= dt
+        # head-on: no tangential force, no spin
+        assert abs(atoms["vx"][mobile]) < 1e-12
+        errors.append(error)
+    assert 1.5 <= errors[0] / errors[1] <= 2.6, errors
+    if boundary == "bump":
+        # the bump was not integrated: it has not moved
+        assert atoms["y"][np.argmin(atoms["id"])] == 0.0
