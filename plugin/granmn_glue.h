@@ -33,7 +33,7 @@ inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, d
   if (dt > dt_max)
     lmp->error->all(FLERR,
                     "{}: timestep {} exceeds the stability limit {:.6g} of {} for the stiffest "
-                    "contact (tau_c = {:.6g}); use dt <= tau_c/50",
+                    "contact (tau_c = {:.6g}); the paper uses dt = tau_c/100",
                     who, dt, dt_max, integrator_name(integrator), tau_c);
   if (dt > 0.1 * tau_c)
     lmp->error->warning(FLERR,

@@ -14,12 +14,14 @@
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "granmn_glue.h"
+#include "input.h"
 #include "memory.h"
 #include "modify.h"
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
 #include "update.h"
+#include "variable.h"
 
 #include <cmath>
 #include <cstring>
@@ -166,6 +168,24 @@ void PairGranMN::derive_law()
   law = mn::derive(material, options);
   history = (material.mu > 0.0 || fix_history) ? 1 : 0;
   law_reported = false;
+
+  // Decks read the derived scales from here, e.g. timestep $(v_mn_tau_c/100).
+  const std::pair<const char *, double> published[] = {
+      {"mn_tau_c", law.tau_c}, {"mn_tau_w", law.tau_w}, {"mn_e_w", law.e_w},
+      {"mn_eta_n", law.eta_n}, {"mn_kt", law.kt}, {"mn_eta_t", law.eta_t},
+      {"mn_dt_max_verlet", mn::max_stable_dt(law, mn::Integrator::VelocityVerlet)},
+      {"mn_dt_max_ab2", mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2)}};
+  Variable *variables = input->variable;
+  for (const auto &entry : published) {
+    const int ivar = variables->find(entry.first);
+    if (ivar < 0)
+      variables->set(fmt::format("{} internal {:.17g}", entry.first, entry.second));
+    else if (variables->internalstyle(ivar))
+      variables->internal_set(ivar, entry.second);
+    else
+      error->all(FLERR, "pair_style gran/mn: variable {} is defined by the deck; pair_style "
+                        "gran/mn publishes its derived values under that name", entry.first);
+  }
 }
 
 // pair_style gran/mn kn K e E beta B mu MU [wall_types T ...] [limit_damping] [coulomb_cutback]

@@ -1,0 +1,106 @@
+"""Every bad argument of pair_style gran/mn and fix wall/gran/mn stops lmp with an error that
+names the problem (or, for a merely coarse time step, warns)."""
+import pytest
+
+from granmn_run import HEADER, PLUGIN, run_lammps
+
+GOOD_PAIR = "pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5"
+
+
+def deck(pair=GOOD_PAIR, coeff="pair_coeff * *", fix="", timestep="timestep 5e-5",
+         dimension="dimension 2", atom_style="atom_style sphere", comm="comm_modify vel yes",
+         z="-0.5 0.5"):
+    header = (HEADER.format(plugin=PLUGIN)
+              .replace("dimension 2", dimension)
+              .replace("atom_style sphere", atom_style)
+              .replace("comm_modify vel yes", comm))
+    mass = "mass * 1.0" if atom_style == "atom_style atomic" else (
+        "set type * density/disc 1.2732395447351628" if dimension == "dimension 2"
+        else "set type * density 1.9")
+    return header + f"""
+region box block -3 3 -3 3 {z}
+create_box 2 box
+create_atoms 1 single 0 0.5 0
+create_atoms 1 single 1.2 0.5 0
+{mass}
+{pair}
+{coeff}
+{timestep}
+fix integrate all nve
+{fix}
+run 10
+"""
+
+
+ERRORS = {
+    "kn zero": (deck(pair="pair_style gran/mn kn 0 e 0.7 beta 0.7 mu 0.5"),
+                "kn must be a finite number > 0"),
+    "kn negative": (deck(pair="pair_style gran/mn kn -2e5 e 0.7 beta 0.7 mu 0.5"),
+                    "kn must be a finite number > 0"),
+    "kn not a number": (deck(pair="pair_style gran/mn kn stiff e 0.7 beta 0.7 mu 0.5"),
+                        "Expected floating point parameter instead of 'stiff'"),
+    "e zero": (deck(pair="pair_style gran/mn kn 2e5 e 0 beta 0.7 mu 0.5"), "e must lie in (0,1]"),
+    "e above one": (deck(pair="pair_style gran/mn kn 2e5 e 1.2 beta 0.7 mu 0.5"),
+                    "e must lie in (0,1]"),
+    "beta zero": (deck(pair="pair_style gran/mn kn 2e5 e 0.7 beta 0 mu 0.5"),
+                  "beta must lie in (0,1]"),
+    "beta above one": (deck(pair="pair_style gran/mn kn 2e5 e 0.7 beta 1.5 mu 0.5"),
+                       "beta must lie in (0,1]"),
+    "mu negative": (deck(pair="pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu -0.1"),
+                    "mu must be a finite number >= 0"),
+    "unknown keyword": (deck(pair=GOOD_PAIR + " stiffness 3"), "unknown keyword stiffness"),
+    "keyword without value": (deck(pair="pair_style gran/mn e 0.7 beta 0.7 mu 0.5 kn"),
+                              "kn needs a value"),
+    "missing parameter": (deck(pair="pair_style gran/mn kn 2e5 e 0.7 mu 0.5"),
+                          "beta must be given"),
+    "wall_types without types": (deck(pair=GOOD_PAIR + " wall_types"),
+                                 "wall_types needs atom types"),
+    "wall type out of range": (deck(pair=GOOD_PAIR + " wall_types 3"),
+                               "wall type 3 is out of range 1..2"),
+    "wall type zero": (deck(pair=GOOD_PAIR + " wall_types 0"), "wall type 0 is out of range"),
+    "pair_coeff with coefficients": (deck(coeff="pair_coeff * * 1.0"),
+                                     "pair_coeff * * with no further arguments"),
+    "atom style without radius": (deck(atom_style="atom_style atomic"),
+                                  "requires atom attributes radius, rmass, omega, torque"),
+    "three dimensions": (deck(dimension="dimension 3", z="-3 3"), "requires dimension 2"),
+    "ghost velocities off": (deck(comm="comm_modify vel no"),
+                             "requires ghost atoms store velocity"),
+    "time step above stability limit": (deck(timestep="timestep 0.003"),
+                                        "exceeds the stability limit"),
+    "wall fix without pair style": (
+        deck(pair="pair_style zero 1.0", coeff="pair_coeff * *",
+             fix="fix floor all wall/gran/mn yplane 0.0 NULL"),
+        "takes its kn, e, beta, mu from pair_style gran/mn"),
+    "wall fix unknown wall style": (deck(fix="fix floor all wall/gran/mn zplane 0.0 NULL"),
+                                    "unknown wall style zplane"),
+    "wall fix unknown keyword": (deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL shear 1"),
+                                 "unknown keyword shear"),
+    "wall fix walls in wrong order": (deck(fix="fix floor all wall/gran/mn yplane 2.0 1.0"),
+                                      "lower wall 2 not below upper wall 1"),
+    "wall fix without walls": (deck(fix="fix floor all wall/gran/mn yplane NULL NULL"),
+                               "both walls are NULL"),
+    "wall fix too few arguments": (deck(fix="fix floor all wall/gran/mn yplane 0.0"),
+                                   "expected xplane|yplane lo hi"),
+    "wall fix bad restitution": (deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL e 2"),
+                                 "e must lie in (0,1]"),
+    "wall fix stiffer than time step allows": (
+        deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL kn 1e9"),
+        "fix wall/gran/mn: timestep 5e-05 exceeds the stability limit"),
+    "atom behind the wall": (deck(fix="fix floor all wall/gran/mn yplane 0.6 NULL"),
+                             "has passed through the wall at 0.6"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(ERRORS))
+def test_bad_input_stops_with_a_named_error(tmp_path, case):
+    text, message = ERRORS[case]
+    run = run_lammps(text, tmp_path, header=False, check=False)
+    assert run.returncode != 0, run.output[-2000:]
+    assert "ERROR" in run.output
+    assert message in run.output, run.output[-2000:]
+
+
+def test_coarse_time_step_warns_but_runs(tmp_path):
+    # tau_c = 5.0e-3 at kn = 2e5: dt = 1e-3 resolves a collision with 5 steps, but is stable
+    run = run_lammps(deck(timestep="timestep 1e-3"), tmp_path, header=False)
+    assert "WARNING" in run.output and "fewer than 10 steps" in run.output
