@@ -9,6 +9,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_contacts_mn.h"
 #include "force.h"
 #include "granmn_glue.h"
 #include "memory.h"
@@ -26,7 +27,7 @@ using namespace FixConst;
 //                                                  [limit_damping] [coulomb_cutback]
 FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), options_given(false), own_law(false), use_history(false), ut(nullptr),
-    force_reduced(false)
+    counters(nullptr), force_reduced(false)
 {
   if (domain->dimension != 2)
     error->all(FLERR, "Fix wall/gran/mn is a 2D law: it requires dimension 2");
@@ -137,6 +138,8 @@ void FixWallGranMN::resolve_law()
 void FixWallGranMN::init()
 {
   resolve_law();
+  const int icounters = modify->find_fix_by_style("^contacts/mn");
+  counters = icounters >= 0 ? (FixContactsMN *) modify->fix[icounters] : nullptr;
   if (law.mu > 0.0 && !use_history)
     error->all(FLERR, "Fix wall/gran/mn was defined with mu = 0 and keeps no tangential "
                       "history; define it again after giving mu > 0");
@@ -173,7 +176,11 @@ void FixWallGranMN::post_force(int)
       if (side == 0 ? !has_lo : !has_hi) continue;
       // distance from the wall to the centre, along the wall's inward normal
       const double dist = side == 0 ? x[i][axis] - lo : hi - x[i][axis];
-      if (dist >= radius[i]) {
+      const double normal = side == 0 ? 1.0 : -1.0;
+      const bool touching = dist < radius[i];
+      if (counters)
+        counters->wall_state(i, side, touching, radius[i] - dist, normal * v[i][axis]);
+      if (!touching) {
         if (use_history) ut[i][side] = 0.0;
         continue;
       }
@@ -181,7 +188,6 @@ void FixWallGranMN::post_force(int)
         error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the wall at {} "
                           "(time step too large for the contact stiffness?)",
                    atom->tag[i], side == 0 ? lo : hi);
-      const double normal = side == 0 ? 1.0 : -1.0;
       const double dx = axis == 0 ? normal * dist : 0.0;
       const double dy = axis == 1 ? normal * dist : 0.0;
       const mn::Kinematics kin =

@@ -45,6 +45,7 @@ class FixWallGranMN : public Fix {
   bool own_law;               // the law is not exactly the pair style's
   bool use_history;           // mu > 0: per-atom u_t, one slot per wall
   double **ut;                // ut[i][0]: lower wall, ut[i][1]: upper wall
+  class FixContactsMN *counters;    // nullptr unless fix contacts/mn is defined
   double wall_force[2], wall_force_all[2];
   bool force_reduced;
 

@@ -6,6 +6,7 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "fix_contacts_mn.h"
 #include "fix_wall_gran_mn.h"
 #include "pair_gran_mn.h"
 
@@ -14,6 +15,11 @@ using namespace LAMMPS_NS;
 static Pair *pair_gran_mn_creator(LAMMPS *lmp)
 {
   return new PairGranMN(lmp);
+}
+
+static Fix *fix_contacts_mn_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixContactsMN(lmp, argc, argv);
 }
 
 static Fix *fix_wall_gran_mn_creator(LAMMPS *lmp, int argc, char **argv)
@@ -39,5 +45,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "wall/gran/mn";
   plugin.info = "Flat walls with the Mitarai-Nakanishi boundary contact law";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_wall_gran_mn_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "contacts/mn";
+  plugin.info = "Per-contact counters for the gran/mn styles";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_contacts_mn_creator;
   (*register_plugin)(&plugin, lmp);
 }

@@ -10,6 +10,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_contacts_mn.h"
 #include "fix_dummy.h"
 #include "fix_neigh_history.h"
 #include "force.h"
@@ -29,17 +30,15 @@
 using namespace LAMMPS_NS;
 
 PairGranMN::PairGranMN(LAMMPS *lmp) :
-    Pair(lmp), exclusion_added(false), law_reported(false), max_radius(nullptr),
-    fix_history(nullptr)
+    Pair(lmp), history(0), size_history(0), counter_offset(0), counters(nullptr),
+    exclusion_added(false), law_reported(false), max_radius(nullptr), fix_history(nullptr)
 {
   single_enable = 1;
   no_virial_fdotr_compute = 1;
   centroidstressflag = CENTROID_NOTAVAIL;
   finitecutflag = 1;
   restartinfo = 1;
-  history = 0;
-  size_history = 1;    // u_t, a scalar along t
-  // u_t is symmetric under i <-> j (t and v_ij both flip), so the history is copied,
+  // u_t and the counters' state are symmetric under i <-> j (t and v_ij both flip), so the history is copied,
   // not negated as LAMMPS's default transfer does for shear vectors.
   nondefault_history_transfer = 1;
 
@@ -76,6 +75,21 @@ double PairGranMN::mass_scale(int i, int j) const
   return 2.0 * rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
 }
 
+// A contact just ended: its row goes to the counters, once even if both processes hold the pair.
+void PairGranMN::report_end(int i, int j, double dx, double dy, double rsq, const double *state,
+                            const tagint *tag)
+{
+  double **v = atom->v;
+  const double r = sqrt(rsq);
+  const double vn = (dx * (v[i][0] - v[j][0]) + dy * (v[i][1] - v[j][1])) / r;
+  const bool record = force->newton_pair || j < atom->nlocal || tag[i] < tag[j];
+  const bool i_wall = is_wall_type[atom->type[i]], j_wall = is_wall_type[atom->type[j]];
+  if (i_wall)
+    counters->pair_ended(j, i, true, state, vn, record);
+  else
+    counters->pair_ended(i, j, j_wall, state, vn, record);
+}
+
 void PairGranMN::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
@@ -97,7 +111,10 @@ void PairGranMN::compute(int eflag, int vflag)
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   int **firsttouch = history ? fix_history->firstflag : nullptr;
-  double **firstut = history ? fix_history->firstvalue : nullptr;
+  double **firstslots = history ? fix_history->firstvalue : nullptr;
+  const bool friction = law.mu > 0.0;
+  const int *type = atom->type;
+  const tagint *tag = atom->tag;
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
@@ -105,7 +122,7 @@ void PairGranMN::compute(int eflag, int vflag)
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     int *touch = history ? firsttouch[i] : nullptr;
-    double *ut_all = history ? firstut[i] : nullptr;
+    double *slots_all = history ? firstslots[i] : nullptr;
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
@@ -113,11 +130,13 @@ void PairGranMN::compute(int eflag, int vflag)
       const double dy = x[i][1] - x[j][1];
       const double rsq = dx * dx + dy * dy;
       const double radsum = radi + radius[j];
+      double *slots = history ? &slots_all[size_history * jj] : nullptr;
 
       if (rsq >= radsum * radsum) {
         if (history) {
+          if (counters && touch[jj]) report_end(i, j, dx, dy, rsq, slots + counter_offset, tag);
           touch[jj] = 0;
-          ut_all[jj] = 0.0;
+          for (int k = 0; k < size_history; k++) slots[k] = 0.0;
         }
         continue;
       }
@@ -126,11 +145,12 @@ void PairGranMN::compute(int eflag, int vflag)
       const mn::Kinematics kin =
           mn::kinematics(dx, dy, r, radsum, v[i][0] - v[j][0], v[i][1] - v[j][1],
                          radi * omega[i][2] + radius[j] * omega[j][2]);
-      double *ut = nullptr;
-      if (history) {
-        touch[jj] = 1;
-        ut = &ut_all[jj];
-      }
+      if (counters)
+        counters->pair_touching(i, j, is_wall_type[type[j]], is_wall_type[type[i]],
+                                slots + counter_offset, !touch[jj], kin.delta, kin.vn,
+                                newton_pair || j < nlocal);
+      if (history) touch[jj] = 1;
+      double *ut = friction ? slots : nullptr;
       const mn::Force fc = mn::contact_force(law, mass_scale(i, j), kin, ut, dt_history);
 
       const double fx = fc.fn * kin.nx - fc.ft * kin.ny;
@@ -166,7 +186,6 @@ void PairGranMN::derive_law()
   const char *problem = mn::material_error(material);
   if (problem) error->all(FLERR, "Illegal pair_style gran/mn command: {}", problem);
   law = mn::derive(material, options);
-  history = (material.mu > 0.0 || fix_history) ? 1 : 0;
   law_reported = false;
 
   // Decks read the derived scales from here, e.g. timestep $(v_mn_tau_c/100).
@@ -292,6 +311,17 @@ void PairGranMN::init_style()
   }
   granmn::check_timestep(lmp, "pair_style gran/mn", dt, dt_max, law.tau_c, integrator);
 
+  // The history holds u_t when there is friction and the counters' per-pair state if asked.
+  const int icounters = modify->find_fix_by_style("^contacts/mn");
+  counters = icounters >= 0 ? (FixContactsMN *) modify->fix[icounters] : nullptr;
+  counter_offset = material.mu > 0.0 ? 1 : 0;
+  const int needed = counter_offset + (counters ? (int) FixContactsMN::PAIR_STATE_SIZE : 0);
+  if (fix_history && needed != size_history)
+    error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
+                      "mu or fix contacts/mn; define fix contacts/mn and mu before the first run");
+  size_history = needed;
+  history = size_history > 0 ? 1 : 0;
+
   int irequest = neighbor->request(this, instance_me);
   neighbor->requests[irequest]->size = 1;
   if (history) neighbor->requests[irequest]->history = 1;
@@ -404,18 +434,18 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
       atom->radius[i] * omega[i][2] + atom->radius[j] * omega[j][2]);
 
   double ut = 0.0;
-  if (history) {
+  if (law.mu > 0.0 && history) {
     const int jnum = list->numneigh[i];
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < jnum; jj++)
       if ((jlist[jj] & NEIGHMASK) == j) {
-        ut = fix_history->firstvalue[i][jj];
+        ut = fix_history->firstvalue[i][size_history * jj];
         break;
       }
   }
   double ut_copy = ut;    // single() must not alter the stored history
   const mn::Force fc =
-      mn::contact_force(law, mass_scale(i, j), kin, history ? &ut_copy : nullptr, 0.0);
+      mn::contact_force(law, mass_scale(i, j), kin, law.mu > 0.0 ? &ut_copy : nullptr, 0.0);
   fforce = fc.fn / r;
   svector[0] = fc.ft;
   svector[1] = kin.delta;

@@ -42,8 +42,10 @@ class PairGranMN : public Pair {
   mn::Law law;
   std::vector<int> wall_types;       // types of immobile boundary elements (bumps)
   std::vector<char> is_wall_type;    // per type, 1..ntypes
-  int history;                       // 1: per-pair u_t kept (mu > 0)
-  int size_history;
+  int history;                       // 1: per-pair history kept
+  int size_history;                  // u_t (mu > 0), then the counters' state (if any)
+  int counter_offset;                // where the counters' state starts in a pair's history
+  class FixContactsMN *counters;     // nullptr unless fix contacts/mn is defined
   bool exclusion_added;
   bool law_reported;
   double *max_radius;                // per type, for the cutoffs
@@ -55,6 +57,7 @@ class PairGranMN : public Pair {
   void derive_law();
   void check_wall_types();
   double mass_scale(int, int) const;
+  void report_end(int, int, double, double, double, const double *, const tagint *);
 };
 
 }    // namespace LAMMPS_NS

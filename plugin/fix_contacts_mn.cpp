@@ -1,0 +1,347 @@
+/* ----------------------------------------------------------------------
+   fix contacts/mn: contact counts and times per atom, per-contact rows.
+------------------------------------------------------------------------- */
+
+#include "fix_contacts_mn.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "group.h"
+#include "memory.h"
+#include "modify.h"
+#include "update.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+static constexpr int ROW_COLS = 8;          // tag_i tag_j kind start duration vn_start vn_end peak
+static constexpr int EXCHANGE_SIZE = FixContactsMN::NCOLS + 2 * FixContactsMN::WALL_SLOTS;
+
+// fix ID group contacts/mn [local N]
+FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), peratom(nullptr), wall(nullptr), step_particle(nullptr),
+    step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
+    window_start(0.0), rows_every(0), row_array(nullptr), nmax_rows(0), rows_cleared(-1),
+    vector_step(-1)
+{
+  int iarg = 3;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "local") == 0) {
+      if (iarg + 2 > narg) error->all(FLERR, "Illegal fix contacts/mn command: local needs N");
+      rows_every = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (rows_every <= 0)
+        error->all(FLERR, "Illegal fix contacts/mn command: local N needs N > 0 steps");
+      iarg += 2;
+    } else {
+      error->all(FLERR, "Illegal fix contacts/mn command: unknown keyword {}", arg[iarg]);
+    }
+  }
+  nevery = 1;
+  peratom_flag = 1;
+  size_peratom_cols = NCOLS;
+  peratom_freq = 1;
+  vector_flag = 1;
+  size_vector = 8;
+  global_freq = 1;
+  extvector = -1;
+  extlist = new int[size_vector]{1, 1, 1, 1, 1, 1, 0, 1};
+  if (rows_every) {
+    local_flag = 1;
+    size_local_cols = ROW_COLS;
+    size_local_rows = 0;
+    local_freq = rows_every;
+  }
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  comm_reverse = 4;
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+  window_start = step();
+}
+
+FixContactsMN::~FixContactsMN()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(peratom);
+  memory->destroy(wall);
+  memory->destroy(step_particle);
+  memory->destroy(step_boundary);
+  memory->destroy(begun_particle);
+  memory->destroy(begun_boundary);
+  memory->destroy(row_array);
+  delete[] extlist;
+}
+
+int FixContactsMN::setmask()
+{
+  return PRE_FORCE | END_OF_STEP;
+}
+
+void FixContactsMN::init()
+{
+  int count = 0;
+  for (int k = 0; k < modify->nfix; k++)
+    if (utils::strmatch(modify->fix[k]->style, "^contacts/mn")) count++;
+  if (count > 1) error->all(FLERR, "Only one fix contacts/mn may be defined");
+  if (!force->pair_match("gran/mn", 1) && modify->find_fix_by_style("^wall/gran/mn") < 0)
+    error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
+                      "wall/gran/mn; neither is defined");
+}
+
+// Steps, not LAMMPS's time: this LAMMPS restarts its time at zero after read_restart.
+double FixContactsMN::step() const
+{
+  return (double) update->ntimestep;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixContactsMN::grow_step_arrays()
+{
+  if (atom->nmax <= nmax_step) return;
+  nmax_step = atom->nmax;
+  memory->destroy(step_particle);
+  memory->destroy(step_boundary);
+  memory->destroy(begun_particle);
+  memory->destroy(begun_boundary);
+  memory->create(step_particle, nmax_step, "contacts/mn:step_particle");
+  memory->create(step_boundary, nmax_step, "contacts/mn:step_boundary");
+  memory->create(begun_particle, nmax_step, "contacts/mn:begun_particle");
+  memory->create(begun_boundary, nmax_step, "contacts/mn:begun_boundary");
+}
+
+void FixContactsMN::setup_pre_force(int vflag)
+{
+  pre_force(vflag);
+}
+
+// Zero this step's tallies before the pair style and the wall fix fill them.
+void FixContactsMN::pre_force(int)
+{
+  grow_step_arrays();
+  const int n = atom->nlocal + atom->nghost;
+  for (int i = 0; i < n; i++)
+    step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
+  // rows published at the previous step have been written by then
+  if (rows_every && update->ntimestep > rows_cleared &&
+      (update->ntimestep - 1) % rows_every == 0) {
+    rows.clear();
+    rows_cleared = update->ntimestep;
+  }
+}
+
+void FixContactsMN::pair_ended(int i, int j, bool boundary, const double *state, double vn,
+                               bool record)
+{
+  const int *mask = atom->mask;
+  if (!rows_every || !record || !((mask[i] | mask[j]) & groupbit)) return;
+  // the mobile atom first against a bump, else the smaller ID first (v_n is the same either way)
+  const tagint *tag = atom->tag;
+  const bool swap = !boundary && tag[j] < tag[i];
+  add_row(tag[swap ? j : i], tag[swap ? i : j], boundary ? 2 : 1, state[PAIR_START],
+          state[PAIR_VN_START], vn, state[PAIR_PEAK]);
+}
+
+void FixContactsMN::add_row(double tag_i, double tag_j, double kind, double start_step,
+                            double vn_start, double vn_end, double peak)
+{
+  const double dt = update->dt;
+  const double row[ROW_COLS] = {tag_i, tag_j, kind, start_step * dt, (step() - start_step) * dt,
+                                vn_start, vn_end, peak};
+  rows.insert(rows.end(), row, row + ROW_COLS);
+}
+
+/* ---------------------------------------------------------------------- */
+
+// Bring ghost tallies home, then add this step to each atom's counts and times.
+void FixContactsMN::collect(bool accumulate_time)
+{
+  if (force->newton_pair) comm->reverse_comm_fix(this);
+  const int *mask = atom->mask;
+  const double dt = update->dt;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *p = peratom[i];
+    p[BEGUN_PARTICLE] += begun_particle[i];
+    p[BEGUN_BOUNDARY] += begun_boundary[i];
+    p[NOW] = step_particle[i] + step_boundary[i];
+    if (accumulate_time) {
+      if (step_particle[i] > 0.0) p[TIME_PARTICLE] += dt;
+      if (step_boundary[i] > 0.0) p[TIME_BOUNDARY] += dt;
+      if (p[NOW] >= 2.0) p[TIME_MULTIPLE] += dt;
+    }
+    begun_particle[i] = begun_boundary[i] = 0.0;
+  }
+}
+
+// Contacts that exist when a run starts are counted once, at its setup.
+void FixContactsMN::setup(int)
+{
+  collect(false);
+  publish_rows();
+}
+
+void FixContactsMN::end_of_step()
+{
+  collect(true);
+  if (rows_every && update->ntimestep % rows_every == 0) publish_rows();
+}
+
+void FixContactsMN::publish_rows()
+{
+  if (!rows_every) return;
+  const int n = rows.size() / ROW_COLS;
+  if (n > nmax_rows) {
+    nmax_rows = n;
+    memory->destroy(row_array);
+    memory->create(row_array, nmax_rows, ROW_COLS, "contacts/mn:rows");
+  }
+  for (int r = 0; r < n; r++)
+    for (int c = 0; c < ROW_COLS; c++) row_array[r][c] = rows[ROW_COLS * r + c];
+  array_local = row_array;
+  size_local_rows = n;
+}
+
+int FixContactsMN::pack_reverse_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    buf[m++] = step_particle[i];
+    buf[m++] = step_boundary[i];
+    buf[m++] = begun_particle[i];
+    buf[m++] = begun_boundary[i];
+  }
+  return m;
+}
+
+void FixContactsMN::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  int m = 0;
+  for (int k = 0; k < n; k++) {
+    const int j = list[k];
+    step_particle[j] += buf[m++];
+    step_boundary[j] += buf[m++];
+    begun_particle[j] += buf[m++];
+    begun_boundary[j] += buf[m++];
+  }
+}
+
+// fix_modify ID reset: a fresh accumulation window from now on.
+int FixContactsMN::modify_param(int narg, char **arg)
+{
+  if (strcmp(arg[0], "reset") != 0) return 0;
+  if (narg > 1)
+    error->all(FLERR, "Illegal fix_modify command: fix contacts/mn reset takes no arguments");
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int c = BEGUN_PARTICLE; c <= TIME_MULTIPLE; c++) peratom[i][c] = 0.0;
+  window_start = step();
+  vector_step = -1;
+  return 1;
+}
+
+// Sums over the group of the per-atom columns, the window's length, the group's size.
+double FixContactsMN::compute_vector(int n)
+{
+  if (vector_step != update->ntimestep) {
+    double local[NCOLS] = {0.0};
+    const int *mask = atom->mask;
+    for (int i = 0; i < atom->nlocal; i++)
+      if (mask[i] & groupbit)
+        for (int c = 0; c < NCOLS; c++) local[c] += peratom[i][c];
+    MPI_Allreduce(local, vector_sums, NCOLS, MPI_DOUBLE, MPI_SUM, world);
+    vector_sums[6] = (step() - window_start) * update->dt;
+    vector_sums[7] = group->count(igroup);
+    vector_step = update->ntimestep;
+  }
+  return vector_sums[n];
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixContactsMN::memory_usage()
+{
+  return (double) atom->nmax * EXCHANGE_SIZE * sizeof(double) + 4.0 * nmax_step * sizeof(double) +
+      (double) rows.capacity() * sizeof(double);
+}
+
+void FixContactsMN::grow_arrays(int nmax)
+{
+  memory->grow(peratom, nmax, NCOLS, "contacts/mn:peratom");
+  memory->grow(wall, nmax, 2 * WALL_SLOTS, "contacts/mn:wall");
+  array_atom = peratom;
+}
+
+void FixContactsMN::copy_arrays(int i, int j, int)
+{
+  for (int c = 0; c < NCOLS; c++) peratom[j][c] = peratom[i][c];
+  for (int c = 0; c < 2 * WALL_SLOTS; c++) wall[j][c] = wall[i][c];
+}
+
+void FixContactsMN::set_arrays(int i)
+{
+  for (int c = 0; c < NCOLS; c++) peratom[i][c] = 0.0;
+  for (int c = 0; c < 2 * WALL_SLOTS; c++) wall[i][c] = 0.0;
+}
+
+int FixContactsMN::pack_exchange(int i, double *buf)
+{
+  int m = 0;
+  for (int c = 0; c < NCOLS; c++) buf[m++] = peratom[i][c];
+  for (int c = 0; c < 2 * WALL_SLOTS; c++) buf[m++] = wall[i][c];
+  return m;
+}
+
+int FixContactsMN::unpack_exchange(int nlocal, double *buf)
+{
+  int m = 0;
+  for (int c = 0; c < NCOLS; c++) peratom[nlocal][c] = buf[m++];
+  for (int c = 0; c < 2 * WALL_SLOTS; c++) wall[nlocal][c] = buf[m++];
+  return m;
+}
+
+int FixContactsMN::pack_restart(int i, double *buf)
+{
+  buf[0] = EXCHANGE_SIZE + 1;    // count including itself, as per-atom restart data requires
+  return 1 + pack_exchange(i, &buf[1]);
+}
+
+void FixContactsMN::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
+  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+}
+
+int FixContactsMN::size_restart(int)
+{
+  return EXCHANGE_SIZE + 1;
+}
+
+int FixContactsMN::maxsize_restart()
+{
+  return EXCHANGE_SIZE + 1;
+}
+
+void FixContactsMN::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    const int size = sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(&window_start, sizeof(double), 1, fp);
+  }
+}
+
+void FixContactsMN::restart(char *buf)
+{
+  memcpy(&window_start, buf, sizeof(double));
+}

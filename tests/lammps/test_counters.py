@@ -1,0 +1,240 @@
+"""fix contacts/mn: contact counts, contact times and per-contact rows."""
+import numpy as np
+import pytest
+
+from collision_decks import DISC_DENSITY, two_disks
+from granmn_run import law, run_lammps
+from pile_decks import FIXES, styles
+
+COUNTS = "id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]"
+SUMS = "$(f_c[1]) $(f_c[2]) $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6]) $(f_c[7]) $(f_c[8])"
+
+
+def test_binary_collision_is_one_contact_per_disk_lasting_tau_c(tmp_path):
+    material = (2e5, 0.7, 0.7, 0.5)
+    tau = law(*material[:3])["tau_c"]
+    dt = tau / 100
+    deck, _ = two_disks(material, dt)
+    deck = deck.replace("thermo 0\n", "fix c all contacts/mn local 1\n"
+                        "dump rows all local 1 rows.txt f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] "
+                        "f_c[6] f_c[7] f_c[8]\nthermo 0\n")
+    deck += f"write_dump all custom counts.txt {COUNTS}\nprint \"RESULT sums {SUMS}\"\n"
+    run = run_lammps(deck, tmp_path)
+    counts = run.atoms("counts.txt")
+    assert list(counts["f_c[1]"]) == [1, 1]            # one particle contact begun by each
+    assert list(counts["f_c[2]"]) == [0, 0]
+    assert np.all(np.abs(counts["f_c[3]"] - tau) <= dt)  # in contact for tau_c, to one step
+    assert list(counts["f_c[5]"]) == [0, 0]            # never two contacts at once
+    rows = [l.split() for l in (tmp_path / "rows.txt").read_text().splitlines()
+            if l and not l.startswith("ITEM") and len(l.split()) == 8]
+    assert len(rows) == 1                              # one completed contact, one row
+    tag_i, tag_j, kind, start, duration, vn_start, vn_end, peak = map(float, rows[0])
+    assert {tag_i, tag_j} == {1, 2} and kind == 1
+    assert abs(duration - tau) <= dt
+    assert abs(-vn_end / vn_start - 0.7) < 0.01        # the collision's restitution
+    # peak overlap of a damped oscillator: v0/omega * exp(-eta t*) sin(omega t*) ~ 0.0016
+    assert 0.0010 < peak < 0.0025
+    sums = run.result("sums")
+    assert sums[0] == 2 and sums[7] == 2
+
+
+def test_disk_resting_on_the_wall_touches_it_all_the_time(tmp_path):
+    kn = 2e5
+    dt = law(kn, 0.7, 0.7)["tau_c"] / 50
+    deck = f"""
+region box block -3 3 -1 5 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 {0.5 - 1.0 / kn!r} 0
+set type 1 diameter 1.0
+set type 1 density/disc {DISC_DENSITY!r}
+group mobile type 1
+pair_style gran/mn kn {kn} e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+timestep {dt!r}
+fix integrate mobile nve/sphere disc
+fix flat all enforce2d
+fix gravity mobile gravity 1.0 vector 0 -1 0
+fix floor mobile wall/gran/mn yplane 0.0 NULL
+fix c mobile contacts/mn
+thermo 0
+run 10000
+print "RESULT sums {SUMS}"
+"""
+    sums = run_lammps(deck, tmp_path).result("sums")
+    begun_particle, begun_boundary, t_particle, t_boundary, t_multiple, now, window, n = sums
+    assert begun_boundary == 1 and begun_particle == 0
+    assert t_boundary / window == pytest.approx(1.0, abs=1e-12)
+    assert now == 1 and n == 1
+
+
+def bounces(tmp_path, kn, height=0.1):
+    """Contacts a disk dropped from `height` above the wall makes until it stays there."""
+    ref = law(kn, 0.7, 0.7)
+    dt = ref["tau_w"] / 50
+    steps = int(6.0 / dt)
+    deck = f"""
+region box block -3 3 -1 5 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 {0.5 + height!r} 0
+set type 1 diameter 1.0
+set type 1 density/disc {DISC_DENSITY!r}
+group mobile type 1
+pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+timestep {dt!r}
+fix integrate mobile nve/sphere disc
+fix flat all enforce2d
+fix gravity mobile gravity 1.0 vector 0 -1 0
+fix floor mobile wall/gran/mn yplane 0.0 NULL
+fix c mobile contacts/mn
+thermo 0
+run {steps - int(1.0 / dt)}
+variable bounces equal $(f_c[2])
+fix_modify c reset
+run {int(1.0 / dt)}
+print "RESULT bounces ${{bounces}} $(f_c[2]) $(f_c[4]) $(f_c[7])"
+"""
+    begun, begun_last, t_boundary_last, window_last = run_lammps(
+        deck, tmp_path / f"kn{kn:g}").result("bounces")
+    # at rest for the last time unit: in contact throughout, no new contact
+    assert begun_last == 0 and t_boundary_last == pytest.approx(window_last, abs=1e-9)
+    return begun
+
+
+def test_bounces_before_lasting_contact_grow_linearly_with_ln_kn(tmp_path):
+    """The rebound speed falls by e_w per bounce until it is of order g tau_w, below which the
+    disk cannot leave the wall; tau_w ~ kn^-1/2, so the number of bounces is
+    ln(kn) / (2 |ln e_w|) + const (SPEC section 7: it grows like ln kn). Slope tolerance: the
+    count is an integer, +-1 over the fitted span of ln kn = 11.1, i.e. +-0.18 on ~2.0, plus the
+    first-order time-step error in e_w."""
+    kns = [2 ** p * 1e5 for p in range(0, 17, 2)]
+    counts = np.array([bounces(tmp_path, kn) for kn in kns])
+    x = np.log(kns)
+    slope, intercept = np.polyfit(x, counts, 1)
+    fitted = slope * x + intercept
+    r2 = 1 - np.sum((counts - fitted) ** 2) / np.sum((counts - counts.mean()) ** 2)
+    expected = 1 / (2 * abs(np.log(law(1e5, 0.7, 0.7)["e_w"])))
+    print(f"bounces {counts.tolist()} slope {slope:.3f} (expected {expected:.3f}) R^2 {r2:.4f}")
+    assert slope > 0
+    assert r2 > 0.97
+    assert abs(slope - expected) < 0.2 * expected
+
+
+COUNTERS = """
+fix c mobile contacts/mn local 100
+dump rows mobile local 100 rows.txt f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6] f_c[7] f_c[8]
+dump_modify rows format float %.10g
+"""
+HALF = 1500
+FINAL_COUNTS = f"write_dump mobile custom counts.txt {COUNTS} modify sort id\n"
+
+
+def counted_run(settled, workdir, newton="on", nprocs=1):
+    deck = (f"newton {newton}\nprocessors * 1 1\nread_data {settled}\ngroup mobile type 1\n" + styles(0.5) +
+            COUNTERS + f"run {HALF}\nwrite_restart mid.restart\nrun {HALF}\n" + FINAL_COUNTS)
+    return run_lammps(deck, workdir, nprocs=nprocs)
+
+
+def counts_and_rows(run, after_step=-1):
+    counts = run.atoms("counts.txt")
+    table = np.column_stack([counts[f"f_c[{k}]"] for k in range(1, 7)])
+    rows, step = [], None
+    for line in (run.workdir / "rows.txt").read_text().splitlines():
+        if line.startswith("ITEM: TIMESTEP"):
+            step = "next"
+        elif step == "next":
+            step = int(line)
+        elif not line.startswith("ITEM") and len(line.split()) == 8 and step > after_step:
+            rows.append(tuple(float(x) for x in line.split()))
+    return table, sorted(rows)
+
+
+@pytest.fixture(scope="module")
+def counted_reference(settled, tmp_path_factory):
+    return counted_run(settled, tmp_path_factory.mktemp("reference"))
+
+
+# Rows: tags and kind exact, start and duration (whole steps) and peak overlap to rounding,
+# velocities to the rounding of the chaotic pile (test_consistency: positions agree to 1e-8,
+# velocities to omega * 1e-8 ~ 6e-6).
+ROW_TOLERANCE = np.array([0, 0, 0, 1e-9, 1e-9, 1e-5, 1e-5, 1e-8])
+
+
+def assert_same_counts(a, b):
+    """Counts exactly; times (sums of whole steps) and row values to rounding."""
+    table_a, rows_a = a
+    table_b, rows_b = b
+    assert np.array_equal(table_a[:, [0, 1, 5]], table_b[:, [0, 1, 5]])
+    assert np.allclose(table_a[:, 2:5], table_b[:, 2:5], rtol=0, atol=1e-9)
+    assert len(rows_a) == len(rows_b)
+    difference = np.abs(np.array(rows_a) - np.array(rows_b))
+    assert np.all(difference <= ROW_TOLERANCE), difference.max(axis=0)
+
+
+def test_pile_has_contacts_crossing_ranks(counted_reference):
+    table, rows = counts_and_rows(counted_reference)
+    print(f"contacts begun: particle {table[:, 0].sum():.0f}, boundary {table[:, 1].sum():.0f}; "
+          f"completed rows {len(rows)}; multiple-contact time {table[:, 4].sum():.3f}")
+    assert table[:, 0].sum() > 50 and table[:, 1].sum() > 5 and len(rows) > 20
+    assert table[:, 4].sum() > 0
+
+
+@pytest.mark.parametrize("newton,nprocs", [("off", 1), ("on", 2), ("off", 2)])
+def test_counts_identical_with_newton_and_ranks(settled, counted_reference, tmp_path, newton,
+                                                nprocs):
+    other = counted_run(settled, tmp_path, newton=newton, nprocs=nprocs)
+    assert_same_counts(counts_and_rows(counted_reference), counts_and_rows(other))
+
+
+@pytest.mark.parametrize("nprocs", [1, 2])
+def test_counts_continue_across_restart(counted_reference, tmp_path, nprocs):
+    deck = (f"read_restart {counted_reference.workdir / 'mid.restart'}\n"
+            "neighbor 0.1 bin\ncomm_modify vel yes\n" + FIXES.format(tilt=0.3) + COUNTERS +
+            f"run {HALF}\n" + FINAL_COUNTS)
+    restarted = run_lammps(deck, tmp_path, nprocs=nprocs)
+    assert_same_counts(counts_and_rows(counted_reference, after_step=HALF),
+                       counts_and_rows(restarted))
+
+
+BAD = {
+    "unknown keyword": ("fix c all contacts/mn every 10", "unknown keyword every"),
+    "local without N": ("fix c all contacts/mn local", "local needs N"),
+    "local zero": ("fix c all contacts/mn local 0", "local N needs N > 0"),
+    "reset with an argument": ("fix c all contacts/mn\nfix_modify c reset now",
+                               "reset takes no arguments"),
+    "two counter fixes": ("fix c all contacts/mn\nfix d all contacts/mn",
+                          "Only one fix contacts/mn"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_counter_input(tmp_path, case):
+    text, message = BAD[case]
+    deck = f"""
+region box block -3 3 -3 3 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 0 0
+set type 1 density/disc {DISC_DENSITY!r}
+pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+timestep 1e-5
+{text}
+run 1
+"""
+    run = run_lammps(deck, tmp_path, check=False)
+    assert run.returncode != 0 and message in run.output, run.output[-1500:]
+
+
+def test_counters_without_the_gran_mn_styles(tmp_path):
+    deck = f"""
+region box block -3 3 -3 3 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 0 0
+set type 1 density/disc {DISC_DENSITY!r}
+pair_style gran/hooke 2e5 NULL 50 NULL 0.5 0
+pair_coeff * *
+fix c all contacts/mn
+run 1
+"""
+    run = run_lammps(deck, tmp_path, check=False)
+    assert run.returncode != 0 and "neither is defined" in run.output
