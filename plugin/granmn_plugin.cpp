@@ -7,6 +7,7 @@
 #include "version.h"
 
 #include "fix_contacts_mn.h"
+#include "fix_nve_ab2.h"
 #include "fix_wall_gran_mn.h"
 #include "pair_gran_mn.h"
 
@@ -20,6 +21,11 @@ static Pair *pair_gran_mn_creator(LAMMPS *lmp)
 static Fix *fix_contacts_mn_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixContactsMN(lmp, argc, argv);
+}
+
+static Fix *fix_nve_ab2_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixNVEAB2(lmp, argc, argv);
 }
 
 static Fix *fix_wall_gran_mn_creator(LAMMPS *lmp, int argc, char **argv)
@@ -50,5 +56,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "contacts/mn";
   plugin.info = "Per-contact counters for the gran/mn styles";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_contacts_mn_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "nve/ab2";
+  plugin.info = "Adams-Bashforth 2 / trapezoidal integrator for disks (Mitarai-Nakanishi)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_nve_ab2_creator;
   (*register_plugin)(&plugin, lmp);
 }

@@ -8,19 +8,23 @@ from granmn_run import law
 DISC_DENSITY = 4 / math.pi    # mass = diameter^2: unit disk has unit mass (SPEC section 1)
 
 
-def _common(material, dt, extra_styles=""):
+INTEGRATORS = {"verlet": "nve/sphere disc", "ab2": "nve/ab2"}
+
+
+def _common(material, dt, extra_styles="", integrator="verlet"):
     kn, e, beta, mu = material
     return f"""
 pair_style gran/mn kn {kn!r} e {e!r} beta {beta!r} mu {mu!r} {extra_styles}
 pair_coeff * *
 timestep {dt!r}
-fix integrate mobile nve/sphere disc
+fix integrate mobile {INTEGRATORS[integrator]}
 fix flat all enforce2d
 variable st equal step
 """
 
 
-def two_disks(material, dt, v_n=1.0, spin=0.0, d2=1.0, phase=0.5, pre_steps=10, tau=None):
+def two_disks(material, dt, v_n=1.0, spin=0.0, d2=1.0, phase=0.5, pre_steps=10, tau=None,
+              integrator="verlet"):
     """Disk 1 (diameter 1) moving at +v_n/2 towards disk 2 (diameter d2) at -v_n/2, both with
     spin `spin`; contact begins `phase` of a step after step `pre_steps`."""
     tau = tau or law(material[0], material[1], material[2])["tau_c"]
@@ -39,7 +43,7 @@ velocity all set 0 0 0
 set atom 1 vx {v_n / 2!r} omega 0 0 {spin!r}
 set atom 2 vx {-v_n / 2!r} omega 0 0 {spin!r}
 group mobile type 1
-{_common(material, dt)}
+{_common(material, dt, integrator=integrator)}
 variable dist equal sqrt((x[1]-x[2])^2+(y[1]-y[2])^2)
 fix trace all print 1 "${{st}} ${{dist}}" file trace.txt screen no
 thermo 0

@@ -1,0 +1,145 @@
+/* ----------------------------------------------------------------------
+   fix nve/ab2: v(t+dt) = v + dt (3/2 a(t) - 1/2 a(t-dt)),
+                x(t+dt) = x + dt/2 (v(t) + v(t+dt)), the same for spins (disks, I = m r^2/2).
+   The force at a step sees that step's positions and velocities (no half-step velocity).
+------------------------------------------------------------------------- */
+
+#include "fix_nve_ab2.h"
+
+#include "atom.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "update.h"
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+// fix ID group nve/ab2
+FixNVEAB2::FixNVEAB2(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg), previous(nullptr)
+{
+  if (narg != 3) error->all(FLERR, "Illegal fix nve/ab2 command: it takes no arguments");
+  if (domain->dimension != 2)
+    error->all(FLERR, "Fix nve/ab2 integrates disks: it requires dimension 2");
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "Fix nve/ab2 requires atom attributes radius, rmass, omega, torque "
+                      "(atom_style sphere)");
+  time_integrate = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+}
+
+FixNVEAB2::~FixNVEAB2()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(previous);
+}
+
+int FixNVEAB2::setmask()
+{
+  return INITIAL_INTEGRATE;
+}
+
+void FixNVEAB2::init()
+{
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "Fix nve/ab2 does not support run_style respa");
+}
+
+void FixNVEAB2::initial_integrate(int)
+{
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
+  const double *radius = atom->radius;
+  const double *rmass = atom->rmass;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double dt = update->dt;
+  const double ftm2v = force->ftm2v;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *prev = previous[i];
+    const double a[3] = {ftm2v * f[i][0] / rmass[i], ftm2v * f[i][1] / rmass[i],
+                         ftm2v * torque[i][2] / (0.5 * rmass[i] * radius[i] * radius[i])};
+    // The first step has no previous acceleration: it takes a(t - dt) = a(t), an Euler step.
+    if (prev[HAS_PREVIOUS] == 0.0) {
+      for (int k = 0; k < 3; k++) prev[k] = a[k];
+      prev[HAS_PREVIOUS] = 1.0;
+    }
+    for (int k = 0; k < 2; k++) {
+      const double v_new = v[i][k] + dt * (1.5 * a[k] - 0.5 * prev[k]);
+      x[i][k] += 0.5 * dt * (v[i][k] + v_new);
+      v[i][k] = v_new;
+    }
+    omega[i][2] += dt * (1.5 * a[2] - 0.5 * prev[ALPHA]);
+    for (int k = 0; k < 3; k++) prev[k] = a[k];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixNVEAB2::memory_usage()
+{
+  return (double) atom->nmax * NSTATE * sizeof(double);
+}
+
+void FixNVEAB2::grow_arrays(int nmax)
+{
+  memory->grow(previous, nmax, NSTATE, "nve/ab2:previous");
+}
+
+void FixNVEAB2::copy_arrays(int i, int j, int)
+{
+  for (int k = 0; k < NSTATE; k++) previous[j][k] = previous[i][k];
+}
+
+void FixNVEAB2::set_arrays(int i)
+{
+  for (int k = 0; k < NSTATE; k++) previous[i][k] = 0.0;
+}
+
+int FixNVEAB2::pack_exchange(int i, double *buf)
+{
+  for (int k = 0; k < NSTATE; k++) buf[k] = previous[i][k];
+  return NSTATE;
+}
+
+int FixNVEAB2::unpack_exchange(int nlocal, double *buf)
+{
+  for (int k = 0; k < NSTATE; k++) previous[nlocal][k] = buf[k];
+  return NSTATE;
+}
+
+int FixNVEAB2::pack_restart(int i, double *buf)
+{
+  buf[0] = NSTATE + 1;    // count including itself, as per-atom restart data requires
+  return 1 + pack_exchange(i, &buf[1]);
+}
+
+void FixNVEAB2::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
+  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+}
+
+int FixNVEAB2::size_restart(int)
+{
+  return NSTATE + 1;
+}
+
+int FixNVEAB2::maxsize_restart()
+{
+  return NSTATE + 1;
+}
