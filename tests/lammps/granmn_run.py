@@ -51,18 +51,13 @@ class Run:
         return {name: data[:, k] for k, name in enumerate(names)}
 
 
-def run_lammps(deck, workdir, nprocs=1, header=True, check=True):
-    """Runs `deck` (the HEADER first unless header=False) in workdir with nprocs MPI ranks."""
-    workdir = Path(workdir)
-    workdir.mkdir(parents=True, exist_ok=True)
-    text = (HEADER.format(plugin=PLUGIN) if header else "") + deck
-    (workdir / "in.deck").write_text(text)
-    cmd = [LMP, "-in", "in.deck", "-log", "log.lammps", "-nocite"]
-    if nprocs > 1:
-        cmd = [MPIEXEC, "-np", str(nprocs)] + cmd
+INPUTS = Path(__file__).resolve().parents[2] / "inputs"
+
+
+def _run(cmd, workdir, check):
     proc = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           text=True, timeout=1200)
-    run = Run(proc.returncode, proc.stdout, workdir)
+    run = Run(proc.returncode, proc.stdout, Path(workdir))
     for line in proc.stdout.splitlines():
         m = re.match(r"^RESULT (\S+)(.*)$", line)
         if m:
@@ -70,6 +65,32 @@ def run_lammps(deck, workdir, nprocs=1, header=True, check=True):
     if check and proc.returncode != 0:
         raise AssertionError(f"lmp failed ({proc.returncode}):\n{proc.stdout[-4000:]}")
     return run
+
+
+def _command(nprocs):
+    return ([MPIEXEC, "-np", str(nprocs)] if nprocs > 1 else []) + [LMP]
+
+
+def run_scene(scene, workdir, nprocs=1, check=True, **variables):
+    """Runs inputs/<scene>.lmp with its outputs in workdir and the given deck variables."""
+    workdir = Path(workdir)
+    workdir.mkdir(parents=True, exist_ok=True)
+    settings = dict(plugin=PLUGIN, lib=INPUTS / "lib", out=workdir, **variables)
+    cmd = _command(nprocs) + ["-in", str(INPUTS / f"{scene}.lmp"), "-log",
+                              str(workdir / "log.lammps"), "-nocite"]
+    for name, value in settings.items():
+        cmd += ["-var", name, str(value)]
+    return _run(cmd, workdir, check)
+
+
+def run_lammps(deck, workdir, nprocs=1, header=True, check=True):
+    """Runs `deck` (the HEADER first unless header=False) in workdir with nprocs MPI ranks."""
+    workdir = Path(workdir)
+    workdir.mkdir(parents=True, exist_ok=True)
+    text = (HEADER.format(plugin=PLUGIN) if header else "") + deck
+    (workdir / "in.deck").write_text(text)
+    cmd = _command(nprocs) + ["-in", "in.deck", "-log", "log.lammps", "-nocite"]
+    return _run(cmd, workdir, check)
 
 
 def law(kn, e, beta):

@@ -6,18 +6,18 @@ from granmn_run import law
 KN, E, BETA = 2e5, 0.7, 0.7
 
 
-def styles(mu, tilt=0.3):
+def styles(mu, tilt=0.3, integrator="nve/sphere disc"):
     """Pair style and time step (both kept in a restart file), then the fixes (not kept)."""
     dt = law(KN, E, BETA)["tau_c"] / 50
     return f"""
 pair_style gran/mn kn {KN} e {E} beta {BETA} mu {mu} wall_types 2
 pair_coeff * *
 timestep {dt!r}
-""" + FIXES.format(tilt=tilt)
+""" + FIXES.format(tilt=tilt, integrator=integrator)
 
 
 FIXES = """
-fix integrate mobile nve/sphere disc
+fix integrate mobile {integrator}
 fix flat all enforce2d
 fix gravity mobile gravity 1.0 vector {tilt} -1 0
 fix floor mobile wall/gran/mn yplane 0.0 11.5

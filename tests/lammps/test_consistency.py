@@ -43,7 +43,8 @@ def mirrored_data(source, target, box_length=10.0):
     return target
 
 
-def full_run(settled, workdir, newton="on", nprocs=1, mu=0.5, shuffle=False):
+def full_run(settled, workdir, newton="on", nprocs=1, mu=0.5, shuffle=False,
+             integrator="nve/sphere disc"):
     # shuffle: rebuild neighbor lists every step and re-sort atoms often, so that contacts
     # are handed between the two atoms' lists (and ranks) many times while they last
     shuffle_settings = "atom_modify sort 7 0.5\n" if shuffle else ""
@@ -54,7 +55,7 @@ processors * 1 1
 {shuffle_settings}read_data {settled}
 {shuffle_neighbors}
 group mobile type 1
-""" + styles(mu) + f"""
+""" + styles(mu, integrator=integrator) + f"""
 fix report all print {STEPS} "RESULT contacts ${{ncontacts}}"
 run {STEPS}
 write_restart mid.restart
@@ -169,8 +170,25 @@ def test_restart_in_the_middle_of_contacts_continues_the_trajectory(reference, t
 read_restart {reference.workdir / 'mid.restart'}
 neighbor 0.1 bin
 comm_modify vel yes
-""" + FIXES.format(tilt=0.3) + f"run {STEPS}\n" + FINAL
+""" + FIXES.format(tilt=0.3, integrator="nve/sphere disc") + f"run {STEPS}\n" + FINAL
     restarted = run_lammps(deck, tmp_path / "restarted", nprocs=nprocs)
     difference = np.max(np.abs(state(restarted) - state(reference)))
     print(f"restart on {nprocs} ranks: max difference {difference:.2e}")
     assert difference < ROUNDING
+
+
+def test_paper_integrator_on_two_ranks_and_across_a_restart(settled, tmp_path):
+    """fix nve/ab2 keeps each atom's previous acceleration: it must move with the atom between
+    ranks and survive a restart, or the continued trajectory would differ at once."""
+    reference = full_run(settled, tmp_path / "reference", integrator="nve/ab2")
+    two_ranks = full_run(settled, tmp_path / "two_ranks", nprocs=2, integrator="nve/ab2")
+    deck = f"""
+read_restart {reference.workdir / 'mid.restart'}
+neighbor 0.1 bin
+comm_modify vel yes
+""" + FIXES.format(tilt=0.3, integrator="nve/ab2") + f"run {STEPS}\n" + FINAL
+    restarted = run_lammps(deck, tmp_path / "restarted", nprocs=2)
+    for other, name in ((two_ranks, "2 ranks"), (restarted, "restart on 2 ranks")):
+        difference = np.max(np.abs(state(other) - state(reference)))
+        print(f"ab2, {name}: max difference {difference:.2e}")
+        assert difference < ROUNDING

@@ -189,7 +189,8 @@ def test_counts_identical_with_newton_and_ranks(settled, counted_reference, tmp_
 @pytest.mark.parametrize("nprocs", [1, 2])
 def test_counts_continue_across_restart(counted_reference, tmp_path, nprocs):
     deck = (f"read_restart {counted_reference.workdir / 'mid.restart'}\n"
-            "neighbor 0.1 bin\ncomm_modify vel yes\n" + FIXES.format(tilt=0.3) + COUNTERS +
+            "neighbor 0.1 bin\ncomm_modify vel yes\n" +
+            FIXES.format(tilt=0.3, integrator="nve/sphere disc") + COUNTERS +
             f"run {HALF}\n" + FINAL_COUNTS)
     restarted = run_lammps(deck, tmp_path, nprocs=nprocs)
     assert_same_counts(counts_and_rows(counted_reference, after_step=HALF),

@@ -1,0 +1,1 @@
+"""Post-processing of the scenes' outputs: pure numpy functions (see the modules)."""

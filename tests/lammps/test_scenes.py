@@ -1,0 +1,143 @@
+"""The three scene decks (inputs/): the single disk's regimes, a steady collisional flow, a
+frictional run writing its series, the two integrators, and refused deck variables."""
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from collision_decks import two_disks
+from granmn_run import law, run_lammps, run_scene
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+from postprocess.signals import dominant_period, trend  # noqa: E402
+
+SINGLE_KN = 0.5e5    # the paper's stiffness for the single disk
+
+
+def energy(run):
+    """energy.txt as (time, total kinetic energy per disk)."""
+    data = run.table("energy.txt")
+    params = dict(line.split() for line in (run.workdir / "params.txt").read_text().splitlines())
+    return data[:, 0] * float(params["dt"]), data[:, 3]
+
+
+def single_disk(tmp_path, sin_theta, **variables):
+    settings = dict(kn=SINGLE_KN, sin_theta=sin_theta, run_time=150, average_start=50)
+    settings.update(variables)
+    return run_scene("single_disk", tmp_path / f"s{sin_theta}", **settings)
+
+
+def period_of(run, after=50.0):
+    t, x, y, vx, vy = run.table("trajectory.txt").T
+    late = t > after
+    return dominant_period(t[late], vy[late], max_period=20.0)
+
+
+def test_single_disk_rolls_periodically_one_bump_per_period(tmp_path):
+    """sin(theta) = 0.13 at kn = 2^-1 x 10^5 (paper section III A): v_y is periodic with
+    period ~4, the time to pass one bump."""
+    run = single_disk(tmp_path, 0.13)
+    period, correlation = period_of(run)
+    t, x, y, vx, vy = run.table("trajectory.txt").T
+    late = t > 50
+    travelled = np.unwrap(x[late] * 2 * np.pi / 10.02) * 10.02 / (2 * np.pi)
+    bump_time = 1.002 * (t[late][-1] - t[late][0]) / (travelled[-1] - travelled[0])
+    print(f"period {period:.3f} (autocorrelation {correlation:.2f}), time per bump {bump_time:.3f}")
+    assert abs(period - 4.0) <= 0.4
+    assert correlation > 0.7
+    assert abs(bump_time - period) < 0.2
+
+
+def test_single_disk_on_a_gentle_slope_comes_to_rest(tmp_path):
+    t, e = energy(single_disk(tmp_path, 0.08))
+    assert e[-1] < 1e-12 and e[0] > 0.1
+
+
+def test_single_disk_above_the_steady_window(tmp_path):
+    """The issue expected the energy to keep growing at sin(theta) = 0.18. It does not here:
+    above the steady window (0.11-0.14 in the paper, reproduced) the disk hops irregularly over
+    the bumps until it lands in a valley, where it is trapped at rest: a disk at rest between two
+    bumps stays there while tan(theta) < (0.866 - ... ) ~ 0.27 (it would have to climb 0.135 in
+    y over 0.5 in x). The energy grows without bound only on steeper slopes: tested at 0.25."""
+    t, e = energy(single_disk(tmp_path, 0.18))
+    assert e.max() > 0.1 and e[-1] < 1e-12          # it moved, then was trapped
+    t, e = energy(single_disk(tmp_path, 0.25, run_time=200))
+    quarter = len(e) // 4
+    print(f"sin 0.25: mean E first quarter {e[:quarter].mean():.3g}, last {e[-quarter:].mean():.3g}")
+    assert e[-quarter:].mean() > 10 * e[:quarter].mean()
+
+
+def test_collisional_flow_reaches_a_steady_energy(tmp_path):
+    """After a transient of 200, the energy per disk has no trend: the slope of 10 block means
+    over [200, 500) is within 3 standard errors of zero (blocks of 30 time units are much
+    longer than the time between collisions, so their means are nearly independent)."""
+    run = run_scene("collisional_flow", tmp_path, kn=0.125e5, run_time=500, average_start=200)
+    t, e = energy(run)
+    slope, error = trend(t, e, 200, 500)
+    steady = e[t >= 200].mean()
+    print(f"steady E {steady:.3f}; trend {slope:.2e} +- {error:.2e} per unit time")
+    assert abs(slope) <= 3 * error
+    assert abs(slope) * 300 < 0.2 * steady            # and small in absolute terms
+    assert e[t < 10].mean() < 0.5 * steady             # it did start from rest
+
+
+def test_frictional_flow_writes_its_series(tmp_path):
+    run = run_scene("frictional_flow", tmp_path, kn=0.125e5, run_time=20, average_start=10)
+    t, e = energy(run)
+    assert len(t) >= 199 and np.all(np.isfinite(e)) and e.max() > 0
+    for name in ("counts.txt", "profile.txt", "snapshots.lammpstrj", "params.txt", "done.txt"):
+        assert (tmp_path / name).stat().st_size > 0
+    counts = run.atoms("counts.txt")
+    assert len(counts["id"]) == 100 and counts["diameter"].min() >= 0.8
+    assert counts["f_c[2]"].sum() > 0                 # the bottom layer touched the floor
+
+
+@pytest.mark.parametrize("e", [0.5, 0.7])
+def test_integrators_agree_on_a_binary_collision(tmp_path, e):
+    """Both converge to e; their difference shrinks as dt does (Verlet's first-order error
+    dominates it)."""
+    differences = []
+    for fraction in (1 / 50, 1 / 100, 1 / 200):
+        measured = {}
+        for integrator in ("verlet", "ab2"):
+            dt = law(2e5, e, 0.7)["tau_c"] * fraction
+            deck, _ = two_disks((2e5, e, 0.7, 0.5), dt, integrator=integrator)
+            a = run_lammps(deck, tmp_path / f"{integrator}{fraction}").atoms()
+            measured[integrator] = -(a["vx"][0] - a["vx"][1])
+        differences.append(abs(measured["verlet"] - measured["ab2"]))
+        assert abs(measured["ab2"] - e) < 0.01
+    print(f"e={e}: |e_verlet - e_ab2| = {differences}")
+    assert differences[0] > differences[1] > differences[2]
+
+
+def test_integrators_agree_on_the_single_disk_period(tmp_path):
+    periods = {}
+    for integrator in ("verlet", "ab2"):
+        for fraction in (0.02, 0.01):
+            run = single_disk(tmp_path / f"{integrator}{fraction}", 0.13, integrator=integrator,
+                              dt_fraction=fraction)
+            periods[integrator, fraction] = period_of(run)[0]
+    print(periods)
+    for fraction in (0.02, 0.01):
+        assert abs(periods["verlet", fraction] - periods["ab2", fraction]) <= 0.2
+
+
+BAD_VARIABLES = {
+    "negative kn": (dict(kn=-1e5), "deck variable kn = -100000.0 must be > 0"),
+    "sin_theta one": (dict(sin_theta=1.0), "deck variable sin_theta = 1.0 must lie in (0,1)"),
+    "sin_theta above one": (dict(sin_theta=1.5), "sin_theta = 1.5 must lie in (0,1)"),
+    "unknown integrator": (dict(integrator="leapfrog"),
+                           "deck variable integrator = leapfrog must be verlet or ab2"),
+    "averaging after the end": (dict(run_time=10, average_start=20),
+                                "average_start = 20 must lie in [0, run_time = 10)"),
+    "seed not an integer": (dict(seed=1.5), "seed = 1.5 must be a positive integer"),
+}
+
+
+@pytest.mark.parametrize("scene", ["single_disk", "collisional_flow", "frictional_flow"])
+@pytest.mark.parametrize("case", sorted(BAD_VARIABLES))
+def test_bad_deck_variables_stop_with_a_message(tmp_path, scene, case):
+    variables, message = BAD_VARIABLES[case]
+    run = run_scene(scene, tmp_path, check=False, **variables)
+    assert run.returncode != 0 and message in run.output, run.output[-1500:]
