@@ -1,0 +1,36 @@
+// mn-law: prints the coefficients SPEC section 3 derives from (kn, e, beta, mu), and the
+// stability limits, one "name value" per line, so that scripts use the header's numbers.
+//   mn-law KN E BETA [MU]
+#include "mn_contact.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+int main(int argc, char **argv)
+{
+  if (argc < 4 || argc > 5) {
+    std::fprintf(stderr, "usage: mn-law KN E BETA [MU]\n");
+    return 2;
+  }
+  char *end = nullptr;
+  double values[4] = {0.0, 0.0, 0.0, 0.0};
+  for (int k = 1; k < argc; k++) {
+    values[k - 1] = std::strtod(argv[k], &end);
+    if (end == argv[k] || *end != '\0') {
+      std::fprintf(stderr, "mn-law: '%s' is not a number\n", argv[k]);
+      return 2;
+    }
+  }
+  const mn::Material material{values[0], values[1], values[2], values[3]};
+  if (const char *problem = mn::material_error(material)) {
+    std::fprintf(stderr, "mn-law: %s\n", problem);
+    return 2;
+  }
+  const mn::Law law = mn::derive(material);
+  std::printf("kn %.17g\neta_n %.17g\nkt %.17g\neta_t %.17g\ntau_c %.17g\ntau_w %.17g\n"
+              "e_w %.17g\ndt_max_verlet %.17g\ndt_max_ab2 %.17g\n",
+              law.kn, law.eta_n, law.kt, law.eta_t, law.tau_c, law.tau_w, law.e_w,
+              mn::max_stable_dt(law, mn::Integrator::VelocityVerlet),
+              mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
+  return 0;
+}
