@@ -19,11 +19,10 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 static constexpr int ROW_COLS = 8;          // tag_i tag_j kind start duration vn_start vn_end peak
-static constexpr int EXCHANGE_SIZE = FixContactsMN::NCOLS + 2 * FixContactsMN::WALL_SLOTS;
 
 // fix ID group contacts/mn [local N]
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), peratom(nullptr), wall(nullptr), step_particle(nullptr),
+    FixPerAtomState(lmp, narg, arg), step_particle(nullptr),
     step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
     window_start(0.0), rows_every(0), row_array(nullptr), nmax_rows(0), rows_cleared(-1),
     vector_step(-1)
@@ -56,23 +55,13 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
     local_freq = rows_every;
   }
   restart_global = 1;
-  restart_peratom = 1;
-  create_attribute = 1;
   comm_reverse = 4;
-
-  grow_arrays(atom->nmax);
-  atom->add_callback(Atom::GROW);
-  atom->add_callback(Atom::RESTART);
-  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+  allocate_state(NCOLS + 2 * WALL_SLOTS);
   window_start = step();
 }
 
 FixContactsMN::~FixContactsMN()
 {
-  atom->delete_callback(id, Atom::GROW);
-  atom->delete_callback(id, Atom::RESTART);
-  memory->destroy(peratom);
-  memory->destroy(wall);
   memory->destroy(step_particle);
   memory->destroy(step_boundary);
   memory->destroy(begun_particle);
@@ -170,7 +159,7 @@ void FixContactsMN::collect(bool accumulate_time)
   const double dt = update->dt;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    double *p = peratom[i];
+    double *p = state[i];
     p[BEGUN_PARTICLE] += begun_particle[i];
     p[BEGUN_BOUNDARY] += begun_boundary[i];
     p[NOW] = step_particle[i] + step_boundary[i];
@@ -242,7 +231,7 @@ int FixContactsMN::modify_param(int narg, char **arg)
   if (narg > 1)
     error->all(FLERR, "Illegal fix_modify command: fix contacts/mn reset takes no arguments");
   for (int i = 0; i < atom->nlocal; i++)
-    for (int c = BEGUN_PARTICLE; c <= TIME_MULTIPLE; c++) peratom[i][c] = 0.0;
+    for (int c = BEGUN_PARTICLE; c <= TIME_MULTIPLE; c++) state[i][c] = 0.0;
   window_start = step();
   vector_step = -1;
   return 1;
@@ -256,7 +245,7 @@ double FixContactsMN::compute_vector(int n)
     const int *mask = atom->mask;
     for (int i = 0; i < atom->nlocal; i++)
       if (mask[i] & groupbit)
-        for (int c = 0; c < NCOLS; c++) local[c] += peratom[i][c];
+        for (int c = 0; c < NCOLS; c++) local[c] += state[i][c];
     MPI_Allreduce(local, vector_sums, NCOLS, MPI_DOUBLE, MPI_SUM, world);
     vector_sums[6] = (step() - window_start) * update->dt;
     vector_sums[7] = group->count(igroup);
@@ -269,67 +258,15 @@ double FixContactsMN::compute_vector(int n)
 
 double FixContactsMN::memory_usage()
 {
-  return (double) atom->nmax * EXCHANGE_SIZE * sizeof(double) + 4.0 * nmax_step * sizeof(double) +
+  return FixPerAtomState::memory_usage() + 4.0 * nmax_step * sizeof(double) +
       (double) rows.capacity() * sizeof(double);
 }
 
+// The per-atom output is the first NCOLS columns of the state.
 void FixContactsMN::grow_arrays(int nmax)
 {
-  memory->grow(peratom, nmax, NCOLS, "contacts/mn:peratom");
-  memory->grow(wall, nmax, 2 * WALL_SLOTS, "contacts/mn:wall");
-  array_atom = peratom;
-}
-
-void FixContactsMN::copy_arrays(int i, int j, int)
-{
-  for (int c = 0; c < NCOLS; c++) peratom[j][c] = peratom[i][c];
-  for (int c = 0; c < 2 * WALL_SLOTS; c++) wall[j][c] = wall[i][c];
-}
-
-void FixContactsMN::set_arrays(int i)
-{
-  for (int c = 0; c < NCOLS; c++) peratom[i][c] = 0.0;
-  for (int c = 0; c < 2 * WALL_SLOTS; c++) wall[i][c] = 0.0;
-}
-
-int FixContactsMN::pack_exchange(int i, double *buf)
-{
-  int m = 0;
-  for (int c = 0; c < NCOLS; c++) buf[m++] = peratom[i][c];
-  for (int c = 0; c < 2 * WALL_SLOTS; c++) buf[m++] = wall[i][c];
-  return m;
-}
-
-int FixContactsMN::unpack_exchange(int nlocal, double *buf)
-{
-  int m = 0;
-  for (int c = 0; c < NCOLS; c++) peratom[nlocal][c] = buf[m++];
-  for (int c = 0; c < 2 * WALL_SLOTS; c++) wall[nlocal][c] = buf[m++];
-  return m;
-}
-
-int FixContactsMN::pack_restart(int i, double *buf)
-{
-  buf[0] = EXCHANGE_SIZE + 1;    // count including itself, as per-atom restart data requires
-  return 1 + pack_exchange(i, &buf[1]);
-}
-
-void FixContactsMN::unpack_restart(int nlocal, int nth)
-{
-  double **extra = atom->extra;
-  int m = 0;
-  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
-  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
-}
-
-int FixContactsMN::size_restart(int)
-{
-  return EXCHANGE_SIZE + 1;
-}
-
-int FixContactsMN::maxsize_restart()
-{
-  return EXCHANGE_SIZE + 1;
+  FixPerAtomState::grow_arrays(nmax);
+  array_atom = state;
 }
 
 void FixContactsMN::write_restart(FILE *fp)

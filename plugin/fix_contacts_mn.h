@@ -8,14 +8,14 @@
 #define LMP_FIX_CONTACTS_MN_H
 
 #include "atom.h"
-#include "fix.h"
+#include "fix_per_atom_state.h"
 #include "update.h"
 
 #include <vector>
 
 namespace LAMMPS_NS {
 
-class FixContactsMN : public Fix {
+class FixContactsMN : public FixPerAtomState {
  public:
   // Columns of the per-atom array.
   enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, NCOLS };
@@ -39,14 +39,6 @@ class FixContactsMN : public Fix {
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
   void grow_arrays(int) override;
-  void copy_arrays(int, int, int) override;
-  void set_arrays(int) override;
-  int pack_exchange(int, double *) override;
-  int unpack_exchange(int, double *) override;
-  int pack_restart(int, double *) override;
-  void unpack_restart(int, int) override;
-  int size_restart(int) override;
-  int maxsize_restart() override;
   void write_restart(FILE *) override;
   void restart(char *) override;
 
@@ -63,8 +55,8 @@ class FixContactsMN : public Fix {
   void wall_state(int i, int side, bool touching, double delta, double vn);
 
  private:
-  double **peratom;            // NCOLS per owned atom: the per-atom output
-  double **wall;               // WALL_SLOTS per atom and wall side
+  // state[i]: the NCOLS output columns, then WALL_SLOTS per wall side (WALL_STATE on)
+  enum { WALL_STATE = NCOLS };
   double *step_particle, *step_boundary;    // contacts at this step, owned + ghost
   double *begun_particle, *begun_boundary;  // contacts begun at this step, owned + ghost
   int nmax_step;
@@ -107,7 +99,7 @@ inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool 
 
 inline void FixContactsMN::wall_state(int i, int side, bool touching, double delta, double vn)
 {
-  double *w = &wall[i][WALL_SLOTS * side];
+  double *w = &state[i][WALL_STATE + WALL_SLOTS * side];
   if (touching) {
     if (w[0] == 0.0) {
       w[0] = 1.0;
@@ -115,7 +107,7 @@ inline void FixContactsMN::wall_state(int i, int side, bool touching, double del
       w[2] = vn;
       w[3] = delta;
       // owned atom: counted directly, so that the order of fix setups does not matter
-      if (atom->mask[i] & groupbit) peratom[i][BEGUN_BOUNDARY] += 1.0;
+      if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
     } else if (delta > w[3]) {
       w[3] = delta;
     }

@@ -10,14 +10,13 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
-#include "memory.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
 // fix ID group nve/ab2
-FixNVEAB2::FixNVEAB2(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg), previous(nullptr)
+FixNVEAB2::FixNVEAB2(LAMMPS *lmp, int narg, char **arg) : FixPerAtomState(lmp, narg, arg)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix nve/ab2 command: it takes no arguments");
   if (domain->dimension != 2)
@@ -26,19 +25,7 @@ FixNVEAB2::FixNVEAB2(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg), p
     error->all(FLERR, "Fix nve/ab2 requires atom attributes radius, rmass, omega, torque "
                       "(atom_style sphere)");
   time_integrate = 1;
-  restart_peratom = 1;
-  create_attribute = 1;
-  grow_arrays(atom->nmax);
-  atom->add_callback(Atom::GROW);
-  atom->add_callback(Atom::RESTART);
-  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
-}
-
-FixNVEAB2::~FixNVEAB2()
-{
-  atom->delete_callback(id, Atom::GROW);
-  atom->delete_callback(id, Atom::RESTART);
-  memory->destroy(previous);
+  allocate_state(NSTATE);
 }
 
 int FixNVEAB2::setmask()
@@ -68,7 +55,7 @@ void FixNVEAB2::initial_integrate(int)
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    double *prev = previous[i];
+    double *prev = state[i];
     const double a[3] = {ftm2v * f[i][0] / rmass[i], ftm2v * f[i][1] / rmass[i],
                          ftm2v * torque[i][2] / (0.5 * rmass[i] * radius[i] * radius[i])};
     // The first step has no previous acceleration: it takes a(t - dt) = a(t), an Euler step.
@@ -86,60 +73,3 @@ void FixNVEAB2::initial_integrate(int)
   }
 }
 
-/* ---------------------------------------------------------------------- */
-
-double FixNVEAB2::memory_usage()
-{
-  return (double) atom->nmax * NSTATE * sizeof(double);
-}
-
-void FixNVEAB2::grow_arrays(int nmax)
-{
-  memory->grow(previous, nmax, NSTATE, "nve/ab2:previous");
-}
-
-void FixNVEAB2::copy_arrays(int i, int j, int)
-{
-  for (int k = 0; k < NSTATE; k++) previous[j][k] = previous[i][k];
-}
-
-void FixNVEAB2::set_arrays(int i)
-{
-  for (int k = 0; k < NSTATE; k++) previous[i][k] = 0.0;
-}
-
-int FixNVEAB2::pack_exchange(int i, double *buf)
-{
-  for (int k = 0; k < NSTATE; k++) buf[k] = previous[i][k];
-  return NSTATE;
-}
-
-int FixNVEAB2::unpack_exchange(int nlocal, double *buf)
-{
-  for (int k = 0; k < NSTATE; k++) previous[nlocal][k] = buf[k];
-  return NSTATE;
-}
-
-int FixNVEAB2::pack_restart(int i, double *buf)
-{
-  buf[0] = NSTATE + 1;    // count including itself, as per-atom restart data requires
-  return 1 + pack_exchange(i, &buf[1]);
-}
-
-void FixNVEAB2::unpack_restart(int nlocal, int nth)
-{
-  double **extra = atom->extra;
-  int m = 0;
-  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
-  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
-}
-
-int FixNVEAB2::size_restart(int)
-{
-  return NSTATE + 1;
-}
-
-int FixNVEAB2::maxsize_restart()
-{
-  return NSTATE + 1;
-}

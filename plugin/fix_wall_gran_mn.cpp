@@ -12,7 +12,6 @@
 #include "fix_contacts_mn.h"
 #include "force.h"
 #include "granmn_glue.h"
-#include "memory.h"
 #include "modify.h"
 #include "pair_gran_mn.h"
 #include "update.h"
@@ -26,7 +25,7 @@ using namespace FixConst;
 // fix ID group wall/gran/mn xplane|yplane lo hi [kn K] [e E] [beta B] [mu MU]
 //                                                  [limit_damping] [coulomb_cutback]
 FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), options_given(false), own_law(false), use_history(false), ut(nullptr),
+    FixPerAtomState(lmp, narg, arg), own_law(false), use_history(false),
     counters(nullptr), force_reduced(false)
 {
   if (domain->dimension != 2)
@@ -52,31 +51,11 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Illegal fix wall/gran/mn command: lower wall {} not below upper wall {}",
                lo, hi);
 
-  const char *names[4] = {"kn", "e", "beta", "mu"};
-  double *values[4] = {&material.kn, &material.e, &material.beta, &material.mu};
-  for (int k = 0; k < 4; k++) given[k] = false;
   int iarg = 6;
   while (iarg < narg) {
-    int which = -1;
-    for (int k = 0; k < 4; k++)
-      if (strcmp(arg[iarg], names[k]) == 0) which = k;
-    if (which >= 0) {
-      if (iarg + 2 > narg)
-        error->all(FLERR, "Illegal fix wall/gran/mn command: {} needs a value", names[which]);
-      *values[which] = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      given[which] = true;
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "limit_damping") == 0) {
-      options.limit_damping = true;
-      options_given = true;
-      iarg++;
-    } else if (strcmp(arg[iarg], "coulomb_cutback") == 0) {
-      options.coulomb_cutback = true;
-      options_given = true;
-      iarg++;
-    } else {
-      error->all(FLERR, "Illegal fix wall/gran/mn command: unknown keyword {}", arg[iarg]);
-    }
+    const int used = granmn::parse_law_keyword(lmp, "fix wall/gran/mn", narg, arg, iarg, parsed);
+    if (!used) error->all(FLERR, "Illegal fix wall/gran/mn command: unknown keyword {}", arg[iarg]);
+    iarg += used;
   }
   resolve_law();
   use_history = law.mu > 0.0;
@@ -85,24 +64,8 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
   size_vector = 2;    // force exerted by the particles on the walls (x, y)
   global_freq = 1;
   extvector = 1;
-  create_attribute = 1;
-  restart_peratom = use_history ? 1 : 0;
-  if (use_history) {
-    grow_arrays(atom->nmax);
-    atom->add_callback(Atom::GROW);
-    atom->add_callback(Atom::RESTART);
-    for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
-  }
+  if (use_history) allocate_state(2);
   wall_force[0] = wall_force[1] = 0.0;
-}
-
-FixWallGranMN::~FixWallGranMN()
-{
-  if (use_history) {
-    atom->delete_callback(id, Atom::GROW);
-    atom->delete_callback(id, Atom::RESTART);
-  }
-  memory->destroy(ut);
 }
 
 int FixWallGranMN::setmask()
@@ -114,12 +77,13 @@ int FixWallGranMN::setmask()
 void FixWallGranMN::resolve_law()
 {
   PairGranMN *pair = dynamic_cast<PairGranMN *>(force->pair_match("gran/mn", 1));
+  const bool *given = parsed.given;
   const bool all_given = given[0] && given[1] && given[2] && given[3];
   if (!pair && !all_given)
     error->all(FLERR, "Fix wall/gran/mn takes its kn, e, beta, mu from pair_style gran/mn: "
                       "define that pair style first or give all four on the fix line");
-  mn::Material m = material;
-  mn::Options o = options;
+  mn::Material m = parsed.material;
+  mn::Options o = parsed.options;
   own_law = true;
   if (pair) {
     const mn::Material &pm = pair->contact_material();
@@ -127,8 +91,8 @@ void FixWallGranMN::resolve_law()
     if (!given[1]) m.e = pm.e;
     if (!given[2]) m.beta = pm.beta;
     if (!given[3]) m.mu = pm.mu;
-    if (!options_given) o = pair->contact_law().options;
-    own_law = given[0] || given[1] || given[2] || given[3] || options_given;
+    if (!parsed.options_given) o = pair->contact_law().options;
+    own_law = given[0] || given[1] || given[2] || given[3] || parsed.options_given;
   }
   const char *problem = mn::material_error(m);
   if (problem) error->all(FLERR, "Illegal fix wall/gran/mn command: {}", problem);
@@ -181,7 +145,7 @@ void FixWallGranMN::post_force(int)
       if (counters)
         counters->wall_state(i, side, touching, radius[i] - dist, normal * v[i][axis]);
       if (!touching) {
-        if (use_history) ut[i][side] = 0.0;
+        if (use_history) state[i][side] = 0.0;
         continue;
       }
       if (dist <= 0.0)
@@ -193,7 +157,7 @@ void FixWallGranMN::post_force(int)
       const mn::Kinematics kin =
           mn::kinematics(dx, dy, dist, radius[i], v[i][0], v[i][1], radius[i] * omega[i][2]);
       const mn::Force fc = mn::contact_force(law, rmass[i], kin,
-                                             use_history ? &ut[i][side] : nullptr, dt_history);
+                                             use_history ? &state[i][side] : nullptr, dt_history);
       const double fx = fc.fn * kin.nx - fc.ft * kin.ny;
       const double fy = fc.fn * kin.ny + fc.ft * kin.nx;
       f[i][0] += fx;
@@ -214,66 +178,3 @@ double FixWallGranMN::compute_vector(int n)
   return wall_force_all[n];
 }
 
-/* ---------------------------------------------------------------------- */
-
-double FixWallGranMN::memory_usage()
-{
-  return use_history ? 2.0 * atom->nmax * sizeof(double) : 0.0;
-}
-
-void FixWallGranMN::grow_arrays(int nmax)
-{
-  memory->grow(ut, nmax, 2, "wall/gran/mn:ut");
-}
-
-void FixWallGranMN::copy_arrays(int i, int j, int)
-{
-  ut[j][0] = ut[i][0];
-  ut[j][1] = ut[i][1];
-}
-
-void FixWallGranMN::set_arrays(int i)
-{
-  if (use_history) ut[i][0] = ut[i][1] = 0.0;
-}
-
-int FixWallGranMN::pack_exchange(int i, double *buf)
-{
-  buf[0] = ut[i][0];
-  buf[1] = ut[i][1];
-  return 2;
-}
-
-int FixWallGranMN::unpack_exchange(int nlocal, double *buf)
-{
-  ut[nlocal][0] = buf[0];
-  ut[nlocal][1] = buf[1];
-  return 2;
-}
-
-int FixWallGranMN::pack_restart(int i, double *buf)
-{
-  buf[0] = 3;    // count including itself, as the restart layout of per-atom fix data requires
-  buf[1] = ut[i][0];
-  buf[2] = ut[i][1];
-  return 3;
-}
-
-void FixWallGranMN::unpack_restart(int nlocal, int nth)
-{
-  double **extra = atom->extra;
-  int m = 0;
-  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
-  ut[nlocal][0] = extra[nlocal][m + 1];
-  ut[nlocal][1] = extra[nlocal][m + 2];
-}
-
-int FixWallGranMN::size_restart(int)
-{
-  return 3;
-}
-
-int FixWallGranMN::maxsize_restart()
-{
-  return 3;
-}

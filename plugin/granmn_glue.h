@@ -8,8 +8,11 @@
 #include "error.h"
 #include "lammps.h"
 #include "modify.h"
+#include "utils.h"
 
 #include "mn_contact.h"
+
+#include <cstring>
 
 namespace granmn {
 
@@ -40,6 +43,43 @@ inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, d
                         "{}: timestep {} resolves a collision (tau_c = {:.6g}) with fewer "
                         "than 10 steps",
                         who, dt, tau_c);
+}
+
+// The contact-law keywords a style's arguments may hold, and which of them were given.
+struct LawArguments {
+  mn::Material material{0.0, 0.0, 0.0, 0.0};
+  bool given[4] = {false, false, false, false};    // kn, e, beta, mu
+  mn::Options options;
+  bool options_given = false;
+};
+
+inline const char *law_keyword(int k)
+{
+  static const char *const names[4] = {"kn", "e", "beta", "mu"};
+  return names[k];
+}
+
+// Reads the law keyword at arg[iarg] ("kn K", "e E", "beta B", "mu MU", "limit_damping",
+// "coulomb_cutback"); returns how many arguments it used, 0 if arg[iarg] is none of them.
+inline int parse_law_keyword(LAMMPS_NS::LAMMPS *lmp, const char *command, int narg, char **arg,
+                             int iarg, LawArguments &law)
+{
+  double *values[4] = {&law.material.kn, &law.material.e, &law.material.beta, &law.material.mu};
+  for (int k = 0; k < 4; k++)
+    if (strcmp(arg[iarg], law_keyword(k)) == 0) {
+      if (iarg + 2 > narg)
+        lmp->error->all(FLERR, "Illegal {} command: {} needs a value", command, law_keyword(k));
+      *values[k] = LAMMPS_NS::utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      law.given[k] = true;
+      return 2;
+    }
+  bool *flag = nullptr;
+  if (strcmp(arg[iarg], "limit_damping") == 0) flag = &law.options.limit_damping;
+  if (strcmp(arg[iarg], "coulomb_cutback") == 0) flag = &law.options.coulomb_cutback;
+  if (!flag) return 0;
+  *flag = true;
+  law.options_given = true;
+  return 1;
 }
 
 }    // namespace granmn

@@ -210,42 +210,29 @@ void PairGranMN::derive_law()
 // pair_style gran/mn kn K e E beta B mu MU [wall_types T ...] [limit_damping] [coulomb_cutback]
 void PairGranMN::settings(int narg, char **arg)
 {
-  bool given[4] = {false, false, false, false};
-  const char *names[4] = {"kn", "e", "beta", "mu"};
-  double *values[4] = {&material.kn, &material.e, &material.beta, &material.mu};
-  options = mn::Options();
+  granmn::LawArguments parsed;
   wall_types.clear();
-
   int iarg = 0;
   while (iarg < narg) {
-    int which = -1;
-    for (int k = 0; k < 4; k++)
-      if (strcmp(arg[iarg], names[k]) == 0) which = k;
-    if (which >= 0) {
-      if (iarg + 2 > narg)
-        error->all(FLERR, "Illegal pair_style gran/mn command: {} needs a value", names[which]);
-      *values[which] = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      given[which] = true;
-      iarg += 2;
+    const int used = granmn::parse_law_keyword(lmp, "pair_style gran/mn", narg, arg, iarg, parsed);
+    if (used) {
+      iarg += used;
     } else if (strcmp(arg[iarg], "wall_types") == 0) {
       iarg++;
       while (iarg < narg && utils::is_integer(arg[iarg]))
         wall_types.push_back(utils::inumeric(FLERR, arg[iarg++], false, lmp));
       if (wall_types.empty())
         error->all(FLERR, "Illegal pair_style gran/mn command: wall_types needs atom types");
-    } else if (strcmp(arg[iarg], "limit_damping") == 0) {
-      options.limit_damping = true;
-      iarg++;
-    } else if (strcmp(arg[iarg], "coulomb_cutback") == 0) {
-      options.coulomb_cutback = true;
-      iarg++;
     } else {
       error->all(FLERR, "Illegal pair_style gran/mn command: unknown keyword {}", arg[iarg]);
     }
   }
   for (int k = 0; k < 4; k++)
-    if (!given[k])
-      error->all(FLERR, "Illegal pair_style gran/mn command: {} must be given", names[k]);
+    if (!parsed.given[k])
+      error->all(FLERR, "Illegal pair_style gran/mn command: {} must be given",
+                 granmn::law_keyword(k));
+  material = parsed.material;
+  options = parsed.options;
   derive_law();
   if (domain->box_exist) check_wall_types();
 }

@@ -1,0 +1,82 @@
+#include "fix_per_atom_state.h"
+
+#include "atom.h"
+#include "memory.h"
+
+using namespace LAMMPS_NS;
+
+void FixPerAtomState::allocate_state(int columns)
+{
+  ncols = columns;
+  restart_peratom = 1;
+  create_attribute = 1;
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+}
+
+FixPerAtomState::~FixPerAtomState()
+{
+  if (ncols) {
+    atom->delete_callback(id, Atom::GROW);
+    atom->delete_callback(id, Atom::RESTART);
+  }
+  memory->destroy(state);
+}
+
+double FixPerAtomState::memory_usage()
+{
+  return (double) atom->nmax * ncols * sizeof(double);
+}
+
+void FixPerAtomState::grow_arrays(int nmax)
+{
+  memory->grow(state, nmax, ncols, "fix:per-atom state");
+}
+
+void FixPerAtomState::copy_arrays(int i, int j, int)
+{
+  for (int k = 0; k < ncols; k++) state[j][k] = state[i][k];
+}
+
+void FixPerAtomState::set_arrays(int i)
+{
+  for (int k = 0; k < ncols; k++) state[i][k] = 0.0;
+}
+
+int FixPerAtomState::pack_exchange(int i, double *buf)
+{
+  for (int k = 0; k < ncols; k++) buf[k] = state[i][k];
+  return ncols;
+}
+
+int FixPerAtomState::unpack_exchange(int nlocal, double *buf)
+{
+  for (int k = 0; k < ncols; k++) state[nlocal][k] = buf[k];
+  return ncols;
+}
+
+int FixPerAtomState::pack_restart(int i, double *buf)
+{
+  buf[0] = ncols + 1;    // count including itself, as the per-atom restart layout requires
+  return 1 + pack_exchange(i, &buf[1]);
+}
+
+void FixPerAtomState::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
+  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+}
+
+int FixPerAtomState::size_restart(int)
+{
+  return ncols + 1;
+}
+
+int FixPerAtomState::maxsize_restart()
+{
+  return ncols + 1;
+}

@@ -1,0 +1,39 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   A fix with a per-atom array of doubles that moves with its atom between processors and
+   is written to restart files: the bookkeeping the gran/mn fixes share.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_FIX_PER_ATOM_STATE_H
+#define LMP_FIX_PER_ATOM_STATE_H
+
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixPerAtomState : public Fix {
+ public:
+  FixPerAtomState(class LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg) {}
+  ~FixPerAtomState() override;
+
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+
+ protected:
+  double **state = nullptr;    // ncols per atom, zero for new atoms
+  int ncols = 0;
+
+  // Called once by a subclass's constructor; no call, no cost.
+  void allocate_state(int columns);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
