@@ -38,17 +38,16 @@ def test_binary_collision_is_one_contact_per_disk_lasting_tau_c(tmp_path):
     assert sums[0] == 2 and sums[7] == 2
 
 
-def test_disk_resting_on_the_wall_touches_it_all_the_time(tmp_path):
-    kn = 2e5
-    dt = law(kn, 0.7, 0.7)["tau_c"] / 50
-    deck = f"""
+def disk_over_floor(kn, height, dt):
+    """A unit disk at `height` over the flat wall y = 0 under gravity, with counters c."""
+    return f"""
 region box block -3 3 -1 5 -0.5 0.5
 create_box 1 box
-create_atoms 1 single 0 {0.5 - 1.0 / kn!r} 0
+create_atoms 1 single 0 {height!r} 0
 set type 1 diameter 1.0
 set type 1 density/disc {DISC_DENSITY!r}
 group mobile type 1
-pair_style gran/mn kn {kn} e 0.7 beta 0.7 mu 0.5
+pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu 0.5
 pair_coeff * *
 timestep {dt!r}
 fix integrate mobile nve/sphere disc
@@ -56,7 +55,14 @@ fix flat all enforce2d
 fix gravity mobile gravity 1.0 vector 0 -1 0
 fix floor mobile wall/gran/mn yplane 0.0 NULL
 fix c mobile contacts/mn
-thermo 0
+"""
+
+
+def test_disk_resting_on_the_wall_touches_it_all_the_time(tmp_path):
+    kn = 2e5
+    dt = law(kn, 0.7, 0.7)["tau_c"] / 50
+    deck = f"""
+{disk_over_floor(kn, 0.5 - 1.0 / kn, dt)}thermo 0
 run 10000
 print "RESULT sums {SUMS}"
 """
@@ -73,21 +79,7 @@ def bounces(tmp_path, kn, height=0.1):
     dt = ref["tau_w"] / 50
     steps = int(6.0 / dt)
     deck = f"""
-region box block -3 3 -1 5 -0.5 0.5
-create_box 1 box
-create_atoms 1 single 0 {0.5 + height!r} 0
-set type 1 diameter 1.0
-set type 1 density/disc {DISC_DENSITY!r}
-group mobile type 1
-pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu 0.5
-pair_coeff * *
-timestep {dt!r}
-fix integrate mobile nve/sphere disc
-fix flat all enforce2d
-fix gravity mobile gravity 1.0 vector 0 -1 0
-fix floor mobile wall/gran/mn yplane 0.0 NULL
-fix c mobile contacts/mn
-thermo 0
+{disk_over_floor(kn, 0.5 + height, dt)}thermo 0
 run {steps - int(1.0 / dt)}
 variable bounces equal $(f_c[2])
 fix_modify c reset
