@@ -1,0 +1,156 @@
+"""Reading a point's output files (docs/scenes.md). Every problem raises DataError naming the
+file and what is wrong: nothing broken is averaged silently."""
+from pathlib import Path
+
+import numpy as np
+
+
+class DataError(Exception):
+    """A point's output is missing, truncated or inconsistent."""
+
+
+ENERGY_COLUMNS = ("step", "e_trans", "e_rot", "e_total", "begun_disk", "begun_boundary",
+                  "time_disk", "time_boundary", "time_multiple", "contacts_now", "window")
+COUNT_COLUMNS = ("id", "diameter", "begun_disk", "begun_boundary", "time_disk",
+                 "time_boundary", "time_multiple", "contacts_now")
+ROW_COLUMNS = ("id_i", "id_j", "kind", "start", "duration", "vn_start", "vn_end", "peak")
+
+
+def read_params(point):
+    path = Path(point) / "params.txt"
+    if not path.exists():
+        raise DataError(f"{path}: missing (the run did not start its outputs)")
+    params = {}
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        words = line.split()
+        if len(words) != 2:
+            raise DataError(f"{path}:{number}: expected 'name value', got {line!r}")
+        name, value = words
+        try:
+            params[name] = float(value)
+        except ValueError:
+            params[name] = value
+    for name in ("scene", "kn", "dt", "tau_c", "tau_w", "average_start", "run_time", "n_mobile"):
+        if name not in params:
+            raise DataError(f"{path}: no {name}")
+    return params
+
+
+def numeric_table(path, columns, comment="#"):
+    """Rows of whitespace-separated numbers with exactly len(columns) fields, as a dict of
+    arrays. A short, long or non-numeric line is an error naming its line number."""
+    path = Path(path)
+    if not path.exists():
+        raise DataError(f"{path}: missing")
+    rows = []
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        if not line.strip() or line.lstrip().startswith(comment):
+            continue
+        words = line.split()
+        if len(words) != len(columns):
+            raise DataError(f"{path}:{number}: {len(words)} columns, expected {len(columns)} "
+                            f"({' '.join(columns)}): truncated or corrupt line?")
+        try:
+            rows.append([float(w) for w in words])
+        except ValueError:
+            raise DataError(f"{path}:{number}: not a number in {line!r}")
+    if not rows:
+        raise DataError(f"{path}: no data")
+    data = np.array(rows)
+    if not np.all(np.isfinite(data)):
+        raise DataError(f"{path}: non-finite values (nan or inf)")
+    return {name: data[:, k] for k, name in enumerate(columns)}
+
+
+def read_energy(point, params):
+    """energy.txt with a time column (step * dt)."""
+    table = numeric_table(Path(point) / "energy.txt", ENERGY_COLUMNS)
+    table["time"] = table["step"] * params["dt"]
+    if np.any(np.diff(table["step"]) <= 0):
+        raise DataError(f"{Path(point) / 'energy.txt'}: steps do not increase")
+    return table
+
+
+def read_dump_atoms(path, columns):
+    """The single snapshot of a LAMMPS text dump (write_dump) with the given columns."""
+    path = Path(path)
+    if not path.exists():
+        raise DataError(f"{path}: missing")
+    lines = path.read_text().splitlines()
+    try:
+        start = next(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
+        count = int(lines[lines.index("ITEM: NUMBER OF ATOMS") + 1])
+    except (StopIteration, ValueError, IndexError):
+        raise DataError(f"{path}: not a LAMMPS dump snapshot")
+    header = lines[start].split()[2:]
+    if len(header) != len(columns):
+        raise DataError(f"{path}: columns {header}, expected {len(columns)}")
+    body = lines[start + 1:]
+    if len(body) != count:
+        raise DataError(f"{path}: {len(body)} atoms, the header says {count}: truncated?")
+    rows = []
+    for number, line in enumerate(body, start + 2):
+        words = line.split()
+        if len(words) != len(columns):
+            raise DataError(f"{path}:{number}: {len(words)} columns, expected {len(columns)}")
+        try:
+            rows.append([float(w) for w in words])
+        except ValueError:
+            raise DataError(f"{path}:{number}: not a number in {line!r}")
+    data = np.array(rows)
+    return {name: data[:, k] for k, name in enumerate(columns)}
+
+
+def read_counts(point):
+    return read_dump_atoms(Path(point) / "counts.txt", COUNT_COLUMNS)
+
+
+def read_profile(point):
+    """profile.txt (fix ave/chunk, one block): bin centre, count, density, vx, vy."""
+    path = Path(point) / "profile.txt"
+    if not path.exists():
+        raise DataError(f"{path}: missing")
+    lines = [l for l in path.read_text().splitlines() if l.strip() and not l.startswith("#")]
+    if not lines:
+        raise DataError(f"{path}: no data")
+    try:
+        step, nchunks, _ = lines[0].split()
+        nchunks = int(nchunks)
+    except ValueError:
+        raise DataError(f"{path}: the block header {lines[0]!r} is not 'step chunks count'")
+    body = lines[1:]
+    if len(body) != nchunks:
+        raise DataError(f"{path}: {len(body)} bins, the header says {nchunks}: truncated?")
+    data = []
+    for line in body:
+        words = line.split()
+        if len(words) != 6:
+            raise DataError(f"{path}: bin line {line!r} does not have 6 columns")
+        data.append([float(w) for w in words[1:]])
+    data = np.array(data)
+    return {"y": data[:, 0], "count": data[:, 1], "density": data[:, 2], "vx": data[:, 3],
+            "vy": data[:, 4]}
+
+
+def read_rows(point):
+    """contacts.txt (dump local of fix contacts/mn) as a dict of arrays; empty if none."""
+    path = Path(point) / "contacts.txt"
+    if not path.exists():
+        raise DataError(f"{path}: missing (run the deck with -var rows yes)")
+    rows, expect = [], None
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        if line.startswith("ITEM:"):
+            expect = "ENTRIES" in line
+            continue
+        if not expect:
+            continue
+        words = line.split()
+        if len(words) != len(ROW_COLUMNS):
+            raise DataError(f"{path}:{number}: {len(words)} columns, expected {len(ROW_COLUMNS)}")
+        rows.append([float(w) for w in words])
+    data = np.array(rows).reshape(-1, len(ROW_COLUMNS))
+    return {name: data[:, k] for k, name in enumerate(ROW_COLUMNS)}
+
+
+def read_trajectory(point):
+    return numeric_table(Path(point) / "trajectory.txt", ("time", "x", "y", "vx", "vy"))

@@ -1,0 +1,95 @@
+"""Observables of one point (SPEC section 6) from its outputs, with block-average errors."""
+import numpy as np
+
+from .io import DataError, read_counts, read_energy, read_params
+from .selection import select_steady
+
+COUNTERS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary", "time_multiple")
+
+
+def bottom_layer(counts):
+    """Disks that touched the boundary during the window (frictional flow normalisation)."""
+    return int(np.count_nonzero((counts["begun_boundary"] > 0) | (counts["time_boundary"] > 0)))
+
+
+def span_rates(energy, spans, n_particles, n_boundary):
+    """Collision rates and contact-time fractions over a union of spans of energy.txt, from the
+    increments of the cumulative counter sums (all spans inside one counter window)."""
+    length = sum(energy["time"][b - 1] - energy["time"][a] for a, b in spans)
+    if length <= 0:
+        raise DataError("the selected spans have no length")
+    delta = {k: sum(energy[k][b - 1] - energy[k][a] for a, b in spans) for k in COUNTERS}
+    return {
+        "N_c": delta["begun_disk"] / (n_particles * length),
+        "N_w": delta["begun_boundary"] / (n_boundary * length),
+        "t_c": delta["time_disk"] / (n_particles * length),
+        "t_w": delta["time_boundary"] / (n_boundary * length),
+        "t_multiple": delta["time_multiple"] / (n_particles * length),
+    }
+
+
+def with_errors(blocks):
+    """Mean over blocks and its standard error, per observable."""
+    result = {}
+    for key in blocks[0]:
+        values = np.array([b[key] for b in blocks])
+        result[key] = values.mean()
+        result[key + "_err"] = values.std(ddof=1) / np.sqrt(len(values)) if len(values) > 1 else np.nan
+    return result
+
+
+def point_observables(point, n_blocks=5):
+    """E, N_c, N_w, t_c, t_w, the multiple-contact estimates and the direct fraction of time
+    with two or more contacts, averaged over the point's averaging window (or, for the
+    frictional flow, over its selected steady spans), each with a block-average error."""
+    params = read_params(point)
+    energy = read_energy(point, params)
+    counts = read_counts(point)
+    n = params["n_mobile"]
+    if len(counts["id"]) != n:
+        raise DataError(f"{point}/counts.txt: {len(counts['id'])} disks, params.txt says {n:g}")
+    inside = energy["time"] >= params["average_start"] - 1e-9 * params["run_time"]
+    first = int(np.argmax(inside))
+    if not inside.any():
+        raise DataError(f"{point}/energy.txt: no samples after average_start "
+                        f"{params['average_start']:g}: the run did not reach its averaging span")
+    if energy["time"][-1] < params["run_time"] - 1.5 * (energy["time"][1] - energy["time"][0]):
+        raise DataError(f"{point}/energy.txt: ends at t = {energy['time'][-1]:g}, before "
+                        f"run_time {params['run_time']:g}: truncated?")
+
+    n_boundary = n
+    notes = []
+    if params["scene"] == "frictional_flow":
+        n_boundary = bottom_layer(counts)
+        kept, found = select_steady(energy["time"][first:], energy["e_total"][first:])
+        spans = [(a + first, b + first) for a, b in kept]
+        if not spans:
+            raise DataError(f"{point}: no steady part with mean energy in [0.4, 0.8] "
+                            f"({len(found)} steady parts found, none selected)")
+        notes.append(f"{len(spans)} of {len(found)} steady parts selected")
+    else:
+        spans = [(first, len(energy["time"]))]
+    if n_boundary == 0:
+        raise DataError(f"{point}: no disk touched the boundary in the averaging window")
+
+    # blocks: each span cut into pieces, observables per piece
+    blocks = []
+    for a, b in spans:
+        edges = np.linspace(a, b, n_blocks + 1).astype(int)
+        for lo, hi in zip(edges[:-1], edges[1:]):
+            if hi - lo < 2:
+                continue
+            block = span_rates(energy, [(lo, hi)], n, n_boundary)
+            for key in ("e_trans", "e_rot", "e_total"):
+                block[key.replace("e_", "E_")] = energy[key][lo:hi].mean()
+            block["mc_c"] = block["t_c"] - block["N_c"] * params["tau_c"]
+            block["mc_w"] = block["t_w"] - block["N_w"] * params["tau_w"]
+            blocks.append(block)
+    if len(blocks) < 2:
+        raise DataError(f"{point}: the averaging span is too short for error bars")
+    result = with_errors(blocks)
+    result.update(kn=params["kn"], tau_c=params["tau_c"], tau_w=params["tau_w"],
+                  scene=params["scene"], n_boundary=n_boundary,
+                  span=sum(energy["time"][b - 1] - energy["time"][a] for a, b in spans),
+                  notes="; ".join(notes))
+    return result

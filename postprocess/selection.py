@@ -1,0 +1,45 @@
+"""The frictional flow's steady-state selection (SPEC section 5)."""
+from collections import deque
+
+import numpy as np
+
+
+def steady_spans(t, energy, min_length=500.0, max_width=0.45):
+    """Maximal spans of the series, longer than min_length, over which the width of the energy
+    fluctuation (max - min) stays below max_width. Scans left to right: a span is extended as
+    far as it stays narrow, recorded if long enough, and the next span starts after it.
+    Returns [(start_index, stop_index)] with stop exclusive."""
+    t = np.asarray(t, dtype=float)
+    e = np.asarray(energy, dtype=float)
+    spans, start = [], 0
+    low, high = deque(), deque()    # indices of the running min and max
+    for stop in range(len(e)):
+        while low and e[low[-1]] >= e[stop]:
+            low.pop()
+        low.append(stop)
+        while high and e[high[-1]] <= e[stop]:
+            high.pop()
+        high.append(stop)
+        while e[high[0]] - e[low[0]] >= max_width:
+            # the span [start, stop) was as long as it could be
+            if t[stop - 1] - t[start] > min_length:
+                spans.append((start, stop))
+                start = stop
+                low, high = deque([stop]), deque([stop])
+                break
+            start += 1
+            if low[0] < start:
+                low.popleft()
+            if high[0] < start:
+                high.popleft()
+    if len(e) and t[-1] - t[start] > min_length:
+        spans.append((start, len(e)))
+    return spans
+
+
+def select_steady(t, energy, min_length=500.0, max_width=0.45, energy_range=(0.4, 0.8)):
+    """Steady spans whose mean energy lies in energy_range, and all steady spans found."""
+    spans = steady_spans(t, energy, min_length, max_width)
+    e = np.asarray(energy, dtype=float)
+    kept = [s for s in spans if energy_range[0] <= e[s[0]:s[1]].mean() <= energy_range[1]]
+    return kept, spans
