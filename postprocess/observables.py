@@ -48,7 +48,11 @@ def point_observables(point, n_blocks=5):
     n = params["n_mobile"]
     if len(counts["id"]) != n:
         raise DataError(f"{point}/counts.txt: {len(counts['id'])} disks, params.txt says {n:g}")
-    inside = energy["time"] >= params["average_start"] - 1e-9 * params["run_time"]
+    # rows of the counter window that restarts at average_start (the row written at that
+    # very step still holds the sums from before the restart)
+    slack = 1e-9 * params["run_time"]
+    inside = ((energy["time"] >= params["average_start"] - slack) &
+              (energy["window"] <= energy["time"] - params["average_start"] + slack))
     first = int(np.argmax(inside))
     if not inside.any():
         raise DataError(f"{point}/energy.txt: no samples after average_start "

@@ -1,15 +1,43 @@
 #!/usr/bin/env bash
-# The main job on its built-in default: build everything, then run the two-disk collision
-# demonstration and print the measured restitution next to the requested one.
+# The main job. On its built-in default it builds everything, runs the two-disk demonstration,
+# then the quick study of all three scenes (inputs/sweeps/quick.toml: short spans and kn ranges,
+# about ten minutes on two cores), post-processes it and prints the report's path and the
+# comparison with the paper. Resumable: run it again after an interruption.
+#   scripts/main.sh                 the quick study
+#   scripts/main.sh --full          the paper's ranges (prints the CPU-hour estimate first)
+#   scripts/main.sh --config FILE   any sweep config
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+configs=("$root/inputs/sweeps/quick.toml")
+output=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --full) configs=("$root"/inputs/sweeps/paper_*.toml); shift ;;
+    --config) configs=("$2"); shift 2 ;;
+    --output) output="$2"; shift 2 ;;
+    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
+    *) echo "main.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
+  esac
+done
 "$root/scripts/build.sh"
-out="$root/results/demo"
-mkdir -p "$out"
-cd "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-"$root/build/lammps/lmp" -in "$root/inputs/two_disk_collision.lmp" \
-  -var plugin "$root/build/plugin/granmnplugin.so" "$@" > lmp.out
-sed -n '/^pair_style gran\/mn:/,/largest stable dt/p' lmp.out
-grep -E '^(requested e|tau_c)' lmp.out
-echo "log: $out/log.lammps"
+
+echo "== two-disk collision (inputs/two_disk_collision.lmp)"
+demo="$root/results/demo"
+mkdir -p "$demo"
+(cd "$demo" && "$root/build/lammps/lmp" -in "$root/inputs/two_disk_collision.lmp" \
+   -var plugin "$root/build/plugin/granmnplugin.so" > lmp.out)
+grep -E '^(requested e|tau_c)' "$demo/lmp.out"
+
+status=0
+for config in "${configs[@]}"; do
+  name=$(basename "$config" .toml)
+  out=${output:-$root/results/$name}
+  echo "== sweep $name"
+  /usr/bin/python3 "$root/scripts/sweep.py" "$config" --output "$out" --dry-run | head -n 1
+  /usr/bin/python3 "$root/scripts/sweep.py" "$config" --output "$out" || status=1
+  echo "== post-processing $name"
+  (cd "$root" && /usr/bin/python3 -m postprocess report "$out") || status=1
+  (cd "$root" && /usr/bin/python3 -m postprocess compare "$out") || status=1
+done
+exit $status

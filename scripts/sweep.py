@@ -97,7 +97,7 @@ def expand(config, path):
                 raise SweepError(f"{path}: grid {number}: unknown scene '{point['scene']}' "
                                  f"(expected one of {', '.join(SCENES)})")
             points.append(point)
-    names = [point_name(p) for p in points]
+    names = [(p["scene"], point_name(p)) for p in points]
     if len(set(names)) != len(names):
         raise SweepError(f"{path}: the grids repeat a point")
     return points

@@ -1,16 +1,13 @@
 """The three scene decks (inputs/): the single disk's regimes, a steady collisional flow, a
 frictional run writing its series, the two integrators, and refused deck variables."""
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 from collision_decks import two_disks
 from granmn_run import law, run_lammps, run_scene
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
-from postprocess.signals import dominant_period, trend  # noqa: E402
+import postprocess_path  # noqa: F401
+from postprocess.signals import dominant_period, trend
 
 SINGLE_KN = 0.5e5    # the paper's stiffness for the single disk
 

@@ -85,7 +85,9 @@ def write_point(tmp_path, scene="collisional_flow", n=4, run_time=100.0, average
     lines = ["# energy", "# columns"]
     for step in range(0, int(run_time / dt) + 1, 100):
         t = step * dt
-        w = max(t - average_start, 0.0)
+        # as the decks write it: the counters run from the start until average_start, the row of
+        # that very step still holds those sums, and the window restarts after it
+        w = t if t <= average_start else t - average_start
         # per disk: 2 disk contacts and 1 wall contact per unit time, 0.02 and 0.01 of the time
         counters = [2 * n * w, 1 * n * w, 0.02 * n * w, 0.01 * n * w, 0.001 * n * w, 1, w]
         e = e_level + 0.01 * np.sin(t)

@@ -1,0 +1,143 @@
+"""Figures of a study (matplotlib, Agg): the paper's panels as PNG files."""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .io import DataError  # noqa: E402
+from .selection import select_steady  # noqa: E402
+from .study import energy_series, profiles, series  # noqa: E402
+
+TITLES = {"single_disk": "single disk on a bumpy slope",
+          "collisional_flow": "collisional flow", "frictional_flow": "frictional flow"}
+
+
+def _errorbar(ax, kn, quantity, rows, label, x=None):
+    k, v, e = series(rows, quantity)
+    ax.errorbar(k if x is None else x(k), v, yerr=np.nan_to_num(e), marker="o", ms=4,
+                capsize=2, label=label)
+
+
+def stiffness(scene, rows, path):
+    """(a) E against 1/kn, (b) collision rates, (c) contact-time fractions, (d) multiple-contact
+    estimates, against kn, with block-average error bars."""
+    fig, axes = plt.subplots(2, 2, figsize=(10, 8))
+    a, b, c, d = axes.flat
+    inverse = lambda k: 1.0 / k
+    for q, label in (("E_total", "E"), ("E_trans", "translational"), ("E_rot", "rotational")):
+        _errorbar(a, None, q, rows, label, x=inverse)
+    a.set(xscale="log", xlabel="1/k_n", ylabel="E per disk", title="(a) kinetic energy")
+    for q, label in (("N_c", "N_c (disks)"), ("N_w", "N_w (boundary)")):
+        _errorbar(b, None, q, rows, label)
+    kn = np.array([o["kn"] for o in rows])
+    if scene == "single_disk":
+        b.set(xscale="log", yscale="linear", title="(b) collision rates (N_w ~ ln k_n)")
+    else:
+        b.set(xscale="log", yscale="log", title="(b) collision rates")
+    if scene == "frictional_flow" and len(kn) > 1:
+        n_c = series(rows, "N_c")[1]
+        b.plot(kn, n_c[0] * (kn / kn[0]) ** 0.4, "k--", lw=1, label="k_n^0.4 guide")
+    b.set(xlabel="k_n", ylabel="collisions per disk per unit time")
+    for q, label in (("t_c", "t_c"), ("t_w", "t_w"), ("t_multiple", "two or more contacts")):
+        _errorbar(c, None, q, rows, label)
+    if scene == "collisional_flow" and len(kn) > 1:
+        t_c = series(rows, "t_c")[1]
+        c.plot(kn, t_c[0] * (kn / kn[0]) ** -0.5, "k--", lw=1, label="k_n^-1/2 guide")
+    c.set(xscale="log", yscale="log", xlabel="k_n", ylabel="fraction of time",
+          title="(c) contact-time fractions")
+    for q, label in (("mc_c", "t_c - N_c tau_c"), ("mc_w", "t_w - N_w tau_w")):
+        _errorbar(d, None, q, rows, label)
+    d.axhline(0, color="gray", lw=0.5)
+    d.set(xscale="log", xlabel="k_n", ylabel="fraction of time",
+          title="(d) multiple-contact estimates")
+    for ax in axes.flat:
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3, which="both")
+    fig.suptitle(f"{TITLES[scene]}: stiffness dependence")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def profile_figure(scene, rows, path):
+    data = profiles(rows)
+    if not data:
+        raise DataError(f"{scene}: no profile.txt could be read")
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4.5), sharey=True)
+    for kn, p in data:
+        occupied = p["count"] > 0
+        a.plot(p["density"], p["y"], label=f"k_n = {kn:g}")
+        b.plot(np.where(occupied, p["vx"], np.nan), p["y"], label=f"k_n = {kn:g}")
+    a.set(xlabel="number density", ylabel="height y", title="density")
+    b.set(xlabel="flow velocity v_x", title="velocity")
+    top = max(p["y"][p["count"] > 0].max() for _, p in data if np.any(p["count"] > 0)) + 1
+    a.set_ylim(-0.5, top)
+    for ax in (a, b):
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    fig.suptitle(f"{TITLES[scene]}: profiles over the averaging span")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def vy_figure(rows, trajectories, path):
+    """v_y(t) of the single disk at the softest and the stiffest point."""
+    fig, ax = plt.subplots(figsize=(9, 3.5))
+    for o, style in ((rows[0], "-"), (rows[-1], "--")):
+        t, vy = trajectories[o["kn"]]
+        start = t[0] + 0.5 * (t[-1] - t[0])
+        window = (t >= start) & (t < start + 20)
+        ax.plot(t[window] - start, vy[window], style, label=f"k_n = {o['kn']:g}")
+    ax.set(xlabel="time (from mid-run)", ylabel="v_y", title="single disk: v_y(t)")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def energy_figure(scene, points, path):
+    """E(t) of each completed point; for the frictional flow, the selected steady parts shaded."""
+    fig, ax = plt.subplots(figsize=(9, 4))
+    for kn, energy in energy_series(points):
+        line, = ax.plot(energy["time"], energy["e_total"], lw=0.8, label=f"k_n = {kn:g}")
+        if scene == "frictional_flow":
+            kept, _ = select_steady(energy["time"], energy["e_total"])
+            for a, b in kept:
+                ax.axvspan(energy["time"][a], energy["time"][b - 1], color=line.get_color(),
+                           alpha=0.1)
+    if scene == "frictional_flow":
+        ax.axhspan(0.4, 0.8, color="gray", alpha=0.08, label="selected energy range")
+    ax.set(xlabel="time", ylabel="E per disk", title=f"{TITLES[scene]}: E(t)")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def snapshot_figure(scene, point, path):
+    """The last frame of a point's snapshots: disks as circles (bumps grey)."""
+    text = (point / "snapshots.lammpstrj").read_text().split("ITEM: TIMESTEP")
+    if len(text) < 2:
+        raise DataError(f"{point}/snapshots.lammpstrj: no frame")
+    lines = text[-1].splitlines()
+    try:
+        start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))
+        bounds = [float(v) for v in lines[start - 3].split()[:2]]
+        atoms = np.loadtxt(lines[start + 1:], ndmin=2)
+    except (StopIteration, ValueError, IndexError):
+        raise DataError(f"{point}/snapshots.lammpstrj: the last frame is truncated")
+    fig, ax = plt.subplots(figsize=(10, 3.2))
+    for _, kind, x, y, *_, radius in atoms:
+        ax.add_patch(plt.Circle((x, y), radius, color="0.6" if kind == 2 else "tab:blue",
+                                alpha=0.8))
+    ax.set_xlim(*bounds)
+    ax.set_ylim(-1, max(atoms[:, 3].max() + 1, 3))
+    ax.set_aspect("equal")
+    ax.set(xlabel="x (along the slope)", ylabel="y", title=f"{TITLES[scene]}: last snapshot")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
