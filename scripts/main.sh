@@ -34,7 +34,6 @@ for config in "${configs[@]}"; do
   name=$(basename "$config" .toml)
   out=${output:-$root/results/$name}
   echo "== sweep $name"
-  /usr/bin/python3 "$root/scripts/sweep.py" "$config" --output "$out" --dry-run | head -n 1
   /usr/bin/python3 "$root/scripts/sweep.py" "$config" --output "$out" || status=1
   echo "== post-processing $name"
   (cd "$root" && /usr/bin/python3 -m postprocess report "$out") || status=1
