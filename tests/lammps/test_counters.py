@@ -121,8 +121,9 @@ HALF = 1500
 FINAL_COUNTS = f"write_dump mobile custom counts.txt {COUNTS} modify sort id\n"
 
 
-def counted_run(settled, workdir, newton="on", nprocs=1):
-    deck = (f"newton {newton}\nprocessors * 1 1\nread_data {settled}\ngroup mobile type 1\n" + styles(0.5) +
+def counted_run(settled, workdir, newton="on", nprocs=1, integrator="nve/sphere disc"):
+    deck = (f"newton {newton}\nprocessors * 1 1\nread_data {settled}\ngroup mobile type 1\n" +
+            styles(0.5, integrator=integrator) +
             COUNTERS + f"run {HALF}\nwrite_restart mid.restart\nrun {HALF}\n" + FINAL_COUNTS)
     return run_lammps(deck, workdir, nprocs=nprocs)
 
@@ -179,14 +180,18 @@ def test_counts_identical_with_newton_and_ranks(settled, counted_reference, tmp_
 
 
 @pytest.mark.parametrize("nprocs", [1, 2])
-def test_counts_continue_across_restart(counted_reference, tmp_path, nprocs):
-    deck = (f"read_restart {counted_reference.workdir / 'mid.restart'}\n"
+@pytest.mark.parametrize("integrator", ["nve/sphere disc", "nve/ab2"])
+def test_counts_continue_across_restart(settled, counted_reference, tmp_path, nprocs,
+                                        integrator):
+    reference = counted_reference
+    if integrator != "nve/sphere disc":
+        reference = counted_run(settled, tmp_path / "reference", integrator=integrator)
+    deck = (f"read_restart {reference.workdir / 'mid.restart'}\n"
             "neighbor 0.1 bin\ncomm_modify vel yes\n" +
-            FIXES.format(tilt=0.3, integrator="nve/sphere disc") + COUNTERS +
+            FIXES.format(tilt=0.3, integrator=integrator) + COUNTERS +
             f"run {HALF}\n" + FINAL_COUNTS)
-    restarted = run_lammps(deck, tmp_path, nprocs=nprocs)
-    assert_same_counts(counts_and_rows(counted_reference, after_step=HALF),
-                       counts_and_rows(restarted))
+    restarted = run_lammps(deck, tmp_path / "restarted", nprocs=nprocs)
+    assert_same_counts(counts_and_rows(reference, after_step=HALF), counts_and_rows(restarted))
 
 
 BAD = {

@@ -64,6 +64,12 @@ def test_killed_sweep_resumes_without_redoing_finished_points(tmp_path):
         assert (point / "done.txt").exists() and not (point / "failed.txt").exists()
     again = sweep(config, output)
     assert "3 already done, 0 to run" in again.stdout
+    # nothing lost: the same results as a sweep that was never interrupted
+    whole = sweep(config, tmp_path / "whole")
+    for point in output.glob("*/*"):
+        twin = tmp_path / "whole" / point.parent.name / point.name
+        for name in ("energy.txt", "counts.txt", "profile.txt"):
+            assert (point / name).read_text() == (twin / name).read_text()
 
 
 def test_two_partition_sweep_matches_serial_runs(tmp_path):
