@@ -6,6 +6,7 @@ Both integrate with velocity Verlet, so a head-on collision and a bouncing ball 
 rounding at the same dt. (LIGGGHTS is installed by scripts/setup.sh.)"""
 import shutil
 import subprocess
+from pathlib import Path
 
 import pytest
 
@@ -16,19 +17,20 @@ KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5
 
 def mn_law():
     """The header's own numbers, from build/plugin/mn-law."""
-    from pathlib import Path
     tool = Path(PLUGIN).resolve().parent / "mn-law"
-    out = subprocess.run([str(tool), str(KN), str(E), str(BETA), str(MU)], capture_output=True,
+    out = subprocess.run([str(tool), str(KN), str(E), str(BETA)], capture_output=True,
                          text=True, check=True).stdout
     return {k: float(v) for k, v in (line.split() for line in out.splitlines())}
 
 
-def scene(engine, kind, dt, steps):
+def scene(engine, kind, dt, steps, mu=MU):
     """The same scene for LIGGGHTS ('liggghts') or lmp with the plugin ('lammps')."""
     c = mn_law()
-    if kind == "collision":
+    if kind in ("collision", "oblique"):
         atoms = ("create_atoms 1 single -0.61234 0 0\ncreate_atoms 1 single 0.61234 0 0\n"
                  "set atom 1 vx 0.5\nset atom 2 vx -0.5\n")
+        if kind == "oblique":    # tangential slip, sticking (mu large)
+            atoms += "set atom 1 vy 0.3\nset atom 2 vy -0.3\n"
     else:
         atoms = "create_atoms 1 single 0 0.63 0\n"
     if engine == "liggghts":
@@ -48,7 +50,7 @@ fix m1 all property/global kn peratomtypepair 1 {KN!r}
 fix m2 all property/global kt peratomtypepair 1 {c['kt']!r}
 fix m3 all property/global gamman_abs peratomtypepair 1 {c['eta_n']!r}
 fix m4 all property/global gammat_abs peratomtypepair 1 {c['eta_t']!r}
-fix m5 all property/global coefficientFriction peratomtypepair 1 {MU!r}
+fix m5 all property/global coefficientFriction peratomtypepair 1 {mu!r}
 pair_style gran model hooke/stiffness tangential history absolute_damping on
 pair_coeff * *
 """
@@ -63,17 +65,19 @@ pair_coeff * *
 region reg block -5 5 -5 5 -0.5 0.5 units box
 create_box 1 reg
 neigh_modify delay 0
-pair_style gran/mn kn {KN!r} e {E!r} beta {BETA!r} mu {MU!r}
+pair_style gran/mn kn {KN!r} e {E!r} beta {BETA!r} mu {mu!r}
 pair_coeff * *
 """
         wall = "fix floor all wall/gran/mn yplane 0.0 NULL\n"
-        integrate = "fix integrate all nve/sphere disc\n"
+        # LIGGGHTS integrates spheres (I = 2/5 m r^2); so does this comparison
+        integrate = "fix integrate all nve/sphere\n"
     deck = setup + f"timestep {dt!r}\n" + atoms + "set atom * diameter 1.0\nset atom * mass 1.0\n"
     if kind == "bounce":
         deck += wall + "fix gravity all gravity 1.0 vector 0 -1 0\n"
     deck += integrate + "fix flat all enforce2d\n" + f"run {steps}\n"
     deck += "variable x1 equal x[1]\nvariable y1 equal y[1]\nvariable vx1 equal vx[1]\n"
-    deck += "variable vy1 equal vy[1]\nprint \"RESULT state ${x1} ${y1} ${vx1} ${vy1}\"\n"
+    deck += "variable vy1 equal vy[1]\nvariable w1 equal omegaz[1]\n"
+    deck += "print \"RESULT state ${x1} ${y1} ${vx1} ${vy1}\"\n"
     return deck
 
 
@@ -82,7 +86,7 @@ def run_liggghts(deck, workdir):
     (workdir / "in.liggghts").write_text(deck)
     proc = subprocess.run([shutil.which("liggghts") or "liggghts", "-in", "in.liggghts", "-echo",
                            "none", "-log", "log.liggghts"], cwd=workdir, capture_output=True,
-                          text=True)
+                          text=True, errors="replace")
     assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
     line = next(l for l in proc.stdout.splitlines() if l.startswith("RESULT state"))
     return [float(v) for v in line.split()[2:]]
@@ -104,3 +108,22 @@ def test_same_trajectory_as_liggghts(tmp_path, kind):
         assert abs(ours[3]) > 0 or ours[1] < 0.5              # it did reach the floor
     for a, b in zip(theirs, ours):
         assert a == pytest.approx(b, rel=1e-11, abs=1e-12)
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "unexplained: LIGGGHTS 3.8 hooke/stiffness gives a tangential rebound 18 % off gran/mn's "
+    "(vy 0.203 vs 0.241 at beta 0.7; 0.170 vs 0.205 at beta 1), beyond the ~0.3 % of the "
+    "lever arm; the normal law agrees to rounding. Open on issue 7."))
+def test_no_slip_oblique_impact_within_the_lever_arm_difference(tmp_path):
+    """Tangential slip 0.6 against normal speed 1, mu = 10 (sticking). LIGGGHTS takes r - delta/2 as lever arm where
+    gran/mn takes r, so the tangential impulse differs by the order of the peak overlap over the
+    radius: delta_max ~ v_n / sqrt(2 kn) = 1.6e-3, i.e. ~0.3 %; allowed 1 %. The normal motion
+    is the same law: to rounding."""
+    dt = law(KN, E, BETA)["tau_c"] / 100
+    theirs = run_liggghts(scene("liggghts", "oblique", dt, 6000, mu=10.0), tmp_path / "liggghts")
+    ours = run_lammps(scene("lammps", "oblique", dt, 6000, mu=10.0), tmp_path / "lammps",
+                      header=False).result("state")
+    print(f"oblique: liggghts {theirs}\n         gran/mn  {ours}")
+    assert abs(ours[3] - 0.3) > 0.05                           # a real tangential impulse
+    assert ours[3] == pytest.approx(theirs[3], rel=0.01)
+    assert ours[2] == pytest.approx(theirs[2], rel=1e-6)
