@@ -1,0 +1,206 @@
+#!/usr/bin/python3
+"""The benchmarks of the contact law, side by side in one run (after ./scripts/build.sh):
+
+- per-step cost of pair_style gran/mn against LAMMPS's gran/hooke/history on the same dense
+  monodisperse flow, parameters matched so that both laws agree while contacts stick,
+  with fix contacts/mn off and on;
+- the same scene in Debian's LIGGGHTS 3.8 (hooke/stiffness);
+- 1 against 2 MPI ranks on that scene, and a 2-partition sweep against two serial runs;
+- memory per particle (LAMMPS's own accounting).
+
+    bench/run_benchmarks.py [--steps 4000] [--repeat 3] [--side 40]
+
+Each figure is the best of --repeat runs, the variants interleaved so that drifts in the
+machine's load hit all of them."""
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+BUILD = ROOT / "build"
+LMP = BUILD / "lammps" / "lmp"
+PLUGIN = BUILD / "plugin" / "granmnplugin.so"
+MN_LAW = BUILD / "plugin" / "mn-law"
+KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def law():
+    out = subprocess.run([str(MN_LAW), str(KN), str(E), str(BETA)], capture_output=True,
+                         text=True, check=True).stdout
+    return {k: float(v) for k, v in (line.split() for line in out.splitlines())}
+
+
+def data_file(path, side):
+    """side x side unit disks (mass 1) touching on a square lattice above the floor y = 0,
+    with small deterministic velocities: a dense pile that starts to flow under tilted gravity."""
+    n = side * side
+    width = side * 1.0 + 0.5
+    lines = ["dense flow benchmark", "", f"{n} atoms", "1 atom types", "",
+             f"0 {width} xlo xhi", f"-1 {side + 20} ylo yhi", "-0.5 0.5 zlo zhi", "",
+             "Atoms", ""]
+    for k in range(n):
+        i, j = k % side, k // side
+        lines.append(f"{k + 1} 1 1.0 1.0 {0.5 + i} {0.5 + j * 1.0} 0")
+    lines += ["", "Velocities", ""]
+    for k in range(n):
+        lines.append(f"{k + 1} {0.1 * ((k * 7919) % 13 - 6) / 6} 0 0 0 0 0")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def lammps_deck(data, style, counters, steps, dt):
+    c = law()
+    common = f"""
+units lj
+dimension 2
+atom_style sphere
+boundary p fm p
+comm_modify vel yes
+neighbor 0.2 bin
+read_data {data}
+set type 1 mass 1.0
+"""
+    if style == "gran/mn":
+        contact = f"""plugin load {PLUGIN}
+{common}
+pair_style gran/mn kn {KN} e {E} beta {BETA} mu {MU}
+pair_coeff * *
+fix floor all wall/gran/mn yplane 0.0 NULL
+"""
+    else:
+        # F_n = kn delta - meff gamma_n v_n with meff = m/2 = 1/2: gamma_n = 2 eta_n, same for t
+        contact = common + f"""
+pair_style gran/hooke/history {KN} {c['kt']!r} {2 * c['eta_n']!r} {2 * c['eta_t']!r} {MU} 1
+pair_coeff * *
+fix floor all wall/gran hooke/history {KN} {c['kt']!r} {c['eta_n']!r} {c['eta_t']!r} {MU} 1 yplane 0.0 NULL
+"""
+    return contact + f"""
+timestep {dt!r}
+fix integrate all nve/sphere disc
+fix flat all enforce2d
+fix gravity all gravity 1.0 vector 0.3 -1 0
+{'fix c all contacts/mn' if counters else ''}
+thermo {steps}
+run {steps}
+"""
+
+
+def liggghts_deck(data, steps, dt):
+    c = law()
+    return f"""
+atom_style granular
+dimension 2
+boundary p fm p
+newton off
+communicate single vel yes
+units lj
+read_data {data}
+set type 1 mass 1.0
+neighbor 0.2 bin
+fix m1 all property/global kn peratomtypepair 1 {KN!r}
+fix m2 all property/global kt peratomtypepair 1 {c['kt']!r}
+fix m3 all property/global gamman_abs peratomtypepair 1 {c['eta_n']!r}
+fix m4 all property/global gammat_abs peratomtypepair 1 {c['eta_t']!r}
+fix m6 all property/global gamman peratomtypepair 1 {c['eta_n']!r}
+fix m7 all property/global gammat peratomtypepair 1 {c['eta_t']!r}
+fix m5 all property/global coefficientFriction peratomtypepair 1 {MU!r}
+pair_style gran model hooke/stiffness tangential history absolute_damping on
+pair_coeff * *
+fix floor all wall/gran model hooke/stiffness tangential history primitive type 1 yplane 0.0
+timestep {dt!r}
+fix integrate all nve/sphere
+fix flat all enforce2d
+fix gravity all gravity 1.0 vector 0.3 -1 0
+thermo {steps}
+run {steps}
+"""
+
+
+def run(command, deck, work):
+    (work / "in.bench").write_text(deck)
+    start = time.time()
+    proc = subprocess.run(command + ["-in", "in.bench", "-log", "log.bench"], cwd=work,
+                          capture_output=True, text=True, errors="replace", env=ENV)
+    wall = time.time() - start
+    if proc.returncode != 0:
+        raise RuntimeError(f"{command[0]} failed:\n{proc.stdout[-2000:]}{proc.stderr[-2000:]}")
+    loop = float(re.search(r"Loop time of (\S+)", proc.stdout).group(1))
+    memory = re.search(r"memory allocation.*= \S+ \| (\S+) \| \S+ Mbytes", proc.stdout)
+    return loop, (float(memory.group(1)) if memory else float("nan")), wall
+
+
+def sweep_comparison(work):
+    """Two short single-disk points: one 2-partition run against two serial runs."""
+    config = work / "sweep.toml"
+    config.write_text('[defaults]\nrun_time = 40\naverage_start = 10\n'
+                      '[[grid]]\nscene = "single_disk"\nkn = [5e4, 5.1e4]\n')
+    times = {}
+    for mode, extra in (("serial", ["--jobs", "1"]), ("partitions", ["--partitions", "2"])):
+        out = work / mode
+        start = time.time()
+        subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"), str(config),
+                        "--output", str(out), *extra], check=True, capture_output=True, env=ENV)
+        times[mode] = time.time() - start
+    return times
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--steps", type=int, default=4000)
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--side", type=int, default=40, help="disks per side of the pile")
+    args = parser.parse_args()
+    for path in (LMP, PLUGIN, MN_LAW):
+        if not path.exists():
+            sys.exit(f"{path} is missing: run ./scripts/build.sh first")
+    dt = law()["tau_c"] / 50
+    mpirun = shutil.which("mpirun") or "mpirun"
+    liggghts = shutil.which("liggghts")
+    n = args.side ** 2
+    with tempfile.TemporaryDirectory() as tmp:
+        work = Path(tmp)
+        data = work / "pile.data"
+        data_file(data, args.side)
+        variants = {
+            "gran/hooke/history": ([str(LMP)], lammps_deck(data, "hooke", False, args.steps, dt)),
+            "gran/mn": ([str(LMP)], lammps_deck(data, "gran/mn", False, args.steps, dt)),
+            "gran/mn + contacts/mn": ([str(LMP)], lammps_deck(data, "gran/mn", True, args.steps, dt)),
+            "gran/mn, 2 MPI ranks": ([mpirun, "-np", "2", str(LMP)],
+                                     lammps_deck(data, "gran/mn", False, args.steps, dt)),
+        }
+        if liggghts:
+            variants["LIGGGHTS hooke/stiffness"] = ([liggghts], liggghts_deck(data, args.steps, dt))
+        best = {}
+        for _ in range(args.repeat):
+            for name, (command, deck) in variants.items():
+                result = run(command, deck, work)
+                if name not in best or result[0] < best[name][0]:
+                    best[name] = result
+        sweep_times = sweep_comparison(work)
+
+    base = best["gran/hooke/history"][0]
+    print(f"{n} disks, dense flow, {args.steps} steps of dt = tau_c/50, best of {args.repeat}:")
+    print(f"{'variant':<28} {'loop s':>8} {'us/atom-step':>13} {'vs hooke/history':>17} "
+          f"{'MB/rank':>8} {'bytes/disk':>11}")
+    for name, (loop, memory, _) in best.items():
+        print(f"{name:<28} {loop:8.3f} {1e6 * loop / (n * args.steps):13.4f} "
+              f"{loop / base:17.3f} {memory:8.2f} {memory * 2**20 / n:11.0f}")
+    print(f"counters on / off: {best['gran/mn + contacts/mn'][0] / best['gran/mn'][0]:.3f}")
+    print(f"2 ranks / 1 rank (loop time): "
+          f"{best['gran/mn, 2 MPI ranks'][0] / best['gran/mn'][0]:.3f}")
+    if not liggghts:
+        print("LIGGGHTS: not installed (scripts/setup.sh installs it)")
+    print(f"sweep of 2 points: 2 partitions {sweep_times['partitions']:.2f} s, "
+          f"2 serial runs {sweep_times['serial']:.2f} s, ratio "
+          f"{sweep_times['partitions'] / sweep_times['serial']:.3f}")
+    print("(memory: LAMMPS's per-rank estimate at the start of the run; LIGGGHTS reports its own)")
+
+
+if __name__ == "__main__":
+    main()
