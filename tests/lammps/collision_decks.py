@@ -106,3 +106,23 @@ def contact_interval(trace, contact_distance, dt):
         return step[a] + (step[b] - step[a]) * fa / (fa - fb)
 
     return (crossing(last, last + 1) - crossing(first - 1, first)) * dt, first, last
+
+
+def disk_over_floor(kn, height, dt):
+    """A unit disk at `height` over the flat wall y = 0 under gravity, with counters c."""
+    return f"""
+region box block -3 3 -1 5 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 {height!r} 0
+set type 1 diameter 1.0
+set type 1 density/disc {DISC_DENSITY!r}
+group mobile type 1
+pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+timestep {dt!r}
+fix integrate mobile nve/sphere disc
+fix flat all enforce2d
+fix gravity mobile gravity 1.0 vector 0 -1 0
+fix floor mobile wall/gran/mn yplane 0.0 NULL
+fix c mobile contacts/mn
+"""

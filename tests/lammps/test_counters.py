@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from collision_decks import DISC_DENSITY, two_disks
+from collision_decks import DISC_DENSITY, disk_over_floor, two_disks
 from granmn_run import law, run_lammps
 from pile_decks import FIXES, styles
 
@@ -36,26 +36,6 @@ def test_binary_collision_is_one_contact_per_disk_lasting_tau_c(tmp_path):
     assert 0.0010 < peak < 0.0025
     sums = run.result("sums")
     assert sums[0] == 2 and sums[7] == 2
-
-
-def disk_over_floor(kn, height, dt):
-    """A unit disk at `height` over the flat wall y = 0 under gravity, with counters c."""
-    return f"""
-region box block -3 3 -1 5 -0.5 0.5
-create_box 1 box
-create_atoms 1 single 0 {height!r} 0
-set type 1 diameter 1.0
-set type 1 density/disc {DISC_DENSITY!r}
-group mobile type 1
-pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu 0.5
-pair_coeff * *
-timestep {dt!r}
-fix integrate mobile nve/sphere disc
-fix flat all enforce2d
-fix gravity mobile gravity 1.0 vector 0 -1 0
-fix floor mobile wall/gran/mn yplane 0.0 NULL
-fix c mobile contacts/mn
-"""
 
 
 def test_disk_resting_on_the_wall_touches_it_all_the_time(tmp_path):

@@ -3,7 +3,7 @@ energy from nowhere, and the many-body collapse behaves as the hard-sphere theor
 import numpy as np
 import pytest
 
-from collision_decks import DISC_DENSITY, two_disks
+from collision_decks import DISC_DENSITY, disk_over_floor, two_disks
 from granmn_run import law, restitution_error_bound, run_lammps
 from pile_decks import FIXES
 
@@ -79,20 +79,7 @@ def test_stiff_bouncing_ball_comes_to_rest(tmp_path):
     39 bounces): 39 + ln(16)/(2|ln e_w|) = 44.5, +-2 for the integer count and the slope's fit."""
     ref = law(VERY_STIFF, 0.7, 0.7)
     dt = ref["tau_w"] / 50
-    deck = f"""
-region box block -3 3 -1 5 -0.5 0.5
-create_box 1 box
-create_atoms 1 single 0 0.6 0
-set type 1 diameter 1.0
-set type 1 density/disc {DISC_DENSITY!r}
-pair_style gran/mn kn {VERY_STIFF!r} e 0.7 beta 0.7 mu 0.5
-pair_coeff * *
-timestep {dt!r}
-fix integrate all nve/sphere disc
-fix flat all enforce2d
-fix gravity all gravity 1.0 vector 0 -1 0
-fix floor all wall/gran/mn yplane 0.0 NULL
-fix c all contacts/mn
+    deck = disk_over_floor(VERY_STIFF, 0.6, dt) + f"""
 run {int(5.0 / dt)}
 print "RESULT ball $(f_c[2]) $(f_c[6]) $(y[1]) $(vy[1]) $(count(all))"
 """
