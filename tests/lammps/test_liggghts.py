@@ -69,8 +69,7 @@ pair_style gran/mn kn {KN!r} e {E!r} beta {BETA!r} mu {mu!r}
 pair_coeff * *
 """
         wall = "fix floor all wall/gran/mn yplane 0.0 NULL\n"
-        # LIGGGHTS integrates spheres (I = 2/5 m r^2); so does this comparison
-        integrate = "fix integrate all nve/sphere\n"
+        integrate = "fix integrate all nve/sphere disc\n"
     deck = setup + f"timestep {dt!r}\n" + atoms + "set atom * diameter 1.0\nset atom * mass 1.0\n"
     if kind == "bounce":
         deck += wall + "fix gravity all gravity 1.0 vector 0 -1 0\n"
@@ -110,15 +109,14 @@ def test_same_trajectory_as_liggghts(tmp_path, kind):
         assert a == pytest.approx(b, rel=1e-11, abs=1e-12)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "unexplained: LIGGGHTS 3.8 hooke/stiffness gives a tangential rebound 18 % off gran/mn's "
-    "(vy 0.203 vs 0.241 at beta 0.7; 0.170 vs 0.205 at beta 1), beyond the ~0.3 % of the "
-    "lever arm; the normal law agrees to rounding. Open on issue 7."))
 def test_no_slip_oblique_impact_within_the_lever_arm_difference(tmp_path):
-    """Tangential slip 0.6 against normal speed 1, mu = 10 (sticking). LIGGGHTS takes r - delta/2 as lever arm where
-    gran/mn takes r, so the tangential impulse differs by the order of the peak overlap over the
-    radius: delta_max ~ v_n / sqrt(2 kn) = 1.6e-3, i.e. ~0.3 %; allowed 1 %. The normal motion
-    is the same law: to rounding."""
+    """Tangential slip 0.6 against normal speed 1, mu = 10 (sticking). LIGGGHTS takes r - delta/2
+    as lever arm where gran/mn takes r, so the tangential impulse differs by the order of the
+    peak overlap over the radius: delta_max ~ v_n / sqrt(2 kn) = 1.6e-3, i.e. ~0.3 %; allowed
+    1 %. Through the contact's rotation the normal motion feels it too, much less: 1e-3.
+    LIGGGHTS's nve/sphere evidently gives 2D particles the disc's moment of inertia: against
+    gran/mn with `nve/sphere disc` the rebound agrees to 0.25 %, against plain `nve/sphere`
+    (I = 2/5 m r^2) it is 18 % off (measured; not looked up in its source)."""
     dt = law(KN, E, BETA)["tau_c"] / 100
     theirs = run_liggghts(scene("liggghts", "oblique", dt, 6000, mu=10.0), tmp_path / "liggghts")
     ours = run_lammps(scene("lammps", "oblique", dt, 6000, mu=10.0), tmp_path / "lammps",
@@ -126,4 +124,4 @@ def test_no_slip_oblique_impact_within_the_lever_arm_difference(tmp_path):
     print(f"oblique: liggghts {theirs}\n         gran/mn  {ours}")
     assert abs(ours[3] - 0.3) > 0.05                           # a real tangential impulse
     assert ours[3] == pytest.approx(theirs[3], rel=0.01)
-    assert ours[2] == pytest.approx(theirs[2], rel=1e-6)
+    assert ours[2] == pytest.approx(theirs[2], rel=1e-3)
