@@ -30,7 +30,8 @@
 using namespace LAMMPS_NS;
 
 PairGranMN::PairGranMN(LAMMPS *lmp) :
-    Pair(lmp), history(0), size_history(0), counter_offset(0), counters(nullptr),
+    Pair(lmp), history(0), size_history(0), counter_offset(0), restart_history_size(-1),
+    counters(nullptr),
     exclusion_added(false), law_reported(false), max_radius(nullptr), fix_history(nullptr)
 {
   single_enable = 1;
@@ -306,6 +307,12 @@ void PairGranMN::init_style()
   if (fix_history && needed != size_history)
     error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
                       "mu or fix contacts/mn; define fix contacts/mn and mu before the first run");
+  // LAMMPS restores per-pair history with the size of the new run: a different size would
+  // misread every partner, so the run must keep mu > 0 (or not) and fix contacts/mn (or not)
+  if (!fix_history && restart_history_size >= 0 && needed != restart_history_size)
+    error->all(FLERR, "pair_style gran/mn: the restart file holds {} history values per contact, "
+                      "this run needs {}: keep mu zero or non-zero and define fix contacts/mn "
+                      "(or not) as in the run that wrote it", restart_history_size, needed);
   size_history = needed;
   history = size_history > 0 ? 1 : 0;
 
@@ -352,21 +359,23 @@ void PairGranMN::write_restart_settings(FILE *fp)
 {
   const double values[4] = {material.kn, material.e, material.beta, material.mu};
   fwrite(values, sizeof(double), 4, fp);
-  const int flags[3] = {options.limit_damping, options.coulomb_cutback, (int) wall_types.size()};
-  fwrite(flags, sizeof(int), 3, fp);
+  const int flags[4] = {options.limit_damping, options.coulomb_cutback, (int) wall_types.size(),
+                        history ? size_history : 0};
+  fwrite(flags, sizeof(int), 4, fp);
   if (!wall_types.empty()) fwrite(wall_types.data(), sizeof(int), wall_types.size(), fp);
 }
 
 void PairGranMN::read_restart_settings(FILE *fp)
 {
   double values[4];
-  int flags[3];
+  int flags[4];
   if (comm->me == 0) {
     utils::sfread(FLERR, values, sizeof(double), 4, fp, nullptr, error);
-    utils::sfread(FLERR, flags, sizeof(int), 3, fp, nullptr, error);
+    utils::sfread(FLERR, flags, sizeof(int), 4, fp, nullptr, error);
   }
   MPI_Bcast(values, 4, MPI_DOUBLE, 0, world);
-  MPI_Bcast(flags, 3, MPI_INT, 0, world);
+  MPI_Bcast(flags, 4, MPI_INT, 0, world);
+  restart_history_size = flags[3];
   wall_types.resize(flags[2]);
   if (comm->me == 0 && flags[2] > 0)
     utils::sfread(FLERR, wall_types.data(), sizeof(int), flags[2], fp, nullptr, error);

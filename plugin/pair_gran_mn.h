@@ -45,6 +45,7 @@ class PairGranMN : public Pair {
   int history;                       // 1: per-pair history kept
   int size_history;                  // u_t (mu > 0), then the counters' state (if any)
   int counter_offset;                // where the counters' state starts in a pair's history
+  int restart_history_size;          // per-pair history size in the restart read, -1 if none
   class FixContactsMN *counters;     // nullptr unless fix contacts/mn is defined
   bool exclusion_added;
   bool law_reported;

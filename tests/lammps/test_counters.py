@@ -216,3 +216,23 @@ run 1
 """
     run = run_lammps(deck, tmp_path, check=False)
     assert run.returncode != 0 and "neither is defined" in run.output
+
+
+@pytest.mark.parametrize("counters", [False, True])
+def test_restart_with_a_different_contact_history_is_refused(settled, counted_reference,
+                                                             tmp_path, counters):
+    """A restart written with counters (u_t and 3 values per contact) read without them (u_t
+    only), or the other way round, would misread every contact's history: it is an error."""
+    if counters:    # a restart without counters, continued with them
+        written = run_lammps(f"read_data {settled}\ngroup mobile type 1\n" + styles(0.5) +
+                             "run 10\nwrite_restart plain.restart\n", tmp_path / "plain")
+        restart, held, needed = written.workdir / "plain.restart", 1, 4
+    else:
+        restart, held, needed = counted_reference.workdir / "mid.restart", 4, 1
+    deck = (f"read_restart {restart}\ncomm_modify vel yes\n" +
+            FIXES.format(tilt=0.3, integrator="nve/sphere disc") +
+            (COUNTERS if counters else "") + "run 10\n")
+    run = run_lammps(deck, tmp_path / "continued", check=False)
+    assert run.returncode != 0
+    assert (f"the restart file holds {held} history values per contact, this run needs {needed}"
+            in run.output), run.output[-1500:]
