@@ -67,6 +67,8 @@ inline int parse_law_keyword(LAMMPS_NS::LAMMPS *lmp, const char *command, int na
   double *values[4] = {&law.material.kn, &law.material.e, &law.material.beta, &law.material.mu};
   for (int k = 0; k < 4; k++)
     if (strcmp(arg[iarg], law_keyword(k)) == 0) {
+      if (law.given[k])
+        lmp->error->all(FLERR, "Illegal {} command: {} given twice", command, law_keyword(k));
       if (iarg + 2 > narg)
         lmp->error->all(FLERR, "Illegal {} command: {} needs a value", command, law_keyword(k));
       *values[k] = LAMMPS_NS::utils::numeric(FLERR, arg[iarg + 1], false, lmp);

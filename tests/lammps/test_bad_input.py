@@ -53,6 +53,9 @@ ERRORS = {
                               "kn needs a value"),
     "missing parameter": (deck(pair="pair_style gran/mn kn 2e5 e 0.7 mu 0.5"),
                           "beta must be given"),
+    "parameter given twice": (deck(pair=GOOD_PAIR + " kn 1e6"), "kn given twice"),
+    "wall fix parameter given twice": (
+        deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL mu 0.3 mu 0.4"), "mu given twice"),
     "wall_types without types": (deck(pair=GOOD_PAIR + " wall_types"),
                                  "wall_types needs atom types"),
     "wall type out of range": (deck(pair=GOOD_PAIR + " wall_types 3"),
