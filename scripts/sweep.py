@@ -129,7 +129,16 @@ def law(mn_law, kn, e, beta):
 
 
 def predicted_steps(point, mn_law):
-    get = lambda name: float(point.get(name, deck_default(point["scene"], name)))
+    """Steps of a point; the values it needs must be numbers > 0 (the deck checks the rest)."""
+    def get(name):
+        value = point.get(name, deck_default(point["scene"], name))
+        try:
+            number = float(value)
+        except ValueError:
+            raise SweepError(f"{point['scene']} point: {name} = {value!r} is not a number")
+        if not (number > 0 and math.isfinite(number)):
+            raise SweepError(f"{point['scene']} point: {name} = {value!r} must be > 0")
+        return number
     tau_c = law(mn_law, get("kn"), get("e"), get("beta"))["tau_c"]
     dt = min(get("dt_fraction") * tau_c, get("dt_cap"))
     return math.ceil(get("run_time") / dt)
