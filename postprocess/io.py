@@ -36,6 +36,14 @@ def read_params(point):
     return params
 
 
+def numbers(path, number, words):
+    """The words of one line as floats, or a DataError naming the file and the line."""
+    try:
+        return [float(w) for w in words]
+    except ValueError:
+        raise DataError(f"{path}:{number}: not a number in {' '.join(words)!r}")
+
+
 def numeric_table(path, columns, comment="#"):
     """Rows of whitespace-separated numbers with exactly len(columns) fields, as a dict of
     arrays. A short, long or non-numeric line is an error naming its line number."""
@@ -50,10 +58,7 @@ def numeric_table(path, columns, comment="#"):
         if len(words) != len(columns):
             raise DataError(f"{path}:{number}: {len(words)} columns, expected {len(columns)} "
                             f"({' '.join(columns)}): truncated or corrupt line?")
-        try:
-            rows.append([float(w) for w in words])
-        except ValueError:
-            raise DataError(f"{path}:{number}: not a number in {line!r}")
+        rows.append(numbers(path, number, words))
     if not rows:
         raise DataError(f"{path}: no data")
     data = np.array(rows)
@@ -93,10 +98,7 @@ def read_dump_atoms(path, columns):
         words = line.split()
         if len(words) != len(columns):
             raise DataError(f"{path}:{number}: {len(words)} columns, expected {len(columns)}")
-        try:
-            rows.append([float(w) for w in words])
-        except ValueError:
-            raise DataError(f"{path}:{number}: not a number in {line!r}")
+        rows.append(numbers(path, number, words))
     data = np.array(rows)
     return {name: data[:, k] for k, name in enumerate(columns)}
 
@@ -122,11 +124,11 @@ def read_profile(point):
     if len(body) != nchunks:
         raise DataError(f"{path}: {len(body)} bins, the header says {nchunks}: truncated?")
     data = []
-    for line in body:
+    for number, line in enumerate(body, 2):
         words = line.split()
         if len(words) != 6:
             raise DataError(f"{path}: bin line {line!r} does not have 6 columns")
-        data.append([float(w) for w in words[1:]])
+        data.append(numbers(path, number, words[1:]))
     data = np.array(data)
     return {"y": data[:, 0], "count": data[:, 1], "density": data[:, 2], "vx": data[:, 3],
             "vy": data[:, 4]}
@@ -140,14 +142,14 @@ def read_rows(point):
     rows, expect = [], None
     for number, line in enumerate(path.read_text().splitlines(), 1):
         if line.startswith("ITEM:"):
-            expect = "ENTRIES" in line
+            expect = line.startswith("ITEM: ENTRIES")
             continue
         if not expect:
             continue
         words = line.split()
         if len(words) != len(ROW_COLUMNS):
             raise DataError(f"{path}:{number}: {len(words)} columns, expected {len(ROW_COLUMNS)}")
-        rows.append([float(w) for w in words])
+        rows.append(numbers(path, number, words))
     data = np.array(rows).reshape(-1, len(ROW_COLUMNS))
     return {name: data[:, k] for k, name in enumerate(ROW_COLUMNS)}
 

@@ -171,3 +171,32 @@ def test_trend_of_noise_and_of_a_ramp():
     assert abs(slope) < 4 * error
     slope, error = trend(t, noise + 0.01 * t, 0, 1000)
     assert slope == pytest.approx(0.01, abs=4 * error)
+
+
+@pytest.mark.parametrize("damage,message", [
+    ("word", r"profile.txt:\d+: not a number"),
+    ("short", "does not have 6 columns"),
+    ("missing bin", "bins, the header says 3: truncated"),
+])
+def test_broken_profile_names_the_file_and_the_problem(tmp_path, damage, message):
+    from postprocess.io import read_profile
+    bins = ["1 0.125 2 0.5 0.1 0.0", "2 0.375 1 0.25 0.2 0.0", "3 0.625 0 0 0 0"]
+    if damage == "word":
+        bins[1] = bins[1].replace("0.25", "x.25")
+    if damage == "short":
+        bins[1] = "2 0.375 1"
+    if damage == "missing bin":
+        bins = bins[:2]
+    (tmp_path / "profile.txt").write_text("# fix ave/chunk\n# header\n# columns\n1000 3 3\n" +
+                                          "\n".join(bins) + "\n")
+    with pytest.raises(DataError, match=message):
+        read_profile(tmp_path)
+
+
+def test_broken_contact_rows_name_the_line(tmp_path):
+    from postprocess.io import read_rows
+    (tmp_path / "contacts.txt").write_text(
+        "ITEM: TIMESTEP\n100\nITEM: NUMBER OF ENTRIES\n1\nITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n"
+        "0 1\nITEM: ENTRIES c_1 c_2\n1 2 1 0.1 0.005 -1 0.7 nan?\n")
+    with pytest.raises(DataError, match=r"contacts.txt:10: not a number"):
+        read_rows(tmp_path)
