@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from granmn_run import law
+from granmn_run import law, run_lammps
 
 DISC_DENSITY = 4 / math.pi    # mass = diameter^2: unit disk has unit mass (SPEC section 1)
 
@@ -126,3 +126,23 @@ fix gravity mobile gravity 1.0 vector 0 -1 0
 fix floor mobile wall/gran/mn yplane 0.0 NULL
 fix c mobile contacts/mn
 """
+
+
+def bounces(tmp_path, kn, height=0.1):
+    """Contacts a disk dropped from `height` above the wall makes until it stays there."""
+    ref = law(kn, 0.7, 0.7)
+    dt = ref["tau_w"] / 50
+    steps = int(6.0 / dt)
+    deck = f"""
+{disk_over_floor(kn, 0.5 + height, dt)}thermo 0
+run {steps - int(1.0 / dt)}
+variable bounces equal $(f_c[2])
+fix_modify c reset
+run {int(1.0 / dt)}
+print "RESULT bounces ${{bounces}} $(f_c[2]) $(f_c[4]) $(f_c[7])"
+"""
+    begun, begun_last, t_boundary_last, window_last = run_lammps(
+        deck, tmp_path / f"kn{kn:g}").result("bounces")
+    # at rest for the last time unit: in contact throughout, no new contact
+    assert begun_last == 0 and abs(t_boundary_last - window_last) < 1e-9
+    return begun

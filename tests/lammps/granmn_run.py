@@ -94,14 +94,12 @@ def run_lammps(deck, workdir, nprocs=1, header=True, check=True):
 
 
 def law(kn, e, beta):
-    """The SPEC section 3 mapping, written out independently of the C++ header."""
-    ln_e = np.log(e)
-    eta_n = np.sqrt(2 * kn / ((np.pi / ln_e) ** 2 + 1)) if e < 1 else 0.0
-    tau_c = np.sqrt((np.pi ** 2 + ln_e ** 2) / (2 * kn))
-    eta_t = -np.log(beta) / (3 * tau_c)
-    tau_w = np.pi / np.sqrt(kn - eta_n ** 2 / 4)
-    return dict(eta_n=eta_n, tau_c=tau_c, eta_t=eta_t, tau_w=tau_w,
-                e_w=np.exp(-eta_n * tau_w / 2))
+    """The coefficients of SPEC section 3 as the header derives them (build/plugin/mn-law, next
+    to the plugin): one copy of the mapping, checked against its definitions by the unit tests."""
+    tool = Path(PLUGIN).resolve().parent / "mn-law"
+    out = subprocess.run([str(tool), repr(kn), repr(e), repr(beta)], capture_output=True,
+                         text=True, check=True).stdout
+    return {name: float(value) for name, value in (line.split() for line in out.splitlines())}
 
 
 def restitution_error_bound(e, dt_over_tau):

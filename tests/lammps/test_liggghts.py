@@ -6,7 +6,6 @@ Both integrate with velocity Verlet, so a head-on collision and a bouncing ball 
 rounding at the same dt. (LIGGGHTS is installed by scripts/setup.sh.)"""
 import shutil
 import subprocess
-from pathlib import Path
 
 import pytest
 
@@ -15,17 +14,9 @@ from granmn_run import HEADER, PLUGIN, law, run_lammps
 KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5
 
 
-def mn_law():
-    """The header's own numbers, from build/plugin/mn-law."""
-    tool = Path(PLUGIN).resolve().parent / "mn-law"
-    out = subprocess.run([str(tool), str(KN), str(E), str(BETA)], capture_output=True,
-                         text=True, check=True).stdout
-    return {k: float(v) for k, v in (line.split() for line in out.splitlines())}
-
-
 def scene(engine, kind, dt, steps, mu=MU):
     """The same scene for LIGGGHTS ('liggghts') or lmp with the plugin ('lammps')."""
-    c = mn_law()
+    c = law(KN, E, BETA)
     if kind in ("collision", "oblique"):
         atoms = ("create_atoms 1 single -0.61234 0 0\ncreate_atoms 1 single 0.61234 0 0\n"
                  "set atom 1 vx 0.5\nset atom 2 vx -0.5\n")
