@@ -22,6 +22,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from equivalent_laws import LIGGGHTS_FLOOR, hooke_history_contacts, liggghts_contacts
+
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = ROOT / "build"
 LMP = BUILD / "lammps" / "lmp"
@@ -74,12 +76,7 @@ pair_coeff * *
 fix floor all wall/gran/mn yplane 0.0 NULL
 """
     else:
-        # F_n = kn delta - meff gamma_n v_n with meff = m/2 = 1/2: gamma_n = 2 eta_n, same for t
-        contact = common + f"""
-pair_style gran/hooke/history {KN} {c['kt']!r} {2 * c['eta_n']!r} {2 * c['eta_t']!r} {MU} 1
-pair_coeff * *
-fix floor all wall/gran hooke/history {KN} {c['kt']!r} {c['eta_n']!r} {c['eta_t']!r} {MU} 1 yplane 0.0 NULL
-"""
+        contact = common + hooke_history_contacts(c, KN, MU)
     return contact + f"""
 timestep {dt!r}
 fix integrate all nve/sphere disc
@@ -103,16 +100,7 @@ units lj
 read_data {data}
 set type 1 mass 1.0
 neighbor 0.2 bin
-fix m1 all property/global kn peratomtypepair 1 {KN!r}
-fix m2 all property/global kt peratomtypepair 1 {c['kt']!r}
-fix m3 all property/global gamman_abs peratomtypepair 1 {c['eta_n']!r}
-fix m4 all property/global gammat_abs peratomtypepair 1 {c['eta_t']!r}
-fix m6 all property/global gamman peratomtypepair 1 {c['eta_n']!r}
-fix m7 all property/global gammat peratomtypepair 1 {c['eta_t']!r}
-fix m5 all property/global coefficientFriction peratomtypepair 1 {MU!r}
-pair_style gran model hooke/stiffness tangential history absolute_damping on
-pair_coeff * *
-fix floor all wall/gran model hooke/stiffness tangential history primitive type 1 yplane 0.0
+{liggghts_contacts(c, KN, MU)}{LIGGGHTS_FLOOR}
 timestep {dt!r}
 fix integrate all nve/sphere
 fix flat all enforce2d

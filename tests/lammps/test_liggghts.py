@@ -6,10 +6,15 @@ Both integrate with velocity Verlet, so a head-on collision and a bouncing ball 
 rounding at the same dt. (LIGGGHTS is installed by scripts/setup.sh.)"""
 import shutil
 import subprocess
+import sys
 
 import pytest
 
 from granmn_run import HEADER, PLUGIN, law, run_lammps
+from postprocess_path import ROOT
+
+sys.path.insert(0, str(ROOT / "bench"))
+from equivalent_laws import LIGGGHTS_FLOOR, liggghts_contacts  # noqa: E402
 
 KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5
 
@@ -37,19 +42,8 @@ region reg block -5 5 -5 5 -0.5 0.5 units box
 create_box 1 reg
 neighbor 0.1 bin
 neigh_modify delay 0
-fix m1 all property/global kn peratomtypepair 1 {KN!r}
-fix m2 all property/global kt peratomtypepair 1 {c['kt']!r}
-fix m3 all property/global gamman_abs peratomtypepair 1 {c['eta_n']!r}
-fix m4 all property/global gammat_abs peratomtypepair 1 {c['eta_t']!r}
-fix m5 all property/global coefficientFriction peratomtypepair 1 {mu!r}
-pair_style gran model hooke/stiffness tangential history absolute_damping on
-pair_coeff * *
-"""
-        # the wall model takes damping per unit effective mass, which is m_i = 1 at a wall
-        wall = (f"fix m6 all property/global gamman peratomtypepair 1 {c['eta_n']!r}\n"
-                f"fix m7 all property/global gammat peratomtypepair 1 {c['eta_t']!r}\n"
-                "fix floor all wall/gran model hooke/stiffness tangential history "
-                "primitive type 1 yplane 0.0\n")
+""" + liggghts_contacts(c, KN, mu)
+        wall = LIGGGHTS_FLOOR
         integrate = "fix integrate all nve/sphere\n"
     else:
         setup = HEADER.format(plugin=PLUGIN) + f"""
