@@ -168,7 +168,6 @@ void FixContactsMN::collect(bool accumulate_time)
       if (step_boundary[i] > 0.0) p[TIME_BOUNDARY] += dt;
       if (p[NOW] >= 2.0) p[TIME_MULTIPLE] += dt;
     }
-    begun_particle[i] = begun_boundary[i] = 0.0;
   }
 }
 
