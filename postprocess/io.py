@@ -33,6 +33,12 @@ def read_params(point):
     for name in ("scene", "kn", "dt", "tau_c", "tau_w", "average_start", "run_time", "n_mobile"):
         if name not in params:
             raise DataError(f"{path}: no {name}")
+    for name in ("kn", "dt", "tau_c", "tau_w", "average_start", "run_time", "n_mobile"):
+        value = params[name]
+        if not isinstance(value, float) or not np.isfinite(value) or \
+                value < 0 or (value == 0 and name != "average_start"):
+            bound = ">= 0" if name == "average_start" else "> 0"
+            raise DataError(f"{path}: {name} = {value!r} must be a finite number {bound}")
     return params
 
 
@@ -156,3 +162,15 @@ def read_rows(point):
 
 def read_trajectory(point):
     return numeric_table(Path(point) / "trajectory.txt", ("time", "x", "y", "vx", "vy"))
+
+
+def read_stopped(point):
+    """The time at which the run ended early because its pile had stopped (stopped.txt, written
+    by inputs/lib/run.lmp), or None for a run that went on to run_time."""
+    path = Path(point) / "stopped.txt"
+    if not path.exists():
+        return None
+    words = path.read_text().split()
+    if len(words) != 2 or words[0] != "stopped_at":
+        raise DataError(f"{path}: expected 'stopped_at TIME', got {' '.join(words)!r}")
+    return numbers(path, 1, words[1:])[0]

@@ -1,8 +1,12 @@
 """Observables of one point (SPEC section 6) from its outputs, with block-average errors."""
 import numpy as np
 
-from .io import DataError, read_counts, read_energy, read_params
-from .selection import select_steady
+from .io import DataError, read_counts, read_energy, read_params, read_stopped
+from .selection import select_at_resolution
+
+# The time resolutions (time units) at which the report counts the steady parts kept, so that
+# the reader sees what the choice of resolution does (SPEC section 5).
+RESOLUTIONS = (0.1, 1.0, 5.0)
 
 COUNTERS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary", "time_multiple")
 
@@ -38,38 +42,70 @@ def with_errors(blocks):
     return result
 
 
-def point_observables(point, n_blocks=5):
+def averaging_rows(energy, params):
+    """Rows of energy.txt in the counter window that restarts at average_start (the row written
+    at that very step still holds the sums from before the restart)."""
+    slack = 1e-9 * params["run_time"]
+    return ((energy["time"] >= params["average_start"] - slack) &
+            (energy["window"] <= energy["time"] - params["average_start"] + slack))
+
+
+def kept_spans(point, resolutions=RESOLUTIONS):
+    """{resolution: number of steady parts the selection keeps} over a run's averaging span."""
+    params = read_params(point)
+    energy = read_energy(point, params)
+    inside = averaging_rows(energy, params)
+    return {r: len(select_at_resolution(energy["time"][inside], energy["e_total"][inside], r)[0])
+            for r in resolutions}
+
+
+def run_state(point):
+    """How a completed run ended: ('flowing', None) if it went on to run_time, ('stopped', t) if
+    its pile stopped at time t and the run ended early (inputs/lib/stop.lmp)."""
+    stopped_at = read_stopped(point)
+    return ("flowing", None) if stopped_at is None else ("stopped", stopped_at)
+
+
+def point_observables(point, n_blocks=5, resolution=1.0):
     """E, N_c, N_w, t_c, t_w, the multiple-contact estimates and the direct fraction of time
     with two or more contacts, averaged over the point's averaging window (or, for the
-    frictional flow, over its selected steady spans), each with a block-average error."""
+    frictional flow, over its steady parts selected at the given time resolution), each with a
+    block-average error."""
     params = read_params(point)
     energy = read_energy(point, params)
     counts = read_counts(point)
+    state, stopped_at = run_state(point)
+    end = params["run_time"] if stopped_at is None else stopped_at
     n = params["n_mobile"]
     if len(counts["id"]) != n:
         raise DataError(f"{point}/counts.txt: {len(counts['id'])} disks, params.txt says {n:g}")
-    # rows of the counter window that restarts at average_start (the row written at that
-    # very step still holds the sums from before the restart)
-    slack = 1e-9 * params["run_time"]
-    inside = ((energy["time"] >= params["average_start"] - slack) &
-              (energy["window"] <= energy["time"] - params["average_start"] + slack))
+    inside = averaging_rows(energy, params)
     first = int(np.argmax(inside))
+    if stopped_at is not None and stopped_at <= params["average_start"]:
+        raise DataError(f"{point}: the pile stopped at t = {stopped_at:g}, before the "
+                        f"averaging span (average_start {params['average_start']:g})")
     if not inside.any():
         raise DataError(f"{point}/energy.txt: no samples after average_start "
                         f"{params['average_start']:g}: the run did not reach its averaging span")
-    if energy["time"][-1] < params["run_time"] - 1.5 * (energy["time"][1] - energy["time"][0]):
+    if energy["time"][-1] < end - 1.5 * (energy["time"][1] - energy["time"][0]):
         raise DataError(f"{point}/energy.txt: ends at t = {energy['time'][-1]:g}, before "
-                        f"run_time {params['run_time']:g}: truncated?")
+                        f"{'its stop' if stopped_at is not None else 'run_time'} {end:g}: "
+                        "truncated?")
 
     n_boundary = n
-    notes = []
+    notes = [f"stopped at t = {stopped_at:g}"] if stopped_at is not None else []
     if params["scene"] == "frictional_flow":
         n_boundary = bottom_layer(counts)
-        kept, found = select_steady(energy["time"][first:], energy["e_total"][first:])
+        kept, found = select_at_resolution(energy["time"][first:], energy["e_total"][first:],
+                                           resolution)
         spans = [(a + first, b + first) for a, b in kept]
         if not spans:
-            raise DataError(f"{point}: no steady part with mean energy in [0.4, 0.8] "
-                            f"({len(found)} steady parts found, none selected)")
+            means = ", ".join(f"{energy['e_total'][a + first:b + first].mean():.3g}"
+                              for a, b in found)
+            raise DataError(f"{point}: no steady part with mean energy in [0.4, 0.8] at "
+                            f"resolution {resolution:g} ({len(found)} steady parts found"
+                            f"{', mean E ' + means if found else ''}; "
+                            f"{notes[0] if notes else 'flowing to the end'})")
         notes.append(f"{len(spans)} of {len(found)} steady parts selected")
     else:
         spans = [(first, len(energy["time"]))]

@@ -43,3 +43,35 @@ def select_steady(t, energy, min_length=500.0, max_width=0.45, energy_range=(0.4
     e = np.asarray(energy, dtype=float)
     kept = [s for s in spans if energy_range[0] <= e[s[0]:s[1]].mean() <= energy_range[1]]
     return kept, spans
+
+
+def window_means(t, energy, resolution):
+    """The series at a time resolution: means over consecutive windows of length `resolution`
+    (a resolution at or below the sample spacing keeps every sample). Returns the windows'
+    start times, their means, and the sample index where each window begins (plus the end), so
+    that a span of windows [a, b) covers the samples [edges[a], edges[b])."""
+    t = np.asarray(t, dtype=float)
+    e = np.asarray(energy, dtype=float)
+    if not resolution > 0:
+        raise ValueError(f"resolution = {resolution!r} must be > 0")
+    if len(t) == 0:
+        return t, e, np.zeros(1, dtype=int)
+    # a small slack so that samples written at exact multiples of the resolution do not split
+    # on rounding (t is step * dt)
+    window = np.floor((t - t[0]) / resolution + 1e-9).astype(int)
+    starts = np.flatnonzero(np.r_[True, np.diff(window) != 0])
+    edges = np.r_[starts, len(t)]
+    means = np.add.reduceat(e, starts) / np.diff(edges)
+    return t[starts], means, edges
+
+
+def select_at_resolution(t, energy, resolution=1.0, min_length=500.0, max_width=0.45,
+                         energy_range=(0.4, 0.8)):
+    """SPEC section 5's rule applied to the energy series averaged over windows of `resolution`
+    time units: (kept, found) as sample-index spans of the original series."""
+    tw, ew, edges = window_means(t, energy, resolution)
+    kept, found = select_steady(tw, ew, min_length, max_width, energy_range)
+
+    def samples(spans):
+        return [(int(edges[a]), int(edges[b])) for a, b in spans]
+    return samples(kept), samples(found)
