@@ -1,7 +1,10 @@
-"""python3 -m postprocess {report,compare} SWEEP_DIR [--output DIR]
+"""python3 -m postprocess {report,compare} SWEEP_DIR [--output DIR] [--resolution T]
 
 report   tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
-compare  the comparison table on the terminal; exit status 1 if a claim fails"""
+compare  the comparison table on the terminal; exit status 1 if a claim fails
+
+--resolution T: the frictional steady-part selection works on E(t) averaged over windows of
+T time units (default 1)."""
 import argparse
 import sys
 from pathlib import Path
@@ -18,9 +21,12 @@ def main(argv=None):
     parser.add_argument("command", choices=("report", "compare"))
     parser.add_argument("sweep", type=Path)
     parser.add_argument("--output", type=Path)
+    parser.add_argument("--resolution", type=float, default=1.0)
     args = parser.parse_args(argv)
+    if not args.resolution > 0:
+        parser.error(f"--resolution {args.resolution:g} must be > 0")
     try:
-        scenes, left_out, completed = analyse(args.sweep)
+        scenes, left_out, completed, runs = analyse(args.sweep, args.resolution)
     except DataError as error:
         print(f"postprocess: {error}", file=sys.stderr)
         return 2
@@ -28,16 +34,17 @@ def main(argv=None):
         print(f"left out {point}: {reason}", file=sys.stderr)
     if args.command == "report":
         path, results = write_report(args.sweep, scenes, left_out, completed,
-                                     args.output or args.sweep / "report")
+                                     args.output or args.sweep / "report", runs,
+                                     args.resolution)
         print(f"report: {path}")
         return 0
     results = evaluate(scenes)
-    width = max(len(c["id"]) for c, _, _ in results)
-    for claim, value, status in results:
-        print(f"{claim['id']:<{width}}  {fmt(value):>10}  [{claim['low']:g}, {claim['high']:g}]"
-              f"  {status}")
-    failed = sum(status == "FAIL" for _, _, status in results)
-    passed = sum(status == "pass" for _, _, status in results)
+    width = max(len(c["id"]) for c, *_ in results)
+    for claim, value, error, status in results:
+        print(f"{claim['id']:<{width}}  {fmt(value, error):>18}  "
+              f"[{claim['low']:g}, {claim['high']:g}]  {status}")
+    failed = sum(status == "FAIL" for *_, status in results)
+    passed = sum(status == "pass" for *_, status in results)
     print(f"comparison: {passed} pass, {failed} FAIL, {len(results) - passed - failed} not evaluated")
     return 1 if failed else 0
 

@@ -6,7 +6,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from .io import DataError  # noqa: E402
-from .selection import select_steady  # noqa: E402
+from .selection import select_steady, window_means  # noqa: E402
 from .study import energy_series, profiles, series  # noqa: E402
 
 TITLES = {"single_disk": "single disk on a bumpy slope",
@@ -98,21 +98,45 @@ def vy_figure(rows, trajectories, path):
     plt.close(fig)
 
 
-def energy_figure(scene, points, path):
-    """E(t) of each completed point; for the frictional flow, the selected steady parts shaded."""
-    fig, ax = plt.subplots(figsize=(9, 4))
+def energy_figure(scene, points, path, resolution=1.0):
+    """E(t) of each completed point. The frictional flow: one panel per k_n with every seed's
+    E(t) averaged over windows of `resolution` (the series the selection sees), the selected
+    steady parts drawn thick, the accepted energy range shaded."""
+    series_by_kn = {}
     for kn, energy in energy_series(points):
-        line, = ax.plot(energy["time"], energy["e_total"], lw=0.8, label=f"k_n = {kn:g}")
-        if scene == "frictional_flow":
-            kept, _ = select_steady(energy["time"], energy["e_total"])
-            for a, b in kept:
-                ax.axvspan(energy["time"][a], energy["time"][b - 1], color=line.get_color(),
-                           alpha=0.1)
-    if scene == "frictional_flow":
-        ax.axhspan(0.4, 0.8, color="gray", alpha=0.08, label="selected energy range")
-    ax.set(xlabel="time", ylabel="E per disk", title=f"{TITLES[scene]}: E(t)")
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
+        series_by_kn.setdefault(kn, []).append(energy)
+    if scene != "frictional_flow":
+        fig, ax = plt.subplots(figsize=(9, 4))
+        for kn, runs in series_by_kn.items():
+            for energy in runs:
+                ax.plot(energy["time"], energy["e_total"], lw=0.8, label=f"k_n = {kn:g}")
+        ax.set(xlabel="time", ylabel="E per disk", title=f"{TITLES[scene]}: E(t)")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    else:
+        columns = min(3, len(series_by_kn))
+        rows = -(-len(series_by_kn) // columns)
+        fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 2.6 * rows),
+                                 sharex=True, sharey=True, squeeze=False)
+        for ax in axes.flat[len(series_by_kn):]:
+            ax.set_visible(False)
+        for ax, (kn, runs) in zip(axes.flat, series_by_kn.items()):
+            ax.axhspan(0.4, 0.8, color="gray", alpha=0.12)
+            for energy in runs:
+                t, e, _ = window_means(energy["time"], energy["e_total"], resolution)
+                line, = ax.plot(t, e, lw=0.5)
+                kept, _ = select_steady(t, e)
+                for a, b in kept:
+                    ax.plot(t[a:b], e[a:b], lw=1.6, color=line.get_color())
+            ax.set_title(f"k_n = {kn:g} ({len(runs)} runs)", fontsize=9)
+            ax.set_ylim(0, 1.5)
+            ax.grid(alpha=0.3)
+        for ax in axes[-1]:
+            ax.set_xlabel("time")
+        for ax in axes[:, 0]:
+            ax.set_ylabel(f"E per disk ({resolution:g}-window means)")
+        fig.suptitle("frictional flow: E(t); thick: selected steady parts; grey band: [0.4, 0.8]",
+                     fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)

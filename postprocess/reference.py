@@ -1,57 +1,66 @@
-"""The reference claims (claims.csv: one row per claim, its source and its tolerance) and their
-evaluation on a study."""
+"""The reference claims (claims.csv: one row per claim, the stiffness range it is about, its
+source and its tolerance) and their evaluation on a study."""
 import csv
 from pathlib import Path
 
 import numpy as np
 
-from .study import fit_log, fit_power, series
+from .study import fit_log, fit_power, main_series, series
 
 CLAIMS = Path(__file__).with_name("claims.csv")
+MEASURES = ("max_abs_deviation", "power_exponent", "log_slope", "log_r2", "ratio_at_stiffest")
 
 
 def load_claims(path=CLAIMS):
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     for row in rows:
-        row["low"], row["high"] = float(row["low"]), float(row["high"])
+        for key in ("kn_min", "kn_max", "low", "high"):
+            row[key] = float(row[key])
+        if row["measure"] not in MEASURES:
+            raise ValueError(f"{path}: claim {row['id']}: unknown measure {row['measure']}")
     return rows
 
 
 def measure(claim, rows):
-    """The claim's measured value on a scene's points, or (nan, reason)."""
+    """(value, standard error, '') of the claim on a scene's points within the claim's stiffness
+    range, or (nan, nan, why not)."""
+    rows = [o for o in rows if claim["kn_min"] <= o["kn"] <= claim["kn_max"]]
     quantity, kind = claim["quantity"], claim["measure"]
-    if len(rows) < 2 and kind != "ratio_at_stiffest":
-        return np.nan, "needs at least 2 points"
-    if kind == "max_abs_deviation":
-        values = np.array([o[quantity] for o in rows])
-        return float(np.max(np.abs(values - 4.0))), ""
+    where = f"k_n in [{claim['kn_min']:g}, {claim['kn_max']:g}]"
     if kind == "ratio_at_stiffest":
+        if not rows:
+            return np.nan, np.nan, f"no point with {where}"
         top, bottom = quantity.split("/")
-        stiffest = rows[-1]
-        return stiffest[top] / stiffest[bottom], ""
+        o = rows[-1]
+        ratio = o[top] / o[bottom]
+        error = abs(ratio) * np.hypot(o[top + "_err"] / o[top], o[bottom + "_err"] / o[bottom])
+        return ratio, error, ""
+    if len(rows) < 2:
+        return np.nan, np.nan, f"needs at least 2 points with {where}, has {len(rows)}"
     kn, values, errors = series(rows, quantity)
-    if kind == "log_slope":
-        return fit_log(kn, values)[0], ""
+    if kind == "max_abs_deviation":
+        return float(np.max(np.abs(values - 4.0))), np.nan, ""
     if kind == "power_exponent":
-        return fit_power(kn, values)[0], ""
-    if kind == "relative_spread":
-        return float(np.ptp(values) / np.mean(values)), ""
-    raise ValueError(f"claims.csv: unknown measure {kind}")
+        return (*fit_power(kn, values), "")
+    slope, error, r2 = fit_log(kn, values)
+    return (slope, error, "") if kind == "log_slope" else (r2, np.nan, "")
 
 
 def evaluate(scenes, claims=None):
-    """[(claim, measured, status)] with status pass, FAIL or 'not evaluated: why'."""
+    """[(claim, measured, error, status)] with status pass, FAIL or 'not evaluated: why', on
+    each scene's main series."""
     results = []
     for claim in claims or load_claims():
-        rows = scenes.get(claim["scene"], [])
+        rows = main_series(scenes.get(claim["scene"], []))
         if not rows:
-            results.append((claim, np.nan, "not evaluated: no usable points of this scene"))
+            results.append((claim, np.nan, np.nan,
+                            "not evaluated: no usable points of this scene"))
             continue
-        value, reason = measure(claim, rows)
+        value, error, reason = measure(claim, rows)
         if not np.isfinite(value):
-            results.append((claim, value, f"not evaluated: {reason or 'no value'}"))
+            results.append((claim, value, error, f"not evaluated: {reason or 'no value'}"))
         else:
-            results.append((claim, value, "pass" if claim["low"] <= value <= claim["high"]
-                            else "FAIL"))
+            results.append((claim, value, error,
+                            "pass" if claim["low"] <= value <= claim["high"] else "FAIL"))
     return results

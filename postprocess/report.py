@@ -8,7 +8,7 @@ import numpy as np
 from . import figures
 from .io import DataError, read_trajectory
 from .reference import evaluate
-from .study import QUANTITIES, fit_log, fit_power, series
+from .study import QUANTITIES, VARIANT_QUANTITIES, main_series, run_summary, variant_differences
 
 
 def fmt(value, error=None):
@@ -18,26 +18,6 @@ def fmt(value, error=None):
     if error is not None and np.isfinite(error):
         text += f" ± {error:.2g}"
     return text
-
-
-def fits(scene, rows):
-    """The fits the paper's figures invite, as (what, value, error) lines."""
-    out = []
-    if len(rows) < 2:
-        return out
-    if scene == "frictional_flow":
-        for q in ("N_c", "N_w"):
-            a, e = fit_power(*series(rows, q)[:2])
-            out.append((f"{q} ~ k_n^a (paper guide a = 0.4)", a, e))
-    if scene == "single_disk":
-        a, e = fit_log(*series(rows, "N_w")[:2])
-        out.append(("N_w against ln k_n: slope", a, e))
-    if scene == "collisional_flow":
-        a, e = fit_power(*series(rows, "t_c")[:2])
-        out.append(("t_c ~ k_n^a (expected -1/2)", a, e))
-        a, e = fit_power(*series(rows, "t_w")[:2])
-        out.append(("t_w ~ k_n^a (paper: slightly slower than -1/2)", a, e))
-    return out
 
 
 def write_tables(scenes, out):
@@ -52,15 +32,15 @@ def write_tables(scenes, out):
                 writer.writerow([o[k] for k in header] + [o["point"]])
 
 
-def make_figures(scenes, completed, out):
+def make_figures(scenes, completed, out, resolution):
     """{scene: [(caption, file name)]}, and problems met. Time series and snapshots of every
     completed point; the stiffness dependences and profiles of the usable ones."""
     made, problems = {}, []
     for scene, points in completed.items():
         items = made.setdefault(scene, [])
-        rows = scenes.get(scene, [])
+        rows = main_series(scenes.get(scene, []))
         jobs = [("kinetic energy against time", f"energy_{scene}.png",
-                 lambda p, s=scene, c=points: figures.energy_figure(s, c, p)),
+                 lambda p, s=scene, c=points: figures.energy_figure(s, c, p, resolution)),
                 ("snapshot (stiffest point)", f"snapshot_{scene}.png",
                  lambda p, s=scene, c=points: figures.snapshot_figure(s, c[-1], p))]
         if rows:
@@ -85,24 +65,73 @@ def make_figures(scenes, completed, out):
     return made, problems
 
 
-def write_report(sweep_dir, scenes, left_out, completed, out):
+def run_table(runs, resolution):
+    """Markdown lines: per kn, how the frictional runs ended and what the selection kept."""
+    summary = run_summary(runs)
+    if not summary:
+        return []
+    resolutions = sorted(next(iter(summary.values()))["kept"])
+    lines = [f"Runs per point: flowing to the end, stopped (the pile came to rest and the run "
+             f"ended early; median time of the stop), selected (at least one steady part kept "
+             f"at resolution {resolution:g}), and the steady parts kept in all when E(t) is "
+             "averaged over windows of each resolution (time units):", "",
+             "| k_n | other variables | runs | flowing | stopped (median t) | selected | " +
+             " | ".join(f"parts kept at {r:g}" for r in resolutions) + " |",
+             "|---|---|---|---|---|---|" + "---|" * len(resolutions)]
+    for (kn, label), row in summary.items():
+        when = f" ({np.median(row['stop_times']):.0f})" if row["stop_times"] else ""
+        lines.append(f"| {kn:g} | {label or '-'} | {row['runs']} | {row['flowing']} | "
+                     f"{row['stopped']}{when} | {row['selected']} | " +
+                     " | ".join(str(row["kept"][r]) for r in resolutions) + " |")
+    return lines + [""]
+
+
+def variant_lines(rows):
+    """Markdown lines: each variant point against the main series at the same k_n."""
+    pairs = variant_differences(rows)
+    if not pairs:
+        return []
+    main = main_series(rows)[0]["label"] or "-"
+    lines = [f"Variants against the main series ({main}) at the same k_n: the variant's value, "
+             "then (variant - main) in units of the combined error.", "",
+             "| k_n | variant | " + " | ".join(VARIANT_QUANTITIES) + " |",
+             "|---|---|" + "---|" * len(VARIANT_QUANTITIES)]
+    for o, m, diffs in pairs:
+        cells = [f"{fmt(o[q], o[q + '_err'])} ({diffs[q][1]:+.1f} σ)" for q in VARIANT_QUANTITIES]
+        lines.append(f"| {o['kn']:g} | {o['label']} | " + " | ".join(cells) + " |")
+    return lines + [""]
+
+
+def comparison_lines(results):
+    lines = ["| claim | quantity | k_n range | measured | accepted range | status | source |",
+             "|---|---|---|---|---|---|---|"]
+    for claim, value, error, status in results:
+        lines.append(f"| {claim['id']} | {claim['quantity']} ({claim['measure']}) | "
+                     f"[{claim['kn_min']:g}, {claim['kn_max']:g}] | {fmt(value, error)} | "
+                     f"[{claim['low']:g}, {claim['high']:g}] | {status} | {claim['source']} |")
+    return lines
+
+
+def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), resolution=1.0):
     out.mkdir(parents=True, exist_ok=True)
     write_tables(scenes, out)
-    made, problems = make_figures(scenes, completed, out)
+    made, problems = make_figures(scenes, completed, out, resolution)
     results = evaluate(scenes)
     with open(out / "comparison.csv", "w", newline="") as f:
         writer = csv.writer(f)
-        writer.writerow(["id", "scene", "quantity", "measure", "measured", "low", "high",
-                         "status", "source", "why"])
-        for claim, value, status in results:
+        writer.writerow(["id", "scene", "quantity", "measure", "kn_min", "kn_max", "measured",
+                         "error", "low", "high", "status", "source", "why"])
+        for claim, value, error, status in results:
             writer.writerow([claim["id"], claim["scene"], claim["quantity"], claim["measure"],
-                             value, claim["low"], claim["high"], status, claim["source"],
-                             claim["why"]])
+                             claim["kn_min"], claim["kn_max"], value, error, claim["low"],
+                             claim["high"], status, claim["source"], claim["why"]])
 
     lines = [f"# Stiffness study: {sweep_dir}", "",
              f"Written {datetime.datetime.now():%Y-%m-%d %H:%M} by `python3 -m postprocess "
              f"report`. Errors are standard errors of block averages within each run "
-             f"(5 blocks per averaging span).", ""]
+             f"(5 blocks per averaging span), or across seeds where a point has several. "
+             f"Frictional steady parts selected on E(t) averaged over windows of "
+             f"{resolution:g}.", ""]
     for scene in completed:
         rows = scenes.get(scene, [])
         lines += [f"## {figures.TITLES[scene]}", ""]
@@ -118,6 +147,9 @@ def write_report(sweep_dir, scenes, left_out, completed, out):
                                     ("E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w",
                                      "t_multiple")] + [f"{o['span']:g}", o["label"]]) + " |")
         notes = [f"k_n = {o['kn']:g}: {o['notes']}" for o in rows if o["notes"]]
+        if scene == "frictional_flow":
+            lines += run_table(runs, resolution)
+        lines += variant_lines(rows)
         if scene == "frictional_flow" and rows:
             notes.append("N_w and t_w are per disk of the bottom layer (disks that touched the "
                          "floor in the averaging window; the paper: during the averaging span).")
@@ -125,18 +157,12 @@ def write_report(sweep_dir, scenes, left_out, completed, out):
             notes.append("v_y periods: " + ", ".join(f"{o['kn']:g}: {fmt(o['period'])}"
                                                       for o in rows))
         lines += [""] + [f"- {n}" for n in notes] + [""]
-        scene_fits = fits(scene, rows)
-        if scene_fits:
-            lines += ["Fits:", ""] + [f"- {what}: {fmt(v, e)}" for what, v, e in scene_fits] + [""]
         for caption, name in made.get(scene, []):
             lines += [f"![{caption}]({name})", ""]
     lines += ["## Comparison with the references", "",
-              "| claim | quantity | measured | accepted range | status | source |",
-              "|---|---|---|---|---|---|"]
-    for claim, value, status in results:
-        lines.append(f"| {claim['id']} | {claim['quantity']} ({claim['measure']}) | "
-                     f"{fmt(value)} | [{claim['low']:g}, {claim['high']:g}] | {status} | "
-                     f"{claim['source']} |")
+              "Exponents are least-squares fits in log-log over the points in the claim's k_n "
+              "range (errors: the fit's standard error).", ""]
+    lines += comparison_lines(results)
     lines += ["", "The table is also in `comparison.csv`, with the reason for each tolerance.", ""]
     if left_out or problems:
         lines += ["## Left out", ""]

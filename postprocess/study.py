@@ -5,29 +5,41 @@ from pathlib import Path
 import numpy as np
 
 from .io import DataError, read_energy, read_params, read_profile, read_trajectory
-from .observables import point_observables
+from .observables import RESOLUTIONS, kept_spans, point_observables, run_state
 from .signals import dominant_period
 
+SCENES = ("single_disk", "collisional_flow", "frictional_flow")
 QUANTITIES = ("E_trans", "E_rot", "E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w",
               "t_multiple")
 
 
-def analyse(sweep_dir):
+def analyse(sweep_dir, resolution=1.0):
     """{scene: [observables of each usable point, sorted by kn]}, [(point, reason) left out],
-    {scene: [completed points]} (usable or not: their time series can still be shown)."""
+    {scene: [completed points]} (usable or not: their time series can still be shown), and
+    [run records] of the frictional runs (how each ended, what the selection kept: run_record).
+    The frictional selection works on E(t) averaged over windows of `resolution`."""
     sweep_dir = Path(sweep_dir)
     if not sweep_dir.is_dir():
         raise DataError(f"{sweep_dir}: no such sweep directory")
-    scenes, left_out, completed = {}, [], {}
-    for point in sorted(p for p in sweep_dir.glob("*/*") if (p / "point.json").exists()):
+    scenes, left_out, completed, runs = {}, [], {}, []
+    points = sorted(p for p in sweep_dir.glob("*/*") if (p / "point.json").exists())
+    if not points:
+        raise DataError(f"{sweep_dir}: no sweep points here (no <scene>/<point>/point.json)")
+    for point in points:
+        if point.parent.name not in SCENES:
+            left_out.append((point, f"unknown scene '{point.parent.name}' (expected one of "
+                                    f"{', '.join(SCENES)})"))
+            continue
         if not (point / "done.txt").exists():
             left_out.append((point, "did not complete (no done.txt)"))
             continue
         completed.setdefault(point.parent.name, []).append(point)
         try:
-            o = point_observables(point)
+            if point.parent.name == "frictional_flow":
+                runs.append(run_record(point, resolution))
+            o = point_observables(point, resolution=resolution)
             o["point"] = point
-            o["variables"] = json.loads((point / "point.json").read_text())
+            o["variables"] = read_variables(point)
             if o["scene"] == "single_disk":
                 trajectory = read_trajectory(point)
                 late = trajectory["time"] > read_params(point)["average_start"]
@@ -37,12 +49,56 @@ def analyse(sweep_dir):
         except DataError as error:
             left_out.append((point, str(error).replace(f"{point}: ", "")))
     scenes = {scene: combine_seeds(rows) for scene, rows in scenes.items()}
-    return scenes, left_out, completed
+    return scenes, left_out, completed, runs
+
+
+def read_variables(point):
+    """point.json: the point's deck variables, as the sweep runner wrote them."""
+    path = point / "point.json"
+    try:
+        variables = json.loads(path.read_text())
+    except ValueError as error:
+        raise DataError(f"{path}: not valid JSON ({error})")
+    if not isinstance(variables, dict):
+        raise DataError(f"{path}: expected an object of deck variables")
+    return variables
+
+
+def run_record(point, resolution):
+    """How one frictional run went: kn, seed, state ('flowing' to the end or 'stopped'), the
+    stop time, the steady parts kept at each of RESOLUTIONS, and whether any is kept at the
+    analysis resolution."""
+    params = read_params(point)
+    state, stopped_at = run_state(point)
+    kept = kept_spans(point, sorted(set(RESOLUTIONS) | {resolution}))
+    variables = read_variables(point)
+    return {"point": point, "kn": params["kn"], "seed": params["seed"], "state": state,
+            "stopped_at": stopped_at, "kept": kept, "selected": kept[resolution] > 0,
+            "label": label(variables)}
+
+
+def run_summary(runs):
+    """Per (kn, other variables than the seed): runs, flowing to the end, stopped, selected,
+    the median stop time, and the steady parts kept at each resolution, summed over the runs."""
+    table = {}
+    for r in runs:
+        row = table.setdefault((r["kn"], r["label"]),
+                               {"runs": 0, "flowing": 0, "stopped": 0, "selected": 0,
+                                "stop_times": [], "kept": {k: 0 for k in r["kept"]}})
+        if r["stopped_at"] is not None:
+            row["stop_times"].append(r["stopped_at"])
+        row["runs"] += 1
+        row[r["state"]] += 1
+        row["selected"] += r["selected"]
+        for k, v in r["kept"].items():
+            row["kept"][k] = row["kept"].get(k, 0) + v
+    return dict(sorted(table.items()))
 
 
 def combine_seeds(rows):
-    """Points that differ only in seed become one: the mean over seeds, with the spread across
-    seeds (standard error) as the error when there are several, else the block error."""
+    """Points that differ only in seed become one: the mean over seeds weighted by each seed's
+    averaged span, with the spread across seeds (the weighted standard error) as the error
+    when there are several, else the block error."""
     groups = {}
     for o in rows:
         key = tuple(sorted((k, v) for k, v in o["variables"].items() if k != "seed"))
@@ -51,19 +107,64 @@ def combine_seeds(rows):
     for members in groups.values():
         o = dict(members[0])
         if len(members) > 1:
+            # weighted by span: the time average over all the selected data, as the paper's
+            weights = np.array([m["span"] for m in members], dtype=float)
+            weights /= weights.sum()
+            n = len(members)
             for q in QUANTITIES + ("period",):
                 if q not in o:
                     continue
                 values = np.array([m[q] for m in members])
-                o[q] = values.mean()
-                o[q + "_err"] = values.std(ddof=1) / np.sqrt(len(values))
+                o[q] = float(weights @ values)
+                o[q + "_err"] = float(np.sqrt(n / (n - 1) * np.sum(weights ** 2 *
+                                                                  (values - o[q]) ** 2)))
             o["span"] = sum(m["span"] for m in members)
             o["notes"] = f"{len(members)} seeds; " + "; ".join(m["notes"] for m in members if m["notes"])
-        o["label"] = ", ".join(f"{k} {v}" for k, v in sorted(members[0]["variables"].items())
-                               if k not in ("scene", "seed", "kn"))
+        o["label"] = label(members[0]["variables"])
         combined.append(o)
     combined.sort(key=lambda o: (o["kn"], o["label"]))
     return combined
+
+
+def label(variables):
+    """A point's variables other than scene, seed and kn, as text."""
+    return ", ".join(f"{k} {v}" for k, v in sorted(variables.items())
+                     if k not in ("scene", "seed", "kn"))
+
+
+def main_series(rows):
+    """A scene's main series: the points of the label shared by the most k_n (ties: the first
+    label in order). Claims are evaluated on it; points of other labels are variants (another
+    integrator, time step, tangential law ...) compared with it at the same k_n."""
+    if not rows:
+        return []
+    counts = {}
+    for o in rows:
+        counts[o["label"]] = counts.get(o["label"], 0) + 1
+    best = max(sorted(counts), key=lambda k: counts[k])
+    return [o for o in rows if o["label"] == best]
+
+
+VARIANT_QUANTITIES = ("E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w")
+
+
+def variant_differences(rows):
+    """[(variant row, main row, {quantity: (difference, difference / combined error)})] for
+    every point outside the main series that has a main-series point at the same k_n."""
+    main = main_series(rows)
+    by_kn = {o["kn"]: o for o in main}
+    out = []
+    for o in rows:
+        if o["label"] == (main[0]["label"] if main else None) or o["kn"] not in by_kn:
+            continue
+        m = by_kn[o["kn"]]
+        diffs = {}
+        for q in VARIANT_QUANTITIES:
+            d = o[q] - m[q]
+            sigma = np.hypot(o[q + "_err"], m[q + "_err"])
+            diffs[q] = (d, d / sigma if sigma > 0 else np.nan)
+        out.append((o, m, diffs))
+    return out
 
 
 def series(rows, quantity):
@@ -86,14 +187,16 @@ def fit_power(kn, values, errors=None):
 
 
 def fit_log(kn, values):
-    """Slope of values against ln kn: (slope, standard error)."""
+    """Slope of values against ln kn: (slope, standard error, R^2 of the straight line)."""
     x = np.log(kn)
     if len(x) < 2:
-        return np.nan, np.nan
+        return np.nan, np.nan, np.nan
     if len(x) == 2:
-        return (values[1] - values[0]) / (x[1] - x[0]), np.nan
+        return (values[1] - values[0]) / (x[1] - x[0]), np.nan, 1.0
     coefficients, covariance = np.polyfit(x, values, 1, cov=True)
-    return coefficients[0], np.sqrt(covariance[0, 0])
+    residual = values - np.polyval(coefficients, x)
+    r2 = 1 - residual @ residual / np.sum((values - values.mean()) ** 2)
+    return coefficients[0], np.sqrt(covariance[0, 0]), r2
 
 
 def profiles(rows):

@@ -79,7 +79,7 @@ def scene_sweep(output, quick):
     config.write_text("\n".join(lines) + "\n")
     subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"), str(config),
                     "--output", str(output / "runs")], check=True, env=ENV)
-    scenes, left_out, _ = analyse(output / "runs")
+    scenes, left_out, _, _ = analyse(output / "runs")
     for point, reason in left_out:
         print(f"left out {point}: {reason}")
     return scenes
