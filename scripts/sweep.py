@@ -17,7 +17,8 @@ Config (TOML):
 Any other key is passed to the deck as -var KEY VALUE (see inputs/lib/defaults.lmp).
 
 Layout: <output>/<scene>/<point>/ holds the deck's outputs (energy.txt, counts.txt, ...),
-point.json (the point's variables), command.txt (the exact command), log.lammps, timing.json,
+point.json (the point's variables), command.txt (the exact command), log.lammps, run.out (what
+lmp printed), timing.json (wall and CPU seconds),
 and done.txt, written by the deck last. A point with done.txt is never run again, so a killed
 sweep resumes where it stopped; a point without it is run again from scratch.
 
@@ -186,9 +187,19 @@ def run_serial(point, directory, paths, env):
     for name, value in point_variables(point, directory, paths).items():
         command += ["-var", name, format_value(value)]
     (directory / "command.txt").write_text(shlex.join(command) + "\n")
+    return finish(directory, *timed_run(command, directory, env))
+
+
+def timed_run(command, directory, env):
+    """Runs command with its output in directory/run.out: (exit status, output, wall seconds,
+    CPU seconds of the process and the children it waited for)."""
     start = time.time()
-    proc = subprocess.run(command, capture_output=True, text=True, env=env)
-    return finish(directory, proc, time.time() - start)
+    with open(directory / "run.out", "w") as out:
+        proc = subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT, env=env)
+        _, status, usage = os.wait4(proc.pid, 0)
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    output = (directory / "run.out").read_text(errors="replace")
+    return proc.returncode, output, time.time() - start, usage.ru_utime + usage.ru_stime
 
 
 def run_partitions(batch, batch_dir, paths, env):
@@ -210,21 +221,31 @@ def run_partitions(batch, batch_dir, paths, env):
                "-pscreen", "none", "-screen", "none", "-nocite"]
     for _, directory in batch:
         (directory / "command.txt").write_text(shlex.join(command) + "\n")
-    start = time.time()
-    proc = subprocess.run(command, capture_output=True, text=True, env=env)
-    elapsed = time.time() - start
-    return [finish(directory, proc, elapsed) for _, directory in batch]
+    status, output, elapsed, cpu = timed_run(command, batch_dir, env)
+    # one process for the batch: its time is shared out equally
+    return [finish(directory, status, output, elapsed, cpu / len(batch)) for _, directory in batch]
 
 
-def finish(directory, proc, elapsed):
+def finish(directory, status, output, elapsed, cpu):
     ok = (directory / "done.txt").exists()
     if ok:
-        (directory / "timing.json").write_text(json.dumps({"seconds": elapsed}) + "\n")
+        (directory / "timing.json").write_text(
+            json.dumps({"seconds": elapsed, "cpu_seconds": cpu}) + "\n")
     else:
-        (directory / "failed.txt").write_text(
-            f"exit status {proc.returncode}\n--- stdout\n{proc.stdout[-20000:]}\n"
-            f"--- stderr\n{proc.stderr[-20000:]}\n")
+        (directory / "failed.txt").write_text(f"exit status {status}\n--- output\n"
+                                              f"{output[-40000:]}\n")
     return ok, elapsed
+
+
+def cpu_seconds(directories):
+    """CPU seconds the completed points took, from their timing.json."""
+    total = 0.0
+    for d in directories:
+        try:
+            total += json.loads((d / "timing.json").read_text()).get("cpu_seconds", 0.0)
+        except (OSError, ValueError):
+            pass
+    return total
 
 
 def main(argv=None):
@@ -282,14 +303,16 @@ def main(argv=None):
     def report(point, directory, predicted, ok, elapsed):
         nonlocal finished
         finished += 1
-        if ok:
-            model.learn(predicted, elapsed)
-        else:
+        stopped = directory / "stopped.txt"
+        if not ok:
             failures.append(directory)
+        elif not stopped.exists():      # a run that ended early says nothing about the cost
+            model.learn(predicted, elapsed)
+        how = "FAILED" if not ok else "done" if not stopped.exists() else \
+            f"done (pile stopped: {stopped.read_text().strip()})"
         remaining = sum(model.predict(p, s) for p, d, s in todo[finished:]) / lanes
-        print(f"[{finished}/{len(todo)}] {'done' if ok else 'FAILED'} "
-              f"{directory.relative_to(output)} in {elapsed:.1f} s; ETA {format_seconds(remaining)}",
-              flush=True)
+        print(f"[{finished}/{len(todo)}] {how} {directory.relative_to(output)} in "
+              f"{elapsed:.1f} s; ETA {format_seconds(remaining)}", flush=True)
 
     if args.partitions:
         for start in range(0, len(todo), args.partitions):
@@ -312,7 +335,8 @@ def main(argv=None):
         for d in failures:
             print(f"  {d}", file=sys.stderr)
         return 1
-    print(f"sweep: all {len(plan)} points done in {output}")
+    print(f"sweep: all {len(plan)} points done in {output}; they took "
+          f"{cpu_seconds(d for _, d, _ in plan) / 3600:.3g} CPU-hours")
     return 0
 
 
