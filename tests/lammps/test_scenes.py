@@ -129,6 +129,8 @@ BAD_VARIABLES = {
     "averaging after the end": (dict(run_time=10, average_start=20),
                                 "average_start = 20 must lie in [0, run_time = 10)"),
     "seed not an integer": (dict(seed=1.5), "seed = 1.5 must be a positive integer"),
+    "unknown tangential law": (dict(tangential="sticky"),
+                               "deck variable tangential = sticky must be literal or cutback"),
 }
 
 
@@ -138,3 +140,55 @@ def test_bad_deck_variables_stop_with_a_message(tmp_path, scene, case):
     variables, message = BAD_VARIABLES[case]
     run = run_scene(scene, tmp_path, check=False, **variables)
     assert run.returncode != 0 and message in run.output, run.output[-1500:]
+
+
+BAD_FRICTIONAL_VARIABLES = {
+    "rows overlapping": (dict(row_spacing=0.9), "row_spacing = 0.9 must be >= 1"),
+    "negative rise": (dict(top_rise=-1), "top_rise = -1 must be >= 0"),
+    "negative stop energy": (dict(stop_energy=-0.5), "stop_energy = -0.5 must be >= 0"),
+    "stop time below the output interval": (dict(stop_time=0.05),
+                                            "stop_time = 0.05 must be >= output_interval"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_FRICTIONAL_VARIABLES))
+def test_bad_frictional_start_and_stop_variables_stop_with_a_message(tmp_path, case):
+    variables, message = BAD_FRICTIONAL_VARIABLES[case]
+    run = run_scene("frictional_flow", tmp_path, check=False, **variables)
+    assert run.returncode != 0 and message in run.output, run.output[-1500:]
+
+
+STOPPING = dict(kn=2e5, sin_theta=0.10, row_spacing=1.1, dt_fraction=0.05, dt_cap=1,
+                run_time=100, average_start=50)
+
+
+def test_a_pile_that_stops_ends_the_run_early_and_says_when(tmp_path):
+    """At sin(theta) = 0.10, well below the angle at which a frictional flow stops (the paper's
+    0.20 is already bistable), the pile comes to rest: the run ends once E per disk, averaged
+    over the last stop_time, is below stop_energy, and stopped.txt gives the time. The outputs
+    the post-processing needs are still written."""
+    run = run_scene("frictional_flow", tmp_path, **STOPPING)
+    words = (tmp_path / "stopped.txt").read_text().split()
+    assert words[0] == "stopped_at"
+    stopped_at = float(words[1])
+    assert 10 <= stopped_at < 100                       # at least stop_time after the start
+    t, e = energy(run)
+    assert t[-1] == pytest.approx(stopped_at, abs=1e-6)     # nothing was run after the stop
+    assert e[t > stopped_at - 10].mean() < 1e-5
+    assert e.max() > 0.01                               # it did move first
+    for name in ("counts.txt", "done.txt"):
+        assert (tmp_path / name).stat().st_size > 0
+
+    from postprocess.io import DataError
+    from postprocess.observables import point_observables, run_state
+    assert run_state(tmp_path) == ("stopped", stopped_at)
+    with pytest.raises(DataError, match="stopped at t = .*before the averaging span"):
+        point_observables(tmp_path)
+
+
+def test_stop_energy_zero_never_ends_a_run_early(tmp_path):
+    run = run_scene("frictional_flow", tmp_path, stop_energy=0, **dict(STOPPING, run_time=40,
+                                                                         average_start=20))
+    t, e = energy(run)
+    assert not (tmp_path / "stopped.txt").exists()
+    assert t[-1] == pytest.approx(40, abs=0.1) and e[-1] < 1e-5     # at rest, run to the end

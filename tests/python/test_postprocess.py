@@ -200,3 +200,203 @@ def test_broken_contact_rows_name_the_line(tmp_path):
         "0 1\nITEM: ENTRIES c_1 c_2\n1 2 1 0.1 0.005 -1 0.7 nan?\n")
     with pytest.raises(DataError, match=r"contacts.txt:10: not a number"):
         read_rows(tmp_path)
+
+
+# ---- the selection at a time resolution (SPEC section 5: E(t) averaged over windows)
+
+def test_window_means_average_consecutive_windows():
+    from postprocess.selection import window_means
+    t = np.arange(0, 10, 0.1)
+    starts, means, edges = window_means(t, t, 1.0)
+    assert len(starts) == 10 and list(edges[:3]) == [0, 10, 20]
+    assert means == pytest.approx(np.arange(10) + 0.45)
+    # a resolution at or below the sample spacing keeps the samples
+    _, same, _ = window_means(t, t, 0.1)
+    assert same == pytest.approx(t)
+
+
+def test_a_steady_flow_with_wide_instantaneous_noise_is_kept_at_resolution_1():
+    from postprocess.selection import select_at_resolution
+    t = np.arange(0, 1200, 0.1)
+    e = 0.65 + RNG.uniform(-0.3, 0.3, len(t))          # samples spread 0.6 > 0.45
+    kept, _ = select_at_resolution(t, e, 0.1)
+    assert kept == []                                  # instantaneous samples: too wide
+    kept, found = select_at_resolution(t, e, 1.0)
+    assert kept == found == [(0, len(t))]              # the 1-unit means: narrow, kept whole
+
+
+def test_a_drifting_mean_is_rejected_at_every_resolution():
+    from postprocess.selection import select_at_resolution
+    t = np.arange(0, 1200, 0.1)
+    e = 0.3 + 0.0012 * t + RNG.uniform(-0.05, 0.05, len(t))   # 0.6 over any 500 time units
+    for resolution in (0.1, 1.0, 5.0):
+        assert select_at_resolution(t, e, resolution)[0] == []
+
+
+# ---- runs that stop
+
+def stop_point(point, at):
+    """Cut a synthetic point's energy.txt at time `at` and mark it stopped there, as the deck
+    does when its pile comes to rest."""
+    lines = (point / "energy.txt").read_text().splitlines()
+    keep = [l for l in lines if l.startswith("#") or float(l.split()[0]) * 0.01 <= at]
+    (point / "energy.txt").write_text("\n".join(keep) + "\n")
+    (point / "stopped.txt").write_text(f"stopped_at {at}\n")
+    return point
+
+
+def test_a_run_stopped_after_a_steady_part_keeps_it_and_says_it_stopped(tmp_path):
+    point = stop_point(write_point(tmp_path, scene="frictional_flow", run_time=1000.0, dt=0.01,
+                                   average_start=100.0), 700.0)
+    o = point_observables(point)
+    assert "stopped at t = 700" in o["notes"] and "1 of 1 steady parts selected" in o["notes"]
+    assert o["N_c"] == pytest.approx(2.0) and o["span"] == pytest.approx(600, abs=1.5)
+
+
+def test_a_run_stopped_before_its_averaging_span_is_named_so(tmp_path):
+    point = stop_point(write_point(tmp_path, scene="frictional_flow", run_time=1000.0, dt=0.01,
+                                   average_start=100.0), 40.0)
+    with pytest.raises(DataError, match="stopped at t = 40, before the averaging span"):
+        point_observables(point)
+
+
+def test_a_broken_stop_record_is_named(tmp_path):
+    point = write_point(tmp_path, scene="frictional_flow", run_time=700.0, dt=0.01,
+                        average_start=100.0)
+    (point / "stopped.txt").write_text("stopped_at soon\n")
+    with pytest.raises(DataError, match="stopped.txt:1: not a number"):
+        point_observables(point)
+
+
+# ---- the claims on a synthetic study with known exponents
+
+def synthetic_rows(kn, label="", **laws):
+    """Rows of a scene whose quantities follow the given functions of kn (errors 1 %)."""
+    rows = []
+    for k in kn:
+        o = {"kn": k, "label": label}
+        for q in ("E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w", "period"):
+            o[q] = laws.get(q, lambda k: 1.0)(k)
+            o[q + "_err"] = 0.01 * abs(o[q])
+        rows.append(o)
+    return rows
+
+
+def test_claims_measure_known_exponents_slopes_and_ratios():
+    from postprocess.reference import evaluate, load_claims
+    kn = 1e5 * 2.0 ** np.arange(-3, 8)
+    frictional = synthetic_rows(kn, N_c=lambda k: 0.1 * k ** 0.4, N_w=lambda k: k ** 0.3,
+                                t_c=lambda k: k ** -0.1, mc_c=lambda k: 0.6 * k ** -0.1,
+                                t_w=lambda k: 1.0, mc_w=lambda k: 0.2)
+    results = {c["id"]: (v, status) for c, v, _, status in
+               evaluate({"frictional_flow": frictional}, load_claims())}
+    assert results["frictional-Nc"] == (pytest.approx(0.4), "pass")
+    assert results["frictional-Nw"] == (pytest.approx(0.3), "pass")
+    assert results["frictional-tc-falls"] == (pytest.approx(-0.1), "pass")
+    assert results["frictional-mc"] == (pytest.approx(0.6), "pass")
+    assert results["frictional-mw"] == (pytest.approx(0.2), "FAIL")         # below 0.3
+    assert results["collisional-tc"][1].startswith("not evaluated")
+
+    # a flat N_c is not the paper's power law
+    flat = synthetic_rows(kn, N_c=lambda k: 2.0)
+    results = {c["id"]: (v, s) for c, v, _, s in evaluate({"frictional_flow": flat})}
+    assert results["frictional-Nc"] == (pytest.approx(0.0, abs=1e-12), "FAIL")
+
+
+def test_claims_use_their_stiffness_range_and_the_log_law():
+    from postprocess.reference import evaluate
+    kn = 1e5 * 2.0 ** np.arange(-7, 18)
+    # E falls as kn^-0.05 up to 1e7, then flat: only the soft-region claim sees the fall
+    single = synthetic_rows(kn, E_total=lambda k: min(k, 1e7) ** -0.05,
+                            N_w=lambda k: 1.0 + 0.47 * np.log(k), period=lambda k: 4.2,
+                            t_w=lambda k: 0.09 + 0.5 * k ** -0.5,
+                            mc_w=lambda k: 0.09)
+    results = {c["id"]: (v, s) for c, v, _, s in evaluate({"single_disk": single})}
+    assert results["single-E-soft"] == (pytest.approx(-0.05), "pass")
+    assert results["single-E-hard"] == (pytest.approx(0.0, abs=1e-12), "pass")
+    assert results["single-Nw-log"] == (pytest.approx(0.47), "pass")
+    assert results["single-Nw-linear"] == (pytest.approx(1.0), "pass")
+    assert results["single-period"] == (pytest.approx(0.2), "pass")
+    assert results["single-tw-level"][1] == "pass"
+    # a power law N_w ~ kn^0.4 over the same range is far from a straight line in ln kn
+    power = synthetic_rows(kn, N_w=lambda k: k ** 0.4)
+    results = {c["id"]: (v, s) for c, v, _, s in evaluate({"single_disk": power})}
+    assert results["single-Nw-linear"][1] == "FAIL"
+
+
+def test_claims_are_evaluated_on_the_main_series_only():
+    from postprocess.reference import evaluate
+    from postprocess.study import main_series, variant_differences
+    kn = 1e5 * 2.0 ** np.arange(-3, 8)
+    main = synthetic_rows(kn, N_c=lambda k: k ** 0.4)
+    check = synthetic_rows(kn[:2], label="integrator ab2", N_c=lambda k: 5.0)
+    rows = sorted(main + check, key=lambda o: o["kn"])
+    assert main_series(rows) == main
+    results = {c["id"]: (v, s) for c, v, _, s in evaluate({"frictional_flow": rows})}
+    assert results["frictional-Nc"] == (pytest.approx(0.4), "pass")
+    pairs = variant_differences(rows)
+    assert [o["kn"] for o, _, _ in pairs] == list(kn[:2])
+    d, sigmas = pairs[0][2]["N_c"]
+    assert d == pytest.approx(5.0 - kn[0] ** 0.4)
+
+
+def test_a_resolution_that_is_not_positive_is_refused(tmp_path, capsys):
+    from postprocess.__main__ import main
+    with pytest.raises(SystemExit) as stop:
+        main(["compare", str(tmp_path), "--resolution", "0"])
+    assert stop.value.code == 2 and "--resolution 0 must be > 0" in capsys.readouterr().err
+
+
+def test_run_summary_counts_flowing_stopped_and_selected():
+    from postprocess.study import run_summary
+    runs = [dict(kn=1e5, label="", state="flowing", stopped_at=None, selected=True,
+                 kept={0.1: 0, 1.0: 2, 5.0: 2}),
+            dict(kn=1e5, label="", state="stopped", stopped_at=300.0, selected=False,
+                 kept={0.1: 0, 1.0: 0, 5.0: 1}),
+            dict(kn=2e5, label="", state="flowing", stopped_at=None, selected=False,
+                 kept={0.1: 0, 1.0: 0, 5.0: 0})]
+    summary = run_summary(runs)
+    assert list(summary) == [(1e5, ""), (2e5, "")]
+    row = summary[(1e5, "")]
+    assert (row["runs"], row["flowing"], row["stopped"], row["selected"]) == (2, 1, 1, 1)
+    assert row["kept"] == {0.1: 0, 1.0: 2, 5.0: 3} and row["stop_times"] == [300.0]
+
+
+# ---- sweeps that are empty, or hold what no sweep writes
+
+def test_compare_on_a_directory_without_points_is_an_error(tmp_path, capsys):
+    from postprocess.__main__ import main
+    assert main(["compare", str(tmp_path)]) == 2
+    assert "no sweep points here" in capsys.readouterr().err
+
+
+def test_a_point_of_an_unknown_scene_is_listed_not_dropped(tmp_path):
+    from postprocess.study import analyse
+    (tmp_path / "avalanche" / "p1").mkdir(parents=True)
+    point = write_point(tmp_path / "avalanche" / "p1")
+    (point / "point.json").write_text("{}")
+    (point / "done.txt").write_text("done\n")
+    _, left_out, _, _ = analyse(tmp_path)
+    assert [(p, r) for p, r in left_out] == [(point, "unknown scene 'avalanche' (expected one "
+                                                     "of single_disk, collisional_flow, "
+                                                     "frictional_flow)")]
+
+
+def test_a_broken_point_json_is_named(tmp_path):
+    from postprocess.study import analyse
+    (tmp_path / "collisional_flow" / "p1").mkdir(parents=True)
+    point = write_point(tmp_path / "collisional_flow" / "p1")
+    (point / "point.json").write_text("{kn: 5")
+    (point / "done.txt").write_text("done\n")
+    _, left_out, _, _ = analyse(tmp_path)
+    assert "point.json: not valid JSON" in left_out[0][1]
+
+
+@pytest.mark.parametrize("name,value", [("kn", "0"), ("tau_c", "fast"), ("dt", "-0.001")])
+def test_params_that_are_not_positive_numbers_are_refused(tmp_path, name, value):
+    point = write_point(tmp_path)
+    lines = [f"{name} {value}" if line.split()[0] == name else line
+             for line in (point / "params.txt").read_text().splitlines()]
+    (point / "params.txt").write_text("\n".join(lines) + "\n")
+    with pytest.raises(DataError, match=f"{name} = .* must be a finite number > 0"):
+        point_observables(point)
