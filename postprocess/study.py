@@ -49,6 +49,9 @@ def analyse(sweep_dir, resolution=1.0):
         except DataError as error:
             left_out.append((point, str(error).replace(f"{point}: ", "")))
     scenes = {scene: combine_seeds(rows) for scene, rows in scenes.items()}
+    varying = varying_variables([r["variables"] for r in runs])
+    for r in runs:
+        r["label"] = label(r["variables"], varying)
     return scenes, left_out, completed, runs
 
 
@@ -74,7 +77,7 @@ def run_record(point, resolution):
     variables = read_variables(point)
     return {"point": point, "kn": params["kn"], "seed": params["seed"], "state": state,
             "stopped_at": stopped_at, "kept": kept, "selected": kept[resolution] > 0,
-            "label": label(variables)}
+            "variables": variables}
 
 
 def run_summary(runs):
@@ -104,6 +107,7 @@ def combine_seeds(rows):
         key = tuple(sorted((k, v) for k, v in o["variables"].items() if k != "seed"))
         groups.setdefault(key, []).append(o)
     combined = []
+    varying = varying_variables([o["variables"] for o in rows])
     for members in groups.values():
         o = dict(members[0])
         if len(members) > 1:
@@ -120,16 +124,22 @@ def combine_seeds(rows):
                                                                   (values - o[q]) ** 2)))
             o["span"] = sum(m["span"] for m in members)
             o["notes"] = f"{len(members)} seeds; " + "; ".join(m["notes"] for m in members if m["notes"])
-        o["label"] = label(members[0]["variables"])
+        o["label"] = label(members[0]["variables"], varying)
         combined.append(o)
     combined.sort(key=lambda o: (o["kn"], o["label"]))
     return combined
 
 
-def label(variables):
-    """A point's variables other than scene, seed and kn, as text."""
-    return ", ".join(f"{k} {v}" for k, v in sorted(variables.items())
-                     if k not in ("scene", "seed", "kn"))
+def label(variables, varying):
+    """A point's variables other than seed and kn that vary among its scene's points
+    (`varying`), as text: what tells it apart from its neighbours."""
+    return ", ".join(f"{k} {v}" for k, v in sorted(variables.items()) if k in varying)
+
+
+def varying_variables(variable_sets):
+    """The names, other than scene, seed and kn, whose values differ among the given points."""
+    names = set().union(*variable_sets) - {"scene", "seed", "kn"} if variable_sets else set()
+    return {n for n in names if len({repr(v.get(n)) for v in variable_sets}) > 1}
 
 
 def main_series(rows):
