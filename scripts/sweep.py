@@ -44,6 +44,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 SCENES = ("single_disk", "collisional_flow", "frictional_flow")
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+# Deck variables the runner sets itself for every point.
+RESERVED = {"plugin", "lib", "out"}
 # Atoms each scene integrates or pairs with: the cost model's size (bumps included).
 SCENE_ATOMS = {"single_disk": 11, "collisional_flow": 100, "frictional_flow": 100}
 # Seconds per step: a fixed part and a part per atom; refined as points finish.
@@ -65,8 +67,13 @@ def load_config(path):
     if unknown:
         raise SweepError(f"{path}: unknown top-level keys {sorted(unknown)} "
                          "(expected name, defaults, grid)")
+    if not isinstance(config.get("name", ""), str) or not NAME.match(config.get("name", "x")):
+        raise SweepError(f"{path}: name = {config['name']!r} must be a word (letters, digits, _)")
     if not isinstance(config.get("grid"), list) or not config["grid"]:
         raise SweepError(f"{path}: needs at least one [[grid]] table")
+    if not all(isinstance(grid, dict) for grid in config["grid"]):
+        raise SweepError(f"{path}: grid must be a list of tables ([[grid]]), not "
+                         f"{config['grid']!r}")
     if not isinstance(config.get("defaults", {}), dict):
         raise SweepError(f"{path}: [defaults] must be a table")
     return config
@@ -90,6 +97,10 @@ def expand(config, path):
                                      f"strings, not {v!r}")
         if "scene" not in merged:
             raise SweepError(f"{path}: grid {number} has no scene")
+        reserved = sorted(set(merged) & RESERVED)
+        if reserved:
+            raise SweepError(f"{path}: grid {number}: {', '.join(reserved)} set by the sweep "
+                             "runner itself (--output, --build), not by a config")
         keys = sorted(merged)
         lists = [merged[k] if isinstance(merged[k], list) else [merged[k]] for k in keys]
         for combination in product(*lists):
@@ -97,6 +108,10 @@ def expand(config, path):
             if point["scene"] not in SCENES:
                 raise SweepError(f"{path}: grid {number}: unknown scene '{point['scene']}' "
                                  f"(expected one of {', '.join(SCENES)})")
+            unknown = sorted(set(point) - {"scene"} - deck_variables(point["scene"]))
+            if unknown:
+                raise SweepError(f"{path}: grid {number}: {', '.join(unknown)}: not a variable "
+                                 f"of inputs/{point['scene']}.lmp (docs/scenes.md lists them)")
             points.append(point)
     names = [(p["scene"], point_name(p)) for p in points]
     if len(set(names)) != len(names):
@@ -105,11 +120,25 @@ def expand(config, path):
 
 
 def format_value(value):
-    return f"{value:g}" if isinstance(value, float) else str(value)
+    """A value as the deck and the point's name get it: %g where that is exact, else every
+    digit (1234567.8 is not 1.23457e+06)."""
+    if not isinstance(value, float):
+        return str(value)
+    short = f"{value:g}"
+    return short if float(short) == value else repr(value)
 
 
 def point_name(point):
     return "_".join(f"{k}{format_value(v)}" for k, v in sorted(point.items()) if k != "scene")
+
+
+def deck_variables(scene):
+    """The variables a scene deck declares (`variable NAME index ...`, its own and the shared
+    defaults), i.e. what -var can set."""
+    names = set()
+    for deck in (ROOT / "inputs" / f"{scene}.lmp", ROOT / "inputs" / "lib" / "defaults.lmp"):
+        names |= set(re.findall(r"^variable (\w+) index ", deck.read_text(), re.M))
+    return names - RESERVED
 
 
 def deck_default(scene, name):
@@ -142,7 +171,12 @@ def predicted_steps(point, mn_law):
         return number
     tau_c = law(mn_law, get("kn"), get("e"), get("beta"))["tau_c"]
     dt = min(get("dt_fraction") * tau_c, get("dt_cap"))
-    return math.ceil(get("run_time") / dt)
+    steps = get("run_time") / dt if dt > 0 else math.inf
+    if not (math.isfinite(steps) and steps < 2 ** 62):
+        raise SweepError(f"{point['scene']} point: kn = {point.get('kn')!r}, run_time = "
+                         f"{point.get('run_time')!r} give no finite number of steps "
+                         f"(tau_c = {tau_c:g})")
+    return math.ceil(steps)
 
 
 class CostModel:

@@ -104,6 +104,16 @@ BAD_CONFIGS = {
                           "run_time = -5 must be > 0"),
     "table value": ('[[grid]]\nscene = "single_disk"\n[grid.kn]\na = 1\n',
                     "'kn' must hold numbers or strings"),
+    "misspelled variable": ('[[grid]]\nscene = "single_disk"\nsin_thetaa = 0.2\n',
+                            "sin_thetaa: not a variable of inputs/single_disk.lmp"),
+    "a variable only another scene has": ('[[grid]]\nscene = "single_disk"\nrow_spacing = 3\n',
+                                          "row_spacing: not a variable of inputs/single_disk.lmp"),
+    "runner's own variable": ('[[grid]]\nscene = "single_disk"\nout = "/tmp"\n',
+                              "out set by the sweep runner itself"),
+    "name not a word": ('name = 5\n[[grid]]\nscene = "single_disk"\n', "name = 5 must be a word"),
+    "grid not tables": ('grid = [1, 2]\n', "grid must be a list of tables"),
+    "stiffness without a finite step": ('[[grid]]\nscene = "single_disk"\nkn = 1e308\n',
+                                        "give no finite number of steps"),
 }
 
 
@@ -120,3 +130,14 @@ def test_bad_config_is_refused_with_a_message(tmp_path, case):
 def test_missing_config_file(tmp_path):
     proc = sweep(tmp_path / "nowhere.toml", tmp_path / "out", check=False)
     assert proc.returncode == 2 and "no such config file" in proc.stderr
+
+
+def test_values_reach_the_deck_with_every_digit(tmp_path):
+    """%g would run kn = 1234567.8 as 1.23457e+06, and refuse 1234567.8 and 1234568.1 as one."""
+    config = tmp_path / "digits.toml"
+    config.write_text('[[grid]]\nscene = "single_disk"\nrun_time = 0.5\naverage_start = 0.1\n'
+                      'kn = [1234567.8, 1234568.1]\n')
+    sweep(config, tmp_path / "out")
+    kns = sorted(float(next(p.glob("params.txt")).read_text().split("kn ")[1].split()[0])
+                 for p in (tmp_path / "out" / "single_disk").iterdir())
+    assert kns == [1234567.8, 1234568.1]
