@@ -1,4 +1,4 @@
-"""Binary collisions through lmp: restitution and duration against SPEC section 3."""
+"""Binary collisions through lmp: restitution and duration against model section 3 (docs/model.md)."""
 import numpy as np
 import pytest
 
