@@ -1,11 +1,11 @@
-"""Observables of one point (model section 6 (docs/model.md)) from its outputs, with block-average errors."""
+"""Observables of one point (docs/model.md section 6) from its outputs, with block-average errors."""
 import numpy as np
 
 from .io import DataError, read_counts, read_energy, read_params, read_stopped
 from .selection import select_at_resolution
 
 # The time resolutions (time units) at which the report counts the steady parts kept, so that
-# the reader sees what the choice of resolution does (model section 5 (docs/model.md)).
+# the reader sees what the choice of resolution does (docs/model.md section 5).
 RESOLUTIONS = (0.1, 1.0, 5.0)
 
 COUNTERS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary", "time_multiple")

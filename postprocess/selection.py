@@ -1,4 +1,4 @@
-"""The frictional flow's steady-state selection (model section 5 (docs/model.md))."""
+"""The frictional flow's steady-state selection (docs/model.md section 5)."""
 from collections import deque
 
 import numpy as np
@@ -67,7 +67,7 @@ def window_means(t, energy, resolution):
 
 def select_at_resolution(t, energy, resolution=1.0, min_length=500.0, max_width=0.45,
                          energy_range=(0.4, 0.8)):
-    """model section 5 (docs/model.md)'s rule applied to the energy series averaged over windows of `resolution`
+    """docs/model.md section 5's rule applied to the energy series averaged over windows of `resolution`
     time units: (kept, found) as sample-index spans of the original series."""
     tw, ew, edges = window_means(t, energy, resolution)
     kept, found = select_steady(tw, ew, min_length, max_width, energy_range)

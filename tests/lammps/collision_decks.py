@@ -5,7 +5,7 @@ import numpy as np
 
 from granmn_run import law, run_lammps
 
-DISC_DENSITY = 4 / math.pi    # mass = diameter^2: unit disk has unit mass (model section 1 (docs/model.md))
+DISC_DENSITY = 4 / math.pi    # mass = diameter^2: unit disk has unit mass (docs/model.md section 1)
 
 
 INTEGRATORS = {"verlet": "nve/sphere disc", "ab2": "nve/ab2"}

@@ -94,7 +94,7 @@ def run_lammps(deck, workdir, nprocs=1, header=True, check=True):
 
 
 def law(kn, e, beta):
-    """The coefficients of model section 3 (docs/model.md) as the header derives them (build/plugin/mn-law, next
+    """The coefficients of docs/model.md section 3 as the header derives them (build/plugin/mn-law, next
     to the plugin): one copy of the mapping, checked against its definitions by the unit tests."""
     tool = Path(PLUGIN).resolve().parent / "mn-law"
     out = subprocess.run([str(tool), repr(kn), repr(e), repr(beta)], capture_output=True,

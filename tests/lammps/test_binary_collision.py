@@ -1,4 +1,4 @@
-"""Binary collisions through lmp: restitution and duration against model section 3 (docs/model.md)."""
+"""Binary collisions through lmp: restitution and duration against docs/model.md section 3."""
 import numpy as np
 import pytest
 

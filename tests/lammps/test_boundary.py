@@ -1,5 +1,5 @@
 """A disk against an immobile boundary element: a bump (a wall-type atom of the pair style)
-and the flat wall of fix wall/gran/mn. Both use m_i for 2M (model section 2 (docs/model.md)), so the contact
+and the flat wall of fix wall/gran/mn. Both use m_i for 2M (docs/model.md section 2), so the contact
 lasts tau_w and has restitution e_w."""
 import numpy as np
 import pytest

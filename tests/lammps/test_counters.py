@@ -62,7 +62,7 @@ print "RESULT sums {SUMS}"
 def test_bounces_before_lasting_contact_grow_linearly_with_ln_kn(tmp_path):
     """The rebound speed falls by e_w per bounce until it is of order g tau_w, below which the
     disk cannot leave the wall; tau_w ~ kn^-1/2, so the number of bounces is
-    ln(kn) / (2 |ln e_w|) + const (model section 7 (docs/model.md): it grows like ln kn). Slope tolerance: the
+    ln(kn) / (2 |ln e_w|) + const (docs/model.md section 7: it grows like ln kn). Slope tolerance: the
     count is an integer, +-1 over the fitted span of ln kn = 11.1, i.e. +-0.18 on ~2.0, plus the
     first-order time-step error in e_w."""
     kns = [2 ** p * 1e5 for p in range(0, 17, 2)]

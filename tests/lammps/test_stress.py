@@ -1,4 +1,4 @@
-"""Stiff cases stay stable (model section 7 (docs/model.md), paper section II D): no NaN, no lost atoms, no
+"""Stiff cases stay stable (docs/model.md section 7, paper section II D): no NaN, no lost atoms, no
 energy from nowhere, and the many-body collapse behaves as the hard-sphere theory says."""
 import numpy as np
 import pytest

@@ -19,7 +19,7 @@ def wiggle(n, width):
     return 0.49 * width * np.sin(np.arange(n) * 0.7) * RNG.uniform(0.5, 1.0, n)
 
 
-# ---- the steady-state selection (model section 5 (docs/model.md)), hand-worked cases
+# ---- the steady-state selection (docs/model.md section 5), hand-worked cases
 
 def test_a_series_that_stops_has_no_selected_part():
     t = np.arange(0, 2000, 1.0)
@@ -202,7 +202,7 @@ def test_broken_contact_rows_name_the_line(tmp_path):
         read_rows(tmp_path)
 
 
-# ---- the selection at a time resolution (model section 5 (docs/model.md): E(t) averaged over windows)
+# ---- the selection at a time resolution (docs/model.md section 5: E(t) averaged over windows)
 
 def test_window_means_average_consecutive_windows():
     from postprocess.selection import window_means
