@@ -6,11 +6,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from .io import DataError  # noqa: E402
+from .scenes import scene as scene_of  # noqa: E402
 from .selection import select_steady, window_means  # noqa: E402
 from .study import energy_series, profiles, series  # noqa: E402
 
-TITLES = {"single_disk": "single disk on a bumpy slope",
-          "collisional_flow": "collisional flow", "frictional_flow": "frictional flow"}
 
 
 def _errorbar(ax, kn, quantity, rows, label, x=None):
@@ -31,19 +30,18 @@ def stiffness(scene, rows, path):
     for q, label in (("N_c", "N_c (disks)"), ("N_w", "N_w (boundary)")):
         _errorbar(b, None, q, rows, label)
     kn = np.array([o["kn"] for o in rows])
-    if scene == "single_disk":
+    what = scene_of(scene)
+    if what.rates_log_law:
         b.set(xscale="log", yscale="linear", title="(b) collision rates (N_w ~ ln k_n)")
     else:
         b.set(xscale="log", yscale="log", title="(b) collision rates")
-    if scene == "frictional_flow" and len(kn) > 1:
-        n_c = series(rows, "N_c")[1]
-        b.plot(kn, n_c[0] * (kn / kn[0]) ** 0.4, "k--", lw=1, label="k_n^0.4 guide")
     b.set(xlabel="k_n", ylabel="collisions per disk per unit time")
     for q, label in (("t_c", "t_c"), ("t_w", "t_w"), ("t_multiple", "two or more contacts")):
         _errorbar(c, None, q, rows, label)
-    if scene == "collisional_flow" and len(kn) > 1:
-        t_c = series(rows, "t_c")[1]
-        c.plot(kn, t_c[0] * (kn / kn[0]) ** -0.5, "k--", lw=1, label="k_n^-1/2 guide")
+    for guide in what.guides if len(kn) > 1 else ():
+        values = series(rows, guide.quantity)[1]
+        ax = b if guide.panel == "rates" else c
+        ax.plot(kn, values[0] * (kn / kn[0]) ** guide.exponent, "k--", lw=1, label=guide.label)
     c.set(xscale="log", yscale="log", xlabel="k_n", ylabel="fraction of time",
           title="(c) contact-time fractions")
     for q, label in (("mc_c", "t_c - N_c tau_c"), ("mc_w", "t_w - N_w tau_w")):
@@ -54,7 +52,7 @@ def stiffness(scene, rows, path):
     for ax in axes.flat:
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3, which="both")
-    fig.suptitle(f"{TITLES[scene]}: stiffness dependence")
+    fig.suptitle(f"{what.title}: stiffness dependence")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
@@ -76,7 +74,7 @@ def profile_figure(scene, rows, path):
     for ax in (a, b):
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
-    fig.suptitle(f"{TITLES[scene]}: profiles over the averaging span")
+    fig.suptitle(f"{scene_of(scene).title}: profiles over the averaging span")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
@@ -105,12 +103,12 @@ def energy_figure(scene, points, path, resolution=1.0):
     series_by_kn = {}
     for kn, energy in energy_series(points):
         series_by_kn.setdefault(kn, []).append(energy)
-    if scene != "frictional_flow":
+    if not scene_of(scene).selects_steady_parts:
         fig, ax = plt.subplots(figsize=(9, 4))
         for kn, runs in series_by_kn.items():
             for energy in runs:
                 ax.plot(energy["time"], energy["e_total"], lw=0.8, label=f"k_n = {kn:g}")
-        ax.set(xlabel="time", ylabel="E per disk", title=f"{TITLES[scene]}: E(t)")
+        ax.set(xlabel="time", ylabel="E per disk", title=f"{scene_of(scene).title}: E(t)")
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
     else:
@@ -135,8 +133,8 @@ def energy_figure(scene, points, path, resolution=1.0):
             ax.set_xlabel("time")
         for ax in axes[:, 0]:
             ax.set_ylabel(f"E per disk ({resolution:g}-window means)")
-        fig.suptitle("frictional flow: E(t); thick: selected steady parts; grey band: [0.4, 0.8]",
-                     fontsize=10)
+        fig.suptitle(f"{scene_of(scene).title}: E(t); thick: selected steady parts; grey band: "
+                     "[0.4, 0.8]", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
@@ -161,7 +159,7 @@ def snapshot_figure(scene, point, path):
     ax.set_xlim(*bounds)
     ax.set_ylim(-1, max(atoms[:, 3].max() + 1, 3))
     ax.set_aspect("equal")
-    ax.set(xlabel="x (along the slope)", ylabel="y", title=f"{TITLES[scene]}: last snapshot")
+    ax.set(xlabel="x (along the slope)", ylabel="y", title=f"{scene_of(scene).title}: last snapshot")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)

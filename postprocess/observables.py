@@ -2,6 +2,7 @@
 import numpy as np
 
 from .io import DataError, read_counts, read_energy, read_params, read_stopped
+from .scenes import scene
 from .selection import select_at_resolution
 
 # The time resolutions (time units) at which the report counts the steady parts kept, so that
@@ -94,8 +95,13 @@ def point_observables(point, n_blocks=5, resolution=1.0):
 
     n_boundary = n
     notes = [f"stopped at t = {stopped_at:g}"] if stopped_at is not None else []
-    if params["scene"] == "frictional_flow":
+    try:
+        what = scene(params["scene"])
+    except KeyError as error:
+        raise DataError(f"{point}/params.txt: {error.args[0]}")
+    if what.boundary_per_bottom_layer:
         n_boundary = bottom_layer(counts)
+    if what.selects_steady_parts:
         kept, found = select_at_resolution(energy["time"][first:], energy["e_total"][first:],
                                            resolution)
         spans = [(a + first, b + first) for a, b in kept]

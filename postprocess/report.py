@@ -8,6 +8,7 @@ import numpy as np
 from . import figures
 from .io import DataError, read_trajectory
 from .reference import evaluate
+from .scenes import scene as scene_of
 from .study import QUANTITIES, VARIANT_QUANTITIES, main_series, run_summary, variant_differences
 
 
@@ -48,7 +49,7 @@ def make_figures(scenes, completed, out, resolution):
                       lambda p, s=scene, r=rows: figures.stiffness(s, r, p)),
                      ("profiles", f"profiles_{scene}.png",
                       lambda p, s=scene, r=rows: figures.profile_figure(s, r, p))]
-        if scene == "single_disk" and rows:
+        if scene_of(scene).has_period and rows:
             def vy(p, r=rows):
                 trajectories = {}
                 for o in (r[0], r[-1]):
@@ -134,7 +135,8 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), resolutio
              f"{resolution:g}.", ""]
     for scene in completed:
         rows = scenes.get(scene, [])
-        lines += [f"## {figures.TITLES[scene]}", ""]
+        what = scene_of(scene)
+        lines += [f"## {what.title}", ""]
         if not rows:
             lines += ["No usable point (see Left out).", ""]
         lines += [
@@ -147,13 +149,12 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), resolutio
                                     ("E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w",
                                      "t_multiple")] + [f"{o['span']:g}", o["label"]]) + " |")
         notes = [f"k_n = {o['kn']:g}: {o['notes']}" for o in rows if o["notes"]]
-        if scene == "frictional_flow":
+        if what.selects_steady_parts:
             lines += run_table(runs, resolution)
         lines += variant_lines(rows)
-        if scene == "frictional_flow" and rows:
-            notes.append("N_w and t_w are per disk of the bottom layer (disks that touched the "
-                         "floor in the averaging window; the paper: during the averaging span).")
-        if scene == "single_disk" and rows:
+        if rows:
+            notes += list(what.notes)
+        if what.has_period and rows:
             notes.append("v_y periods: " + ", ".join(f"{o['kn']:g}: {fmt(o['period'])}"
                                                       for o in rows))
         lines += [""] + [f"- {n}" for n in notes] + [""]

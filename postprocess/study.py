@@ -5,10 +5,10 @@ from pathlib import Path
 import numpy as np
 
 from .io import DataError, read_energy, read_params, read_profile, read_trajectory
+from .scenes import SCENES
 from .observables import RESOLUTIONS, kept_spans, point_observables, run_state
 from .signals import dominant_period
 
-SCENES = ("single_disk", "collisional_flow", "frictional_flow")
 QUANTITIES = ("E_trans", "E_rot", "E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w",
               "t_multiple")
 
@@ -30,17 +30,18 @@ def analyse(sweep_dir, resolution=1.0):
             left_out.append((point, f"unknown scene '{point.parent.name}' (expected one of "
                                     f"{', '.join(SCENES)})"))
             continue
+        what = SCENES[point.parent.name]
         if not (point / "done.txt").exists():
             left_out.append((point, "did not complete (no done.txt)"))
             continue
         completed.setdefault(point.parent.name, []).append(point)
         try:
-            if point.parent.name == "frictional_flow":
+            if what.selects_steady_parts:
                 runs.append(run_record(point, resolution))
             o = point_observables(point, resolution=resolution)
             o["point"] = point
             o["variables"] = read_variables(point)
-            if o["scene"] == "single_disk":
+            if what.has_period:
                 trajectory = read_trajectory(point)
                 late = trajectory["time"] > read_params(point)["average_start"]
                 o["period"], _ = dominant_period(trajectory["time"][late],

@@ -42,7 +42,9 @@ from itertools import product
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-SCENES = ("single_disk", "collisional_flow", "frictional_flow")
+# The scenes are the decks that name themselves (`variable scene index NAME`).
+SCENES = tuple(sorted(deck.stem for deck in (ROOT / "inputs").glob("*.lmp")
+                      if re.search(r"^variable scene index (\w+)", deck.read_text(), re.M)))
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 # Deck variables the runner sets itself for every point.
 RESERVED = {"plugin", "lib", "out"}

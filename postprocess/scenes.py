@@ -1,0 +1,49 @@
+"""What each scene is, for the analysis: the one place that says how a scene is normalised,
+which part of a run is averaged, what extra observable it has and how its figures look
+(docs/model.md sections 5-7). The modules ask a Scene; none tests a scene's name."""
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Guide:
+    """A guide line on the stiffness figure: quantity ~ kn^exponent through the first point."""
+    panel: str          # "rates" or "times"
+    quantity: str
+    exponent: float
+    label: str
+
+
+@dataclass(frozen=True)
+class Scene:
+    name: str
+    title: str
+    # average only the steady parts selected by the paper's rule (else the whole window)
+    selects_steady_parts: bool = False
+    # N_w, t_w per disk that touched the boundary (the bottom layer), not per disk
+    boundary_per_bottom_layer: bool = False
+    # the single disk's v_y period, from trajectory.txt
+    has_period: bool = False
+    # collision rates against ln kn (a log law) rather than log-log
+    rates_log_law: bool = False
+    guides: tuple = ()
+    notes: tuple = ()
+
+
+SCENES = {s.name: s for s in (
+    Scene("single_disk", "single disk on a bumpy slope", has_period=True, rates_log_law=True),
+    Scene("collisional_flow", "collisional flow",
+          guides=(Guide("times", "t_c", -0.5, "k_n^-1/2 guide"),)),
+    Scene("frictional_flow", "frictional flow", selects_steady_parts=True,
+          boundary_per_bottom_layer=True,
+          guides=(Guide("rates", "N_c", 0.4, "k_n^0.4 guide (the paper's)"),),
+          notes=("N_w and t_w are per disk of the bottom layer (disks that touched the floor in "
+                 "the averaging window; the paper: during the averaging span).",)),
+)}
+
+
+def scene(name):
+    """The Scene of a name, or KeyError naming the known ones."""
+    try:
+        return SCENES[name]
+    except KeyError:
+        raise KeyError(f"unknown scene '{name}' (expected one of {', '.join(SCENES)})") from None
