@@ -37,6 +37,15 @@ void FixNVEAB2::init()
 {
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix nve/ab2 does not support run_style respa");
+  // a point particle has no moment of inertia: its spin would be torque/0
+  int points = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((atom->mask[i] & groupbit) && atom->radius[i] == 0.0) points++;
+  int points_all = 0;
+  MPI_Allreduce(&points, &points_all, 1, MPI_INT, MPI_SUM, world);
+  if (points_all)
+    error->all(FLERR, "Fix nve/ab2 integrates disks: {} atoms of its group have diameter 0 "
+                      "(point particles)", points_all);
 }
 
 void FixNVEAB2::initial_integrate(int)

@@ -26,7 +26,7 @@ using namespace FixConst;
 //                                                  [limit_damping] [coulomb_cutback]
 FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), own_law(false), use_history(false),
-    counters(nullptr), force_reduced(false)
+    counters(nullptr), force_per_mass_acceleration(1.0), force_reduced(false)
 {
   if (domain->dimension != 2)
     error->all(FLERR, "Fix wall/gran/mn is a 2D law: it requires dimension 2");
@@ -97,11 +97,16 @@ void FixWallGranMN::resolve_law()
   const char *problem = mn::material_error(m);
   if (problem) error->all(FLERR, "Illegal fix wall/gran/mn command: {}", problem);
   law = mn::derive(m, o);
+  problem = mn::law_error(law);
+  if (problem) error->all(FLERR, "Illegal fix wall/gran/mn command: {} (kn = {})", problem, m.kn);
 }
 
 void FixWallGranMN::init()
 {
   resolve_law();
+  granmn::check_disc_integration(lmp, "fix wall/gran/mn");
+  // the law gives mass x acceleration; LAMMPS turns force back into acceleration with ftm2v
+  force_per_mass_acceleration = 1.0 / force->ftm2v;
   const int icounters = modify->find_fix_by_style("^contacts/mn");
   counters = icounters >= 0 ? (FixContactsMN *) modify->fix[icounters] : nullptr;
   if (law.mu > 0.0 && !use_history)
@@ -156,7 +161,8 @@ void FixWallGranMN::post_force(int)
       const double dy = axis == 1 ? normal * dist : 0.0;
       const mn::Kinematics kin =
           mn::kinematics(dx, dy, dist, radius[i], v[i][0], v[i][1], radius[i] * omega[i][2]);
-      const mn::Force fc = mn::contact_force(law, rmass[i], kin,
+      const double scale = mn::boundary_mass_scale(rmass[i]) * force_per_mass_acceleration;
+      const mn::Force fc = mn::contact_force(law, scale, kin,
                                              use_history ? &state[i][side] : nullptr, dt_history);
       const double fx = fc.fn * kin.nx - fc.ft * kin.ny;
       const double fy = fc.fn * kin.ny + fc.ft * kin.nx;

@@ -32,6 +32,7 @@ class FixWallGranMN : public FixPerAtomState {
   bool use_history;           // mu > 0: per-atom u_t in state[i][side], side 0 lower, 1 upper
   class FixContactsMN *counters;    // nullptr unless fix contacts/mn is defined
   double wall_force[2], wall_force_all[2];
+  double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units
   bool force_reduced;
 
   void resolve_law();

@@ -6,6 +6,7 @@
 #define LMP_GRANMN_GLUE_H
 
 #include "error.h"
+#include "fix_nve_sphere.h"
 #include "lammps.h"
 #include "modify.h"
 #include "utils.h"
@@ -21,6 +22,29 @@ inline mn::Integrator integrator_in_use(LAMMPS_NS::Modify *modify)
 {
   return modify->find_fix_by_style("^nve/ab2") >= 0 ? mn::Integrator::AdamsBashforth2
                                                     : mn::Integrator::VelocityVerlet;
+}
+
+// FixNVESphere keeps its moment-of-inertia prefactor (2/5 sphere, 1/2 disc) protected; a
+// pointer to the member formed through a derived class reads it without changing LAMMPS.
+struct NVESphereInertia : LAMMPS_NS::FixNVESphere {
+  static double of(LAMMPS_NS::Fix *fix)
+  {
+    return static_cast<LAMMPS_NS::FixNVESphere *>(fix)->*(&NVESphereInertia::inertia);
+  }
+};
+
+// The law's tangential parameters assume disks (I = m sigma^2/8): a fix nve/sphere without
+// 'disc' integrates the spins of spheres, and beta comes out wrong (0.661 for 0.7).
+inline void check_disc_integration(LAMMPS_NS::LAMMPS *lmp, const char *who)
+{
+  LAMMPS_NS::Modify *modify = lmp->modify;
+  for (int k = 0; k < modify->nfix; k++)
+    if (strcmp(modify->fix[k]->style, "nve/sphere") == 0 &&
+        NVESphereInertia::of(modify->fix[k]) != 0.5)
+      lmp->error->all(FLERR,
+                      "{}: fix {} (nve/sphere) integrates spheres; the law is for disks: add "
+                      "the keyword disc (fix {} ... nve/sphere disc)",
+                      who, modify->fix[k]->id, modify->fix[k]->id);
 }
 
 inline const char *integrator_name(mn::Integrator integrator)

@@ -49,6 +49,16 @@ inline const char *material_error(const Material &m)
   return nullptr;
 }
 
+// nullptr if the coefficients derived from a valid material are usable, else why not (a kn so
+// large that they overflow).
+inline const char *law_error(const Law &law)
+{
+  if (!(law.tau_c > 0.0) || !std::isfinite(law.eta_n) || !std::isfinite(law.kt) ||
+      !std::isfinite(law.tau_w))
+    return "kn is too large: the derived coefficients (tau_c, eta_n, kt) overflow";
+  return nullptr;
+}
+
 inline Law derive(const Material &m, const Options &options = Options())
 {
   Law law;
@@ -65,6 +75,18 @@ inline Law derive(const Material &m, const Options &options = Options())
   law.tau_w = PI / std::sqrt(m.kn - 0.25 * law.eta_n * law.eta_n);
   law.e_w = std::exp(-0.5 * law.eta_n * law.tau_w);
   return law;
+}
+
+// The mass scale of a contact (docs/model.md section 2): 2M = 2 m_i m_j/(m_i + m_j) for two
+// mobile disks; against the boundary (a bump or a wall), the mobile disk's own mass.
+inline double pair_mass_scale(double mi, double mj)
+{
+  return 2.0 * mi * mj / (mi + mj);
+}
+
+inline double boundary_mass_scale(double mi)
+{
+  return mi;
 }
 
 // Relative motion at one contact.

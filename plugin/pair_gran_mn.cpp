@@ -32,7 +32,8 @@ using namespace LAMMPS_NS;
 PairGranMN::PairGranMN(LAMMPS *lmp) :
     Pair(lmp), history(0), size_history(0), counter_offset(0), restart_history_size(-1),
     counters(nullptr),
-    exclusion_added(false), law_reported(false), max_radius(nullptr), fix_history(nullptr)
+    law_reported(false), force_per_mass_acceleration(1.0), max_radius(nullptr),
+    fix_history(nullptr)
 {
   single_enable = 1;
   no_virial_fdotr_compute = 1;
@@ -53,6 +54,9 @@ PairGranMN::PairGranMN(LAMMPS *lmp) :
 
 PairGranMN::~PairGranMN()
 {
+  // replaced by another pair style: the former wall types interact again (at exit the
+  // neighbor class is already gone)
+  if (neighbor) remove_exclusions();
   delete[] svector;
   if (!fix_history)
     modify->delete_fix("NEIGH_HISTORY_GRANMN_DUMMY" + std::to_string(instance_me));
@@ -67,13 +71,16 @@ PairGranMN::~PairGranMN()
 
 /* ---------------------------------------------------------------------- */
 
+// The law's mass scale in force units: the law gives mass x acceleration, which LAMMPS turns
+// back into an acceleration with force->ftm2v (1 in lj units).
 double PairGranMN::mass_scale(int i, int j) const
 {
   const double *rmass = atom->rmass;
   const int *type = atom->type;
-  if (is_wall_type[type[j]]) return rmass[i];
-  if (is_wall_type[type[i]]) return rmass[j];
-  return 2.0 * rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
+  const double scale = is_wall_type[type[j]] ? mn::boundary_mass_scale(rmass[i])
+      : is_wall_type[type[i]]                  ? mn::boundary_mass_scale(rmass[j])
+                                               : mn::pair_mass_scale(rmass[i], rmass[j]);
+  return scale * force_per_mass_acceleration;
 }
 
 // A contact just ended: its row goes to the counters, once even if both processes hold the pair.
@@ -143,6 +150,9 @@ void PairGranMN::compute(int eflag, int vflag)
       }
 
       const double r = sqrt(rsq);
+      if (r == 0.0)
+        error->one(FLERR, "pair_style gran/mn: atoms {} and {} are at the same position: the "
+                          "contact has no normal", tag[i], tag[j]);
       const mn::Kinematics kin =
           mn::kinematics(dx, dy, r, radsum, v[i][0] - v[j][0], v[i][1] - v[j][1],
                          radi * omega[i][2] + radius[j] * omega[j][2]);
@@ -187,6 +197,9 @@ void PairGranMN::derive_law()
   const char *problem = mn::material_error(material);
   if (problem) error->all(FLERR, "Illegal pair_style gran/mn command: {}", problem);
   law = mn::derive(material, options);
+  problem = mn::law_error(law);
+  if (problem)
+    error->all(FLERR, "Illegal pair_style gran/mn command: {} (kn = {})", problem, material.kn);
   law_reported = false;
 
   // Decks read the derived scales from here, e.g. timestep $(v_mn_tau_c/100).
@@ -281,6 +294,8 @@ void PairGranMN::init_style()
     error->all(FLERR, "Pair style gran/mn requires ghost atoms store velocity "
                       "(comm_modify vel yes)");
   check_wall_types();
+  granmn::check_disc_integration(lmp, "pair_style gran/mn");
+  force_per_mass_acceleration = 1.0 / force->ftm2v;
 
   const double dt = update->dt;
   const mn::Integrator integrator = granmn::integrator_in_use(modify);
@@ -328,22 +343,46 @@ void PairGranMN::init_style()
     fix_history->pair = this;
   }
 
-  // Two immobile boundary elements never interact: keep such pairs out of the list.
-  if (!exclusion_added) {
-    for (size_t a = 0; a < wall_types.size(); a++)
-      for (size_t b = a; b < wall_types.size(); b++) {
-        std::string ti = std::to_string(wall_types[a]), tj = std::to_string(wall_types[b]);
-        char *words[4] = {(char *) "exclude", (char *) "type", &ti[0], &tj[0]};
-        neighbor->modify_params(4, words);
-      }
-    exclusion_added = true;
-  }
+  update_exclusions();
 
   // Cutoffs follow the largest radius of each type.
   std::vector<double> local_max(atom->ntypes + 1, 0.0);
   for (int i = 0; i < atom->nlocal; i++)
     local_max[atom->type[i]] = MAX(local_max[atom->type[i]], atom->radius[i]);
   MPI_Allreduce(&local_max[1], &max_radius[1], atom->ntypes, MPI_DOUBLE, MPI_MAX, world);
+}
+
+// Two immobile boundary elements never interact: keep such type pairs out of the neighbor list,
+// and follow wall_types when pair_style is given again with others.
+void PairGranMN::update_exclusions()
+{
+  std::vector<std::pair<int, int>> wanted;
+  for (size_t a = 0; a < wall_types.size(); a++)
+    for (size_t b = a; b < wall_types.size(); b++) wanted.emplace_back(wall_types[a], wall_types[b]);
+  if (wanted == excluded_types) return;
+  remove_exclusions();
+  for (const auto &types : wanted) {
+    std::string ti = std::to_string(types.first), tj = std::to_string(types.second);
+    char *words[4] = {(char *) "exclude", (char *) "type", &ti[0], &tj[0]};
+    neighbor->modify_params(4, words);
+  }
+  excluded_types = wanted;
+}
+
+// Takes out of the neighbor's type exclusions the ones this style added, and no others.
+void PairGranMN::remove_exclusions()
+{
+  for (const auto &types : excluded_types)
+    for (int k = 0; k < neighbor->nex_type; k++)
+      if (neighbor->ex1_type[k] == types.first && neighbor->ex2_type[k] == types.second) {
+        for (int m = k + 1; m < neighbor->nex_type; m++) {
+          neighbor->ex1_type[m - 1] = neighbor->ex1_type[m];
+          neighbor->ex2_type[m - 1] = neighbor->ex2_type[m];
+        }
+        neighbor->nex_type--;
+        break;
+      }
+  excluded_types.clear();
 }
 
 double PairGranMN::init_one(int i, int j)

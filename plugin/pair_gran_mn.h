@@ -10,6 +10,7 @@
 
 #include "mn_contact.h"
 
+#include <utility>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -47,8 +48,9 @@ class PairGranMN : public Pair {
   int counter_offset;                // where the counters' state starts in a pair's history
   int restart_history_size;          // per-pair history size in the restart read, -1 if none
   class FixContactsMN *counters;     // nullptr unless fix contacts/mn is defined
-  bool exclusion_added;
+  std::vector<std::pair<int, int>> excluded_types;    // type pairs this style excluded
   bool law_reported;
+  double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units
   double *max_radius;                // per type, for the cutoffs
 
   class FixDummy *fix_dummy;
@@ -58,6 +60,8 @@ class PairGranMN : public Pair {
   void derive_law();
   void check_wall_types();
   double mass_scale(int, int) const;
+  void update_exclusions();
+  void remove_exclusions();
   void report_end(int, int, double, double, double, const double *, const tagint *);
 };
 

@@ -9,7 +9,7 @@ GOOD_PAIR = "pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5"
 
 def deck(pair=GOOD_PAIR, coeff="pair_coeff * *", fix="", timestep="timestep 5e-5",
          dimension="dimension 2", atom_style="atom_style sphere", comm="comm_modify vel yes",
-         z="-0.5 0.5"):
+         z="-0.5 0.5", second="1.2 0.5 0"):
     header = (HEADER.format(plugin=PLUGIN)
               .replace("dimension 2", dimension)
               .replace("atom_style sphere", atom_style)
@@ -21,7 +21,7 @@ def deck(pair=GOOD_PAIR, coeff="pair_coeff * *", fix="", timestep="timestep 5e-5
 region box block -3 3 -3 3 {z}
 create_box 2 box
 create_atoms 1 single 0 0.5 0
-create_atoms 1 single 1.2 0.5 0
+create_atoms 1 single {second}
 {mass}
 {pair}
 {coeff}
@@ -91,6 +91,17 @@ ERRORS = {
         "fix wall/gran/mn: timestep 5e-05 exceeds the stability limit"),
     "atom behind the wall": (deck(fix="fix floor all wall/gran/mn yplane 0.6 NULL"),
                              "has passed through the wall at 0.6"),
+    "kn so large the law overflows": (
+        deck(pair="pair_style gran/mn kn 1e308 e 0.7 beta 0.7 mu 0.5"),
+        "kn is too large: the derived coefficients (tau_c, eta_n, kt) overflow"),
+    "two atoms at the same position": (deck(second="0 0.5 0"),
+                                       "atoms 1 and 2 are at the same position"),
+    "point particle under nve/ab2": (
+        deck(fix="unfix integrate\nset atom 1 diameter 0.0\nfix integrate all nve/ab2"),
+        "Fix nve/ab2 integrates disks: 1 atoms of its group have diameter 0"),
+    "spheres integrated by nve/sphere": (
+        deck(fix="unfix integrate\nfix spin all nve/sphere"),
+        "fix spin (nve/sphere) integrates spheres; the law is for disks"),
 }
 
 

@@ -3,16 +3,17 @@ import numpy as np
 import pytest
 
 from collision_decks import contact_interval, two_disks
-from granmn_run import law, restitution_error_bound, run_lammps
+from granmn_run import HEADER, PLUGIN, law, restitution_error_bound, run_lammps
 
 KN = [2 ** p * 1e5 for p in (-1, 8, 17)]
 
 
-def collide(tmp_path, name, material, dt_over_tau, **kwargs):
+def collide(tmp_path, name, material, dt_over_tau, units="lj", **kwargs):
     tau = law(*material[:3])["tau_c"]
     dt = tau * dt_over_tau
     deck, contact = two_disks(material, dt, **kwargs)
-    run = run_lammps(deck, tmp_path / name)
+    header = HEADER.format(plugin=PLUGIN).replace("units lj", f"units {units}")
+    run = run_lammps(header + deck, tmp_path / name, header=False)
     a = run.atoms()
     (x1, x2), (y1, y2), (vx1, vx2), (vy1, vy2), (w1, w2) = (
         a["x"], a["y"], a["vx"], a["vy"], a["omegaz"])
@@ -74,3 +75,24 @@ def test_sticking_oblique_impact_has_tangential_restitution_beta(tmp_path, beta)
               f"bound {bound:.2e}")
         assert abs(beta_measured - beta) <= bound
         assert abs(c["v_n"] - 0.7) <= restitution_error_bound(0.7, dt_over_tau) + 1e-3
+
+
+UNITS = ["lj", "real", "metal", "si", "cgs", "electron", "micro", "nano"]
+
+
+@pytest.mark.parametrize("units", UNITS)
+def test_every_unit_system_gives_the_requested_restitutions_and_duration(tmp_path, units):
+    """kn is a stiffness per unit mass (1/time^2 in the unit system's time), so the law gives
+    mass x acceleration; LAMMPS turns force into acceleration with its ftm2v factor (1 only in
+    lj units), which the styles divide out. The sticking oblique impact of the test above, with
+    every quantity in the unit system's own units: e, beta and tau_c as in lj units."""
+    dt_over_tau = 1 / 100
+    c = collide(tmp_path, units, (256e5, 0.7, 0.7, 1000.0), dt_over_tau, units=units, spin=0.6)
+    beta_measured = -c["v_t"] / -(0.5 * 0.6 + 0.5 * 0.6)
+    bound_n = restitution_error_bound(0.7, dt_over_tau) + 1e-3
+    bound_t = restitution_error_bound(0.7, dt_over_tau) + 2 * 0.7 * abs(np.log(0.7)) * dt_over_tau + 1e-3
+    print(f"{units}: e {c['v_n']:.6f} beta {beta_measured:.6f} duration/tau_c "
+          f"{c['duration'] / c['tau']:.5f}")
+    assert abs(c["v_n"] - 0.7) <= bound_n
+    assert abs(beta_measured - 0.7) <= bound_t
+    assert abs(c["duration"] - c["tau"]) <= c["dt"]
