@@ -181,7 +181,8 @@ def variant_differences(rows):
 def series(rows, quantity):
     """kn, values, errors of one quantity over a scene's points."""
     kn = np.array([o["kn"] for o in rows])
-    return kn, np.array([o[quantity] for o in rows]), np.array([o[quantity + "_err"] for o in rows])
+    return kn, np.array([o[quantity] for o in rows]), np.array([o.get(quantity + "_err", np.nan)
+                                                                for o in rows])
 
 
 def fit_power(kn, values, errors=None):

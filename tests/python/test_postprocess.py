@@ -400,3 +400,13 @@ def test_params_that_are_not_positive_numbers_are_refused(tmp_path, name, value)
     (point / "params.txt").write_text("\n".join(lines) + "\n")
     with pytest.raises(DataError, match=f"{name} = .* must be a finite number > 0"):
         point_observables(point)
+
+
+def test_claims_on_a_quantity_without_errors():
+    """A single run's v_y period has no error bar (one value per run): the claims still work."""
+    from postprocess.reference import evaluate
+    rows = synthetic_rows(1e5 * 2.0 ** np.arange(0, 4), period=lambda k: 4.1)
+    for o in rows:
+        del o["period_err"]
+    results = {c["id"]: (v, s) for c, v, _, s in evaluate({"single_disk": rows})}
+    assert results["single-period"] == (pytest.approx(0.1), "pass")
