@@ -207,7 +207,8 @@ def fit_log(kn, values):
         return (values[1] - values[0]) / (x[1] - x[0]), np.nan, 1.0
     coefficients, covariance = np.polyfit(x, values, 1, cov=True)
     residual = values - np.polyval(coefficients, x)
-    r2 = 1 - residual @ residual / np.sum((values - values.mean()) ** 2)
+    spread = np.sum((values - values.mean()) ** 2)
+    r2 = 1 - residual @ residual / spread if spread > 0 else np.nan    # flat: no line to fit
     return coefficients[0], np.sqrt(covariance[0, 0]), r2
 
 
