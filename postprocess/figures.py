@@ -132,7 +132,7 @@ def energy_figure(scene, points, path, resolution=1.0):
         for ax in axes[-1]:
             ax.set_xlabel("time")
         for ax in axes[:, 0]:
-            ax.set_ylabel(f"E per disk ({resolution:g}-window means)")
+            ax.set_ylabel(f"E per disk (means over {resolution:g})")
         fig.suptitle(f"{scene_of(scene).title}: E(t); thick: selected steady parts; grey band: "
                      "[0.4, 0.8]", fontsize=10)
     fig.tight_layout()
