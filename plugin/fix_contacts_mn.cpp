@@ -24,7 +24,7 @@ static constexpr int ROW_COLS = 8;          // tag_i tag_j kind start duration v
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), step_particle(nullptr),
     step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
-    window_start(0.0), rows_every(0), row_array(nullptr), nmax_rows(0), rows_cleared(-1),
+    now(0.0), clock_step(0), window_start(0.0), rows_every(0), row_array(nullptr), nmax_rows(0), rows_cleared(-1),
     vector_step(-1)
 {
   int iarg = 3;
@@ -57,7 +57,9 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
   comm_reverse = 4;
   allocate_state(NCOLS + 2 * WALL_SLOTS);
-  window_start = step();
+  clock_step = update->ntimestep;
+  now = update->ntimestep * update->dt;
+  window_start = now;
 }
 
 FixContactsMN::~FixContactsMN()
@@ -86,10 +88,12 @@ void FixContactsMN::init()
                       "wall/gran/mn; neither is defined");
 }
 
-// Steps, not LAMMPS's time: this LAMMPS restarts its time at zero after read_restart.
-double FixContactsMN::step() const
+// Called once per step before any contact is reported: the clock moves on by the step just
+// taken, with the time step it was taken with.
+void FixContactsMN::advance_clock()
 {
-  return (double) update->ntimestep;
+  if (update->ntimestep > clock_step) now += (update->ntimestep - clock_step) * update->dt;
+  clock_step = update->ntimestep;    // (reset_timestep moves the step, not the clock)
 }
 
 /* ---------------------------------------------------------------------- */
@@ -116,6 +120,7 @@ void FixContactsMN::setup_pre_force(int vflag)
 // Zero this step's tallies before the pair style and the wall fix fill them.
 void FixContactsMN::pre_force(int)
 {
+  advance_clock();
   grow_step_arrays();
   const int n = atom->nlocal + atom->nghost;
   for (int i = 0; i < n; i++)
@@ -140,11 +145,10 @@ void FixContactsMN::pair_ended(int i, int j, bool boundary, const double *state,
           state[PAIR_VN_START], vn, state[PAIR_PEAK]);
 }
 
-void FixContactsMN::add_row(double tag_i, double tag_j, double kind, double start_step,
+void FixContactsMN::add_row(double tag_i, double tag_j, double kind, double start_time,
                             double vn_start, double vn_end, double peak)
 {
-  const double dt = update->dt;
-  const double row[ROW_COLS] = {tag_i, tag_j, kind, start_step * dt, (step() - start_step) * dt,
+  const double row[ROW_COLS] = {tag_i, tag_j, kind, start_time, now - start_time,
                                 vn_start, vn_end, peak};
   rows.insert(rows.end(), row, row + ROW_COLS);
 }
@@ -231,7 +235,7 @@ int FixContactsMN::modify_param(int narg, char **arg)
     error->all(FLERR, "Illegal fix_modify command: fix contacts/mn reset takes no arguments");
   for (int i = 0; i < atom->nlocal; i++)
     for (int c = BEGUN_PARTICLE; c <= TIME_MULTIPLE; c++) state[i][c] = 0.0;
-  window_start = step();
+  window_start = now;
   vector_step = -1;
   return 1;
 }
@@ -246,7 +250,7 @@ double FixContactsMN::compute_vector(int n)
       if (mask[i] & groupbit)
         for (int c = 0; c < NCOLS; c++) local[c] += state[i][c];
     MPI_Allreduce(local, vector_sums, NCOLS, MPI_DOUBLE, MPI_SUM, world);
-    vector_sums[6] = (step() - window_start) * update->dt;
+    vector_sums[6] = now - window_start;
     vector_sums[7] = group->count(igroup);
     vector_step = update->ntimestep;
   }
@@ -271,13 +275,18 @@ void FixContactsMN::grow_arrays(int nmax)
 void FixContactsMN::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    const int size = sizeof(double);
+    const double clock[3] = {now, (double) clock_step, window_start};
+    const int size = sizeof(clock);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(&window_start, sizeof(double), 1, fp);
+    fwrite(clock, sizeof(double), 3, fp);
   }
 }
 
 void FixContactsMN::restart(char *buf)
 {
-  memcpy(&window_start, buf, sizeof(double));
+  double clock[3];
+  memcpy(clock, buf, sizeof(clock));
+  now = clock[0];
+  clock_step = (bigint) clock[1];
+  window_start = clock[2];
 }

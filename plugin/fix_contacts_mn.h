@@ -21,7 +21,7 @@ class FixContactsMN : public FixPerAtomState {
   enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, NCOLS };
   // Per-pair state the pair style keeps in its neighbor history for this fix.
   enum { PAIR_START, PAIR_VN_START, PAIR_PEAK, PAIR_STATE_SIZE };
-  // Per atom and wall side: touching, start step, v_n at start, peak overlap.
+  // Per atom and wall side: touching, start time, v_n at start, peak overlap.
   enum { WALL_SLOTS = 4 };
 
   FixContactsMN(class LAMMPS *, int, char **);
@@ -60,7 +60,12 @@ class FixContactsMN : public FixPerAtomState {
   double *step_particle, *step_boundary;    // contacts at this step, owned + ghost
   double *begun_particle, *begun_boundary;  // contacts begun at this step, owned + ghost
   int nmax_step;
-  double window_start;         // step at which accumulation (re)started
+  // The fix's own clock: the time of the current step, the sum of the time steps actually
+  // taken (a timestep changed between runs counts from then on; LAMMPS's time restarts at
+  // zero after read_restart in this version, this clock does not).
+  double now;
+  bigint clock_step;           // the step `now` belongs to
+  double window_start;         // time at which accumulation (re)started
   int rows_every;              // local rows: contacts completed in the last N steps (0: none)
   std::vector<double> rows;    // 8 values per completed contact
   double **row_array;
@@ -69,8 +74,8 @@ class FixContactsMN : public FixPerAtomState {
   double vector_sums[8];
   bigint vector_step;
 
-  double step() const;
-  void add_row(double tag_i, double tag_j, double kind, double start_step, double vn_start,
+  void advance_clock();
+  void add_row(double tag_i, double tag_j, double kind, double start_time, double vn_start,
                double vn_end, double peak);
   void collect(bool accumulate_time);
   void grow_step_arrays();
@@ -83,7 +88,7 @@ inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool 
                                   bool tally_j)
 {
   if (began) {
-    state[PAIR_START] = (double) update->ntimestep;
+    state[PAIR_START] = now;
     state[PAIR_VN_START] = vn;
     state[PAIR_PEAK] = delta;
   } else if (delta > state[PAIR_PEAK]) {
@@ -103,7 +108,7 @@ inline void FixContactsMN::wall_state(int i, int side, bool touching, double del
   if (touching) {
     if (w[0] == 0.0) {
       w[0] = 1.0;
-      w[1] = (double) update->ntimestep;
+      w[1] = now;
       w[2] = vn;
       w[3] = delta;
       // owned atom: counted directly, so that the order of fix setups does not matter

@@ -222,3 +222,40 @@ def test_restart_with_a_different_contact_history_is_refused(settled, counted_re
     assert run.returncode != 0
     assert (f"the restart file holds {held} history values per contact, this run needs {needed}"
             in run.output), run.output[-1500:]
+
+
+def test_a_timestep_changed_between_runs_keeps_the_window_and_the_rows_in_time(tmp_path):
+    """The window length and the rows' start times are times, not step counts times the
+    current dt: a resting disk's window after 1000 steps of dt and 1000 of dt/2 is 1500 dt (and
+    it touched the floor throughout); two disks whose run switches to dt/2 before they meet
+    start their contact when they meet, (pre_steps + 1/2) dt into the run."""
+    kn = 2e5
+    dt = law(kn, 0.7, 0.7)["tau_w"] / 50
+    deck = f"""
+{disk_over_floor(kn, 0.5 - 1.0 / kn, dt)}thermo 0
+run 1000
+timestep {dt / 2!r}
+run 1000
+print "RESULT window $(f_c[7]) $(f_c[4])"
+"""
+    window, touching = run_lammps(deck, tmp_path / "resting").result("window")
+    assert window == pytest.approx(1500 * dt, rel=1e-12)
+    assert touching == pytest.approx(1500 * dt, rel=1e-12)
+
+    material = (kn, 0.7, 0.7, 0.5)
+    tau = law(*material[:3])["tau_c"]
+    deck, _ = two_disks(material, tau / 100, pre_steps=10)
+    steps = deck.split("run ")[1].split()[0]
+    deck = deck.replace(f"thermo 0\nrun {steps}\n",
+                        "fix c all contacts/mn local 1\ndump rows all local 1 rows.txt f_c[4] "
+                        f"f_c[5]\nthermo 0\nrun 5\ntimestep {tau / 200!r}\nrun {2 * int(steps)}\n")
+    run_lammps(deck, tmp_path / "pair")
+    rows, entries = [], False
+    for line in (tmp_path / "pair" / "rows.txt").read_text().splitlines():
+        if line.startswith("ITEM:"):
+            entries = line.startswith("ITEM: ENTRIES")
+        elif entries:
+            rows.append(tuple(map(float, line.split())))
+    (start, duration), = rows
+    assert start == pytest.approx(10.5 * tau / 100, abs=tau / 100)    # found within a step
+    assert duration == pytest.approx(tau, abs=tau / 200)
