@@ -272,21 +272,30 @@ void FixContactsMN::grow_arrays(int nmax)
   array_atom = state;
 }
 
+// The first value marks the layout: earlier versions wrote one value, a step (>= 0), and kept
+// contact start steps rather than times in the pair history.
+static constexpr double CLOCK_LAYOUT = -2.0;
+
 void FixContactsMN::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    const double clock[3] = {now, (double) clock_step, window_start};
+    const double clock[4] = {CLOCK_LAYOUT, now, (double) clock_step, window_start};
     const int size = sizeof(clock);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(clock, sizeof(double), 3, fp);
+    fwrite(clock, sizeof(double), 4, fp);
   }
 }
 
 void FixContactsMN::restart(char *buf)
 {
-  double clock[3];
+  double layout;
+  memcpy(&layout, buf, sizeof(double));
+  if (layout != CLOCK_LAYOUT)
+    error->all(FLERR, "Fix contacts/mn: the restart file was written by an earlier version that "
+                      "kept steps, not times; write a new one");
+  double clock[4];
   memcpy(clock, buf, sizeof(clock));
-  now = clock[0];
-  clock_step = (bigint) clock[1];
-  window_start = clock[2];
+  now = clock[1];
+  clock_step = (bigint) clock[2];
+  window_start = clock[3];
 }
