@@ -56,7 +56,7 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
   }
   restart_global = 1;
   comm_reverse = 4;
-  allocate_state(NCOLS + 2 * WALL_SLOTS);
+  allocate_state(NCOLS);
   clock_step = update->ntimestep;
   now = update->ntimestep * update->dt;
   window_start = now;

@@ -21,7 +21,8 @@ class FixContactsMN : public FixPerAtomState {
   enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, NCOLS };
   // Per-pair state the pair style keeps in its neighbor history for this fix.
   enum { PAIR_START, PAIR_VN_START, PAIR_PEAK, PAIR_STATE_SIZE };
-  // Per atom and wall side: touching, start time, v_n at start, peak overlap.
+  // Per atom, wall fix and wall side, kept by the wall fix: touching, start time, v_n at
+  // start, peak overlap.
   enum { WALL_SLOTS = 4 };
 
   FixContactsMN(class LAMMPS *, int, char **);
@@ -51,12 +52,12 @@ class FixContactsMN : public FixPerAtomState {
   // writes the contact's row (avoids duplicates of pairs stored on two processes).
   // i is the mobile atom when one of the two is a boundary element.
   void pair_ended(int i, int j, bool boundary, const double *state, double vn, bool record);
-  // Called by fix wall/gran/mn for every atom of its group and wall side.
-  void wall_state(int i, int side, bool touching, double delta, double vn);
+  // Called by fix wall/gran/mn for every atom of its group and wall side; w is that atom's
+  // WALL_SLOTS for this wall fix and side.
+  void wall_state(int i, double *w, bool touching, double delta, double vn);
 
  private:
-  // state[i]: the NCOLS output columns, then WALL_SLOTS per wall side (WALL_STATE on)
-  enum { WALL_STATE = NCOLS };
+  // state[i]: the NCOLS output columns
   double *step_particle, *step_boundary;    // contacts at this step, owned + ghost
   double *begun_particle, *begun_boundary;  // contacts begun at this step, owned + ghost
   int nmax_step;
@@ -102,9 +103,8 @@ inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool 
   }
 }
 
-inline void FixContactsMN::wall_state(int i, int side, bool touching, double delta, double vn)
+inline void FixContactsMN::wall_state(int i, double *w, bool touching, double delta, double vn)
 {
-  double *w = &state[i][WALL_STATE + WALL_SLOTS * side];
   if (touching) {
     if (w[0] == 0.0) {
       w[0] = 1.0;

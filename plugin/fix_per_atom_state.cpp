@@ -16,6 +16,22 @@ void FixPerAtomState::allocate_state(int columns)
   for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
 }
 
+void FixPerAtomState::widen_state(int columns)
+{
+  if (columns <= ncols) return;
+  if (ncols == 0) {
+    allocate_state(columns);
+    return;
+  }
+  double **wider = nullptr;
+  memory->create(wider, atom->nmax, columns, "fix:per-atom state");
+  for (int i = 0; i < atom->nmax; i++)
+    for (int k = 0; k < columns; k++) wider[i][k] = k < ncols ? state[i][k] : 0.0;
+  memory->destroy(state);
+  state = wider;
+  ncols = columns;
+}
+
 FixPerAtomState::~FixPerAtomState()
 {
   if (ncols) {
@@ -63,12 +79,16 @@ int FixPerAtomState::pack_restart(int i, double *buf)
   return 1 + pack_exchange(i, &buf[1]);
 }
 
+// The record holds as many columns as the writing run had: read those (widening the state if
+// they are more), never past the record.
 void FixPerAtomState::unpack_restart(int nlocal, int nth)
 {
   double **extra = atom->extra;
   int m = 0;
   for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
-  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+  const int stored = static_cast<int>(extra[nlocal][m]) - 1;
+  widen_state(stored);
+  for (int k = 0; k < ncols; k++) state[nlocal][k] = k < stored ? extra[nlocal][m + 1 + k] : 0.0;
 }
 
 int FixPerAtomState::size_restart(int)

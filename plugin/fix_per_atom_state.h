@@ -32,6 +32,8 @@ class FixPerAtomState : public Fix {
 
   // Called once by a subclass's constructor; no call, no cost.
   void allocate_state(int columns);
+  // More columns (zero for every atom) for a need found later, e.g. at init; keeps the others.
+  void widen_state(int columns);
 };
 
 }    // namespace LAMMPS_NS

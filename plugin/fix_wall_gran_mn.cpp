@@ -64,7 +64,7 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
   size_vector = 2;    // force exerted by the particles on the walls (x, y)
   global_freq = 1;
   extvector = 1;
-  if (use_history) allocate_state(2);
+  if (use_history) allocate_state(UT_COLUMNS);
   wall_force[0] = wall_force[1] = 0.0;
 }
 
@@ -109,6 +109,8 @@ void FixWallGranMN::init()
   force_per_mass_acceleration = 1.0 / force->ftm2v;
   const int icounters = modify->find_fix_by_style("^contacts/mn");
   counters = icounters >= 0 ? (FixContactsMN *) modify->fix[icounters] : nullptr;
+  // each wall fix keeps its own contact state for the counters, per atom and side
+  if (counters) widen_state(UT_COLUMNS + 2 * FixContactsMN::WALL_SLOTS);
   if (law.mu > 0.0 && !use_history)
     error->all(FLERR, "Fix wall/gran/mn was defined with mu = 0 and keeps no tangential "
                       "history; define it again after giving mu > 0");
@@ -148,7 +150,8 @@ void FixWallGranMN::post_force(int)
       const double normal = side == 0 ? 1.0 : -1.0;
       const bool touching = dist < radius[i];
       if (counters)
-        counters->wall_state(i, side, touching, radius[i] - dist, normal * v[i][axis]);
+        counters->wall_state(i, &state[i][UT_COLUMNS + FixContactsMN::WALL_SLOTS * side],
+                             touching, radius[i] - dist, normal * v[i][axis]);
       if (!touching) {
         if (use_history) state[i][side] = 0.0;
         continue;

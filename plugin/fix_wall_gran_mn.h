@@ -30,6 +30,8 @@ class FixWallGranMN : public FixPerAtomState {
   mn::Law law;
   bool own_law;               // the law is not exactly the pair style's
   bool use_history;           // mu > 0: per-atom u_t in state[i][side], side 0 lower, 1 upper
+  // u_t of the two sides; with fix contacts/mn, its per-side contact state follows
+  static constexpr int UT_COLUMNS = 2;
   class FixContactsMN *counters;    // nullptr unless fix contacts/mn is defined
   double wall_force[2], wall_force_all[2];
   double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units

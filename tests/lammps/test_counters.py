@@ -259,3 +259,34 @@ print "RESULT window $(f_c[7]) $(f_c[4])"
     (start, duration), = rows
     assert start == pytest.approx(10.5 * tau / 100, abs=tau / 100)    # found within a step
     assert duration == pytest.approx(tau, abs=tau / 200)
+
+
+def test_two_wall_fixes_keep_their_own_contacts(tmp_path):
+    """A floor and a side wall, each its own fix wall/gran/mn. A disk resting on the floor far
+    from the side wall makes one boundary contact (begun at the start) and no rows; a disk
+    resting in the corner, pressed into it by gravity, makes two (one per wall), still
+    touching both at the end."""
+    kn = 2e5
+    dt = law(kn, 0.7, 0.7)["tau_w"] / 50
+
+    def corner(x, name):
+        deck = disk_over_floor(kn, 0.5 - 1.0 / kn, dt).replace(
+            "create_atoms 1 single 0 ", f"create_atoms 1 single {x!r} ").replace(
+            "vector 0 -1 0", "vector -0.3 -1 0")
+        deck += f"""fix side mobile wall/gran/mn xplane -2.0 NULL
+fix_modify c reset
+dump rows all local 1 rows.txt f_c[1] f_c[2] f_c[3]
+thermo 0
+run 2000
+print "RESULT sums $(f_c[2]) $(f_c[6])"
+"""
+        run = run_lammps(deck.replace("fix c mobile contacts/mn", "fix c mobile contacts/mn local 1"),
+                         tmp_path / name)
+        rows = [l for l in (tmp_path / name / "rows.txt").read_text().splitlines()
+                if l and not l.startswith("ITEM") and len(l.split()) == 3 and l.split()[2] == "2"]
+        return run.result("sums"), rows
+
+    (begun, now), rows = corner(0.0, "floor_only")
+    assert begun == 1 and now == 1 and rows == []
+    (begun, now), rows = corner(-1.5 - 0.3 / kn, "corner")    # at its equilibrium overlap
+    assert begun == 2 and now == 2 and rows == []
