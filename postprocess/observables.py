@@ -8,6 +8,9 @@ from .selection import select_at_resolution
 # The time resolutions (time units) at which the report counts the steady parts kept, so that
 # the reader sees what the choice of resolution does (docs/model.md section 5).
 RESOLUTIONS = (0.1, 1.0, 5.0)
+# A run has come to rest when its kinetic energy per disk stays below REST_ENERGY over its last
+# REST_TIME time units (the frictional deck's stop_energy and stop_time).
+REST_ENERGY, REST_TIME = 1e-5, 10.0
 
 COUNTERS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary", "time_multiple")
 
@@ -58,6 +61,16 @@ def kept_spans(point, resolutions=RESOLUTIONS):
     inside = averaging_rows(energy, params)
     return {r: len(select_at_resolution(energy["time"][inside], energy["e_total"][inside], r)[0])
             for r in resolutions}
+
+
+def rest_time(t, energy):
+    """The time from which the energy stays below REST_ENERGY to the end of the series, if it
+    does so for at least REST_TIME; else None."""
+    above = np.flatnonzero(np.asarray(energy) >= REST_ENERGY)
+    first_at_rest = above[-1] + 1 if len(above) else 0
+    if first_at_rest >= len(t) or t[-1] - t[first_at_rest] < REST_TIME:
+        return None
+    return t[first_at_rest]
 
 
 def run_state(point):
@@ -115,6 +128,10 @@ def point_observables(point, n_blocks=5, resolution=1.0):
         notes.append(f"{len(spans)} of {len(found)} steady parts selected")
     else:
         spans = [(first, len(energy["time"]))]
+        resting = rest_time(energy["time"], energy["e_total"])
+        if resting is not None and resting < energy["time"][-1] - REST_TIME:
+            raise DataError(f"{point}: came to rest at t = {resting:.4g} (E per disk below "
+                            f"{REST_ENERGY:g} from then on): no steady motion to average")
     if n_boundary == 0:
         raise DataError(f"{point}: no disk touched the boundary in the averaging window")
 

@@ -155,7 +155,11 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), resolutio
         if rows:
             notes += list(what.notes)
         if what.has_period and rows:
-            notes.append("v_y periods: " + ", ".join(f"{o['kn']:g}: {fmt(o['period'])}"
+            notes.append("time to pass one bump (1.002 / mean v_x): " +
+                         ", ".join(f"{o['kn']:g}: {fmt(o['bump_time'])}" for o in rows))
+            notes.append("v_y periods (autocorrelation; a multiple of the bump time where the "
+                         "motion repeats every second or third bump): " +
+                         ", ".join(f"{o['kn']:g}: {fmt(o['period'])}"
                                                       for o in rows))
         lines += [""] + [f"- {n}" for n in notes] + [""]
         for caption, name in made.get(scene, []):

@@ -17,12 +17,15 @@ class Guide:
 class Scene:
     name: str
     title: str
-    # average only the steady parts selected by the paper's rule (else the whole window)
+    # average only the steady parts selected by the paper's rule (else the whole window, which
+    # then must not end at rest: a run that came to rest has no steady motion to average)
     selects_steady_parts: bool = False
     # N_w, t_w per disk that touched the boundary (the bottom layer), not per disk
     boundary_per_bottom_layer: bool = False
-    # the single disk's v_y period, from trajectory.txt
+    # the single disk's v_y period and time to pass one bump (bump_spacing / mean v_x), from
+    # trajectory.txt
     has_period: bool = False
+    bump_spacing: float = 1.002
     # collision rates against ln kn (a log law) rather than log-log
     rates_log_law: bool = False
     guides: tuple = ()

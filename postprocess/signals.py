@@ -2,10 +2,12 @@
 import numpy as np
 
 
-def dominant_period(t, y, max_period=None):
-    """The lag of the highest autocorrelation peak after the first zero crossing, for a series
-    sampled at uniform times t. Returns (period, autocorrelation at that lag); (nan, nan) when
-    the series is constant or never decorrelates."""
+def dominant_period(t, y, max_period=None, fraction=0.85):
+    """The fundamental period of a series sampled at uniform times t: the lag of the first
+    autocorrelation peak after the first zero crossing that reaches `fraction` of the highest
+    peak (so that a motion repeating every second bump with nearly equal bumps in between gives
+    the bump period, not twice it). Returns (period, autocorrelation at that lag); (nan, nan)
+    when the series is constant or never decorrelates."""
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
     if len(t) < 4:
@@ -25,7 +27,11 @@ def dominant_period(t, y, max_period=None):
     last = len(ac) if max_period is None else min(len(ac), int(max_period / dt) + 1)
     if first >= last:
         return np.nan, np.nan
-    peak = first + int(np.argmax(ac[first:last]))
+    window = ac[first:last]
+    highest = window.max()
+    inner = np.flatnonzero((window[1:-1] >= window[:-2]) & (window[1:-1] >= window[2:]) &
+                           (window[1:-1] >= fraction * highest)) + 1
+    peak = first + (int(inner[0]) if len(inner) else int(np.argmax(window)))
     return peak * dt, ac[peak]
 
 

@@ -46,6 +46,7 @@ def analyse(sweep_dir, resolution=1.0):
                 late = trajectory["time"] > read_params(point)["average_start"]
                 o["period"], _ = dominant_period(trajectory["time"][late],
                                                  trajectory["vy"][late], max_period=20.0)
+                o["bump_time"] = what.bump_spacing / trajectory["vx"][late].mean()
             scenes.setdefault(o["scene"], []).append(o)
         except DataError as error:
             left_out.append((point, str(error).replace(f"{point}: ", "")))
@@ -116,7 +117,7 @@ def combine_seeds(rows):
             weights = np.array([m["span"] for m in members], dtype=float)
             weights /= weights.sum()
             n = len(members)
-            for q in QUANTITIES + ("period",):
+            for q in QUANTITIES + ("period", "bump_time"):
                 if q not in o:
                     continue
                 values = np.array([m[q] for m in members])
