@@ -118,7 +118,8 @@ void FixWallGranMN::init()
   if (own_law)
     granmn::check_timestep(lmp, "fix wall/gran/mn", update->dt,
                            mn::max_stable_dt(law, granmn::integrator_in_use(modify)), law.tau_c,
-                           granmn::integrator_in_use(modify));
+                           granmn::integrator_in_use(modify),
+                           mn::amplifies_undamped_mode(law, granmn::integrator_in_use(modify)));
 }
 
 void FixWallGranMN::setup(int vflag)

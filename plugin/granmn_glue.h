@@ -55,8 +55,13 @@ inline const char *integrator_name(mn::Integrator integrator)
 // A time step beyond the stability limit of the stiffest contact mode is an error; one that
 // resolves a binary collision with fewer than 10 steps is worth a warning.
 inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, double dt_max,
-                           double tau_c, mn::Integrator integrator)
+                           double tau_c, mn::Integrator integrator, bool amplifies)
 {
+  if (amplifies)
+    lmp->error->warning(FLERR,
+                        "{}: Adams-Bashforth 2 slowly amplifies an undamped contact mode (e = 1, "
+                        "or beta = 1 with friction): collisions are fine at this step, contacts "
+                        "that last gain energy; velocity Verlet keeps them", who);
   if (dt > dt_max)
     lmp->error->all(FLERR,
                     "{}: timestep {} exceeds the stability limit {:.6g} of {} for the stiffest "

@@ -312,7 +312,8 @@ void PairGranMN::init_style()
                    mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
     law_reported = true;
   }
-  granmn::check_timestep(lmp, "pair_style gran/mn", dt, dt_max, law.tau_c, integrator);
+  granmn::check_timestep(lmp, "pair_style gran/mn", dt, dt_max, law.tau_c, integrator,
+                         mn::amplifies_undamped_mode(law, integrator));
 
   // The history holds u_t when there is friction and the counters' per-pair state if asked.
   const int icounters = modify->find_fix_by_style("^contacts/mn");

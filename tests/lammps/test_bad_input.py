@@ -118,3 +118,13 @@ def test_coarse_time_step_warns_but_runs(tmp_path):
     # tau_c = 5.0e-3 at kn = 2e5: dt = 1e-3 resolves a collision with 5 steps, but is stable
     run = run_lammps(deck(timestep="timestep 1e-3"), tmp_path, header=False)
     assert "WARNING" in run.output and "fewer than 10 steps" in run.output
+
+
+def test_elastic_collisions_under_the_papers_integrator_run_at_its_step(tmp_path):
+    """e = 1 leaves the normal mode undamped; Adams-Bashforth 2 amplifies such a mode a little
+    at every step and so has no strict stability limit. The paper's tau_c/100 (5e-5 here) is
+    accepted, with a warning that says what happens to contacts that last."""
+    run = run_lammps(deck(pair="pair_style gran/mn kn 2e5 e 1 beta 0.7 mu 0.5",
+                          fix="unfix integrate\nfix integrate all nve/ab2"), tmp_path,
+                     header=False)
+    assert "slowly amplifies an undamped contact mode" in run.output

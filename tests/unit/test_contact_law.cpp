@@ -305,3 +305,31 @@ TEST(Stability, LawLimitIsTheStiffestModeAndAboveTheRecommendedStep)
   EXPECT_GT(dt_max, law.tau_c / 10);    // the paper's tau_c/100 is far inside
   EXPECT_LT(dt_max, law.tau_c);
 }
+
+// Adams-Bashforth 2 amplifies an undamped mode (e = 1) at every step, so it has no strict
+// limit: the reported one is where a contact (pi/w) grows by UNDAMPED_GROWTH_PER_CONTACT. The
+// paper's tau_c/100 is well inside it; iterating the step over one contact shows the growth.
+TEST(Stability, AdamsBashforthOnAnUndampedModeIsLimitedByTheGrowthOverAContact)
+{
+  const mn::Law law = mn::derive({2e5, 1.0, 0.7, 0.0});
+  ASSERT_EQ(law.eta_n, 0.0);
+  EXPECT_TRUE(mn::amplifies_undamped_mode(law, mn::Integrator::AdamsBashforth2));
+  EXPECT_FALSE(mn::amplifies_undamped_mode(law, mn::Integrator::VelocityVerlet));
+  const double dt_max = mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2);
+  EXPECT_GT(dt_max, law.tau_c / 100);
+  const double w2 = 2 * law.kn;
+  auto growth_over_a_contact = [&](double dt) {
+    double s[3] = {1.0, 0.0, -w2}, next[3];
+    const int steps = (int) std::ceil(mn::PI / std::sqrt(w2) / dt);
+    double energy0 = 0.5 * w2, energy = energy0;
+    for (int n = 0; n < 4 * steps; n++) {    // two oscillations: the growth of four contacts
+      mn::detail::step(mn::Integrator::AdamsBashforth2, w2, 0.0, dt, s, next);
+      for (int c = 0; c < 3; c++) s[c] = next[c];
+      energy = 0.5 * (w2 * s[0] * s[0] + s[1] * s[1]);
+    }
+    return std::pow(std::sqrt(energy / energy0), 0.25) - 1.0;
+  };
+  EXPECT_LT(growth_over_a_contact(law.tau_c / 100), 1e-4);
+  EXPECT_NEAR(growth_over_a_contact(dt_max), mn::UNDAMPED_GROWTH_PER_CONTACT,
+              0.5 * mn::UNDAMPED_GROWTH_PER_CONTACT);
+}
