@@ -9,6 +9,7 @@ class DataError(Exception):
     """A point's output is missing, truncated or inconsistent."""
 
 
+# the columns of energy.txt the analysis uses
 ENERGY_COLUMNS = ("step", "e_trans", "e_rot", "e_total", "begun_disk", "begun_boundary",
                   "time_disk", "time_boundary", "time_multiple", "contacts_now", "window")
 COUNT_COLUMNS = ("id", "diameter", "begun_disk", "begun_boundary", "time_disk",
@@ -73,9 +74,31 @@ def numeric_table(path, columns, comment="#"):
     return {name: data[:, k] for k, name in enumerate(columns)}
 
 
+def header_columns(path, first, needed):
+    """The column names of a table from its own header: the last comment line whose first name
+    is `first` ("# step e_trans ..."). Every name in `needed` must be there."""
+    path = Path(path)
+    if not path.exists():
+        raise DataError(f"{path}: missing")
+    names = None
+    for line in path.read_text().splitlines():
+        words = line.lstrip("#").split()
+        if line.startswith("#") and words[:1] == [first]:
+            names = tuple(words)
+        elif line.strip() and not line.startswith("#"):
+            break
+    if names is None:
+        raise DataError(f"{path}: no header line '# {first} ...' naming the columns")
+    missing = [n for n in needed if n not in names]
+    if missing:
+        raise DataError(f"{path}: the header names no column {', '.join(missing)}")
+    return names
+
+
 def read_energy(point, params):
-    """energy.txt with a time column (step * dt)."""
-    table = numeric_table(Path(point) / "energy.txt", ENERGY_COLUMNS)
+    """energy.txt (columns as its header names them) with a time column (step * dt)."""
+    path = Path(point) / "energy.txt"
+    table = numeric_table(path, header_columns(path, "step", ENERGY_COLUMNS))
     table["time"] = table["step"] * params["dt"]
     if np.any(np.diff(table["step"]) <= 0):
         raise DataError(f"{Path(point) / 'energy.txt'}: steps do not increase")

@@ -82,7 +82,8 @@ def write_point(tmp_path, scene="collisional_flow", n=4, run_time=100.0, average
         f"scene {scene}\nkn 200000\ne 0.7\nbeta 0.7\nmu 0.5\nsin_theta 0.2\nintegrator verlet\n"
         f"dt {dt}\ntau_c {tau_c}\ntau_w {tau_w}\nseed 1\nrun_time {run_time}\n"
         f"average_start {average_start}\nn_mobile {n}\n")
-    lines = ["# energy", "# columns"]
+    lines = ["# energy and counters", "# step e_trans e_rot e_total begun_disk begun_boundary "
+             "time_disk time_boundary time_multiple contacts_now window"]
     for step in range(0, int(run_time / dt) + 1, 100):
         t = step * dt
         # as the decks write it: the counters run from the start until average_start, the row of
@@ -132,6 +133,7 @@ def test_frictional_point_outside_the_energy_range_is_refused(tmp_path):
 
 @pytest.mark.parametrize("damage,message", [
     ("truncate", "columns, expected 11"),
+    ("header", "the header names no column time_multiple"),
     ("no params", "params.txt: missing"),
     ("short run", "before run_time"),
     ("counts", "atoms, the header says"),
@@ -142,6 +144,9 @@ def test_broken_outputs_name_the_file_and_the_problem(tmp_path, damage, message)
     point = write_point(tmp_path, truncate=(damage == "truncate"))
     if damage == "no params":
         (point / "params.txt").unlink()
+    if damage == "header":
+        text = (point / "energy.txt").read_text()
+        (point / "energy.txt").write_text(text.replace(" time_multiple", " t_multiple"))
     if damage == "short run":
         lines = (point / "energy.txt").read_text().splitlines()
         (point / "energy.txt").write_text("\n".join(lines[:len(lines) // 2]) + "\n")
