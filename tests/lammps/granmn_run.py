@@ -51,7 +51,8 @@ class Run:
         return {name: data[:, k] for k, name in enumerate(names)}
 
 
-INPUTS = Path(__file__).resolve().parents[2] / "inputs"
+ROOT = Path(__file__).resolve().parents[2]
+INPUTS = ROOT / "inputs"
 
 
 def _run(cmd, workdir, check):

@@ -3,7 +3,7 @@ import re
 import subprocess
 import sys
 
-from postprocess_path import ROOT
+from granmn_run import ROOT
 
 
 def test_accuracy_study_writes_its_tables_and_figure(tmp_path):

@@ -6,15 +6,11 @@ Both integrate with velocity Verlet, so a head-on collision and a bouncing ball 
 rounding at the same dt. (LIGGGHTS is installed by scripts/setup.sh.)"""
 import shutil
 import subprocess
-import sys
 
 import pytest
 
+from equivalent_laws import LIGGGHTS_FLOOR, liggghts_contacts
 from granmn_run import HEADER, PLUGIN, law, run_lammps
-from postprocess_path import ROOT
-
-sys.path.insert(0, str(ROOT / "bench"))
-from equivalent_laws import LIGGGHTS_FLOOR, liggghts_contacts  # noqa: E402
 
 KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5
 

@@ -4,7 +4,7 @@ import re
 import subprocess
 from pathlib import Path
 
-from postprocess_path import ROOT
+from granmn_run import ROOT
 from postprocess.reference import load_claims  # noqa: E402
 
 TINY = """

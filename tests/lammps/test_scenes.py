@@ -6,7 +6,6 @@ import pytest
 from collision_decks import two_disks
 from granmn_run import law, run_lammps, run_scene
 
-import postprocess_path  # noqa: F401
 from postprocess.signals import dominant_period, trend
 
 SINGLE_KN = 0.5e5    # the paper's stiffness for the single disk

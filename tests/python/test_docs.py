@@ -1,14 +1,12 @@
 """docs/bad_input.md lists every bad input the tests try."""
-import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tests" / "lammps"))
+import test_bad_input
+import test_counters
+import test_scenes
+import test_sweep
 
-import test_bad_input  # noqa: E402
-import test_counters  # noqa: E402
-import test_scenes  # noqa: E402
-import test_sweep  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
 
 DOC = (ROOT / "docs" / "bad_input.md").read_text()
 

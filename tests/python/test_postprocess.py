@@ -1,15 +1,11 @@
 """postprocess on synthetic outputs with known answers."""
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 from postprocess.io import DataError, numeric_table, read_counts, read_energy, read_params  # noqa
-from postprocess.observables import point_observables, span_rates  # noqa: E402
-from postprocess.selection import select_steady, steady_spans  # noqa: E402
-from postprocess.signals import dominant_period, trend  # noqa: E402
+from postprocess.observables import point_observables, span_rates
+from postprocess.selection import select_steady, steady_spans
+from postprocess.signals import dominant_period, trend
 
 RNG = np.random.default_rng(7)
 
