@@ -1,10 +1,13 @@
 """python3 -m postprocess {report,compare} SWEEP_DIR [--output DIR] [--resolution T]
+                                           [--energy-range LOW HIGH]
 
 report   tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
 compare  the comparison table on the terminal; exit status 1 if a claim fails
 
 --resolution T: the frictional steady-part selection works on E(t) averaged over windows of
-T time units (default 1)."""
+T time units (default 1).
+--energy-range LOW HIGH: the mean energy per disk a steady part must have (default: the
+paper's 0.4 0.8); other values show whether a conclusion depends on the window."""
 import argparse
 import sys
 from pathlib import Path
@@ -12,6 +15,7 @@ from pathlib import Path
 from .io import DataError
 from .reference import evaluate
 from .report import fmt, write_report
+from .selection import Selection
 from .study import analyse
 
 
@@ -22,11 +26,17 @@ def main(argv=None):
     parser.add_argument("sweep", type=Path)
     parser.add_argument("--output", type=Path)
     parser.add_argument("--resolution", type=float, default=1.0)
+    parser.add_argument("--energy-range", type=float, nargs=2, default=(0.4, 0.8),
+                        metavar=("LOW", "HIGH"))
     args = parser.parse_args(argv)
     if not args.resolution > 0:
         parser.error(f"--resolution {args.resolution:g} must be > 0")
+    low, high = args.energy_range
+    if not 0 <= low < high:
+        parser.error(f"--energy-range {low:g} {high:g} must satisfy 0 <= LOW < HIGH")
+    selection = Selection(resolution=args.resolution, energy_range=(low, high))
     try:
-        scenes, left_out, completed, runs = analyse(args.sweep, args.resolution)
+        scenes, left_out, completed, runs = analyse(args.sweep, selection)
     except DataError as error:
         print(f"postprocess: {error}", file=sys.stderr)
         return 2
@@ -34,8 +44,7 @@ def main(argv=None):
         print(f"left out {point}: {reason}", file=sys.stderr)
     if args.command == "report":
         path, results = write_report(args.sweep, scenes, left_out, completed,
-                                     args.output or args.sweep / "report", runs,
-                                     args.resolution)
+                                     args.output or args.sweep / "report", runs, selection)
         print(f"report: {path}")
         return 0
     results = evaluate(scenes)

@@ -7,7 +7,7 @@ import numpy as np  # noqa: E402
 
 from .io import DataError  # noqa: E402
 from .scenes import scene as scene_of  # noqa: E402
-from .selection import select_steady, window_means  # noqa: E402
+from .selection import Selection, select_steady, window_means  # noqa: E402
 from .study import energy_series, profiles, series  # noqa: E402
 
 
@@ -96,7 +96,7 @@ def vy_figure(rows, trajectories, path):
     plt.close(fig)
 
 
-def energy_figure(scene, points, path, resolution=1.0):
+def energy_figure(scene, points, path, selection=Selection()):
     """E(t) of each completed point. The frictional flow: one panel per k_n with every seed's
     E(t) averaged over windows of `resolution` (the series the selection sees), the selected
     steady parts drawn thick, the accepted energy range shaded."""
@@ -119,11 +119,12 @@ def energy_figure(scene, points, path, resolution=1.0):
         for ax in axes.flat[len(series_by_kn):]:
             ax.set_visible(False)
         for ax, (kn, runs) in zip(axes.flat, series_by_kn.items()):
-            ax.axhspan(0.4, 0.8, color="gray", alpha=0.12)
+            ax.axhspan(*selection.energy_range, color="gray", alpha=0.12)
             for energy in runs:
-                t, e, _ = window_means(energy["time"], energy["e_total"], resolution)
+                t, e, _ = window_means(energy["time"], energy["e_total"], selection.resolution)
                 line, = ax.plot(t, e, lw=0.5)
-                kept, _ = select_steady(t, e)
+                kept, _ = select_steady(t, e, selection.min_length, selection.max_width,
+                                        selection.energy_range)
                 for a, b in kept:
                     ax.plot(t[a:b], e[a:b], lw=1.6, color=line.get_color())
             ax.set_title(f"k_n = {kn:g} ({len(runs)} runs)", fontsize=9)
@@ -132,9 +133,10 @@ def energy_figure(scene, points, path, resolution=1.0):
         for ax in axes[-1]:
             ax.set_xlabel("time")
         for ax in axes[:, 0]:
-            ax.set_ylabel(f"E per disk (means over {resolution:g})")
+            ax.set_ylabel(f"E per disk (means over {selection.resolution:g})")
+        low, high = selection.energy_range
         fig.suptitle(f"{scene_of(scene).title}: E(t); thick: selected steady parts; grey band: "
-                     "[0.4, 0.8]", fontsize=10)
+                     f"[{low:g}, {high:g}]", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)

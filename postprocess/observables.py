@@ -1,9 +1,11 @@
 """Observables of one point (docs/model.md section 6) from its outputs, with block-average errors."""
+from dataclasses import replace
+
 import numpy as np
 
 from .io import DataError, read_counts, read_energy, read_params, read_stopped
 from .scenes import scene
-from .selection import select_at_resolution
+from .selection import Selection, select_at_resolution
 
 # The time resolutions (time units) at which the report counts the steady parts kept, so that
 # the reader sees what the choice of resolution does (docs/model.md section 5).
@@ -54,12 +56,14 @@ def averaging_rows(energy, params):
             (energy["window"] <= energy["time"] - params["average_start"] + slack))
 
 
-def kept_spans(point, resolutions=RESOLUTIONS):
-    """{resolution: number of steady parts the selection keeps} over a run's averaging span."""
+def kept_spans(point, selection, resolutions=RESOLUTIONS):
+    """{resolution: number of steady parts the selection, at that time resolution, keeps} over
+    a run's averaging span."""
     params = read_params(point)
     energy = read_energy(point, params)
     inside = averaging_rows(energy, params)
-    return {r: len(select_at_resolution(energy["time"][inside], energy["e_total"][inside], r)[0])
+    return {r: len(select_at_resolution(energy["time"][inside], energy["e_total"][inside],
+                                        replace(selection, resolution=r))[0])
             for r in resolutions}
 
 
@@ -80,11 +84,11 @@ def run_state(point):
     return ("flowing", None) if stopped_at is None else ("stopped", stopped_at)
 
 
-def point_observables(point, n_blocks=5, resolution=1.0):
+def point_observables(point, n_blocks=5, selection=Selection()):
     """E, N_c, N_w, t_c, t_w, the multiple-contact estimates and the direct fraction of time
     with two or more contacts, averaged over the point's averaging window (or, for the
-    frictional flow, over its steady parts selected at the given time resolution), each with a
-    block-average error."""
+    frictional flow, over its steady parts kept by the selection), each with a block-average
+    error."""
     params = read_params(point)
     energy = read_energy(point, params)
     counts = read_counts(point)
@@ -116,13 +120,15 @@ def point_observables(point, n_blocks=5, resolution=1.0):
         n_boundary = bottom_layer(counts)
     if what.selects_steady_parts:
         kept, found = select_at_resolution(energy["time"][first:], energy["e_total"][first:],
-                                           resolution)
+                                           selection)
         spans = [(a + first, b + first) for a, b in kept]
         if not spans:
             means = ", ".join(f"{energy['e_total'][a + first:b + first].mean():.3g}"
                               for a, b in found)
-            raise DataError(f"{point}: no steady part with mean energy in [0.4, 0.8] at "
-                            f"resolution {resolution:g} ({len(found)} steady parts found"
+            low, high = selection.energy_range
+            raise DataError(f"{point}: no steady part with mean energy in [{low:g}, {high:g}] "
+                            f"at resolution {selection.resolution:g} ({len(found)} steady parts "
+                            f"found"
                             f"{', mean E ' + means if found else ''}; "
                             f"{notes[0] if notes else 'flowing to the end'})")
         notes.append(f"{len(spans)} of {len(found)} steady parts selected")

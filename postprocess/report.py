@@ -9,6 +9,7 @@ from . import figures
 from .io import DataError, read_trajectory
 from .reference import evaluate
 from .scenes import scene as scene_of
+from .selection import Selection
 from .study import QUANTITIES, VARIANT_QUANTITIES, main_series, run_summary, variant_differences
 
 
@@ -33,7 +34,7 @@ def write_tables(scenes, out):
                 writer.writerow([o[k] for k in header] + [o["point"]])
 
 
-def make_figures(scenes, completed, out, resolution):
+def make_figures(scenes, completed, out, selection):
     """{scene: [(caption, file name)]}, and problems met. Time series and snapshots of every
     completed point; the stiffness dependences and profiles of the usable ones."""
     made, problems = {}, []
@@ -41,7 +42,7 @@ def make_figures(scenes, completed, out, resolution):
         items = made.setdefault(scene, [])
         rows = main_series(scenes.get(scene, []))
         jobs = [("kinetic energy against time", f"energy_{scene}.png",
-                 lambda p, s=scene, c=points: figures.energy_figure(s, c, p, resolution)),
+                 lambda p, s=scene, c=points: figures.energy_figure(s, c, p, selection)),
                 ("snapshot (stiffest point)", f"snapshot_{scene}.png",
                  lambda p, s=scene, c=points: figures.snapshot_figure(s, c[-1], p))]
         if rows:
@@ -66,7 +67,7 @@ def make_figures(scenes, completed, out, resolution):
     return made, problems
 
 
-def run_table(runs, resolution):
+def run_table(runs, selection):
     """Markdown lines: per kn, how the frictional runs ended and what the selection kept."""
     summary = run_summary(runs)
     if not summary:
@@ -74,7 +75,7 @@ def run_table(runs, resolution):
     resolutions = sorted(next(iter(summary.values()))["kept"])
     lines = [f"Runs per point: flowing to the end, stopped (the pile came to rest and the run "
              f"ended early; median time of the stop), selected (at least one steady part kept "
-             f"at resolution {resolution:g}), and the steady parts kept in all when E(t) is "
+             f"at resolution {selection.resolution:g}), and the steady parts kept in all when E(t) is "
              "averaged over windows of each resolution (time units):", "",
              "| k_n | other variables | runs | flowing | stopped (median t) | selected | " +
              " | ".join(f"parts kept at {r:g}" for r in resolutions) + " |",
@@ -113,10 +114,10 @@ def comparison_lines(results):
     return lines
 
 
-def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), resolution=1.0):
+def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection=Selection()):
     out.mkdir(parents=True, exist_ok=True)
     write_tables(scenes, out)
-    made, problems = make_figures(scenes, completed, out, resolution)
+    made, problems = make_figures(scenes, completed, out, selection)
     results = evaluate(scenes)
     with open(out / "comparison.csv", "w", newline="") as f:
         writer = csv.writer(f)
@@ -131,8 +132,7 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), resolutio
              f"Written {datetime.datetime.now():%Y-%m-%d %H:%M} by `python3 -m postprocess "
              f"report`. Errors are standard errors of block averages within each run "
              f"(5 blocks per averaging span), or across seeds where a point has several. "
-             f"Frictional steady parts selected on E(t) averaged over windows of "
-             f"{resolution:g}.", ""]
+             f"Frictional steady parts: {selection.describe()}.", ""]
     for scene in completed:
         rows = scenes.get(scene, [])
         what = scene_of(scene)
@@ -150,7 +150,7 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), resolutio
                                      "t_multiple")] + [f"{o['span']:g}", o["label"]]) + " |")
         notes = [f"k_n = {o['kn']:g}: {o['notes']}" for o in rows if o["notes"]]
         if what.selects_steady_parts:
-            lines += run_table(runs, resolution)
+            lines += run_table(runs, selection)
         lines += variant_lines(rows)
         if rows:
             notes += list(what.notes)

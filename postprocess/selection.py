@@ -1,7 +1,24 @@
 """The frictional flow's steady-state selection (docs/model.md section 5)."""
 from collections import deque
+from dataclasses import dataclass
 
 import numpy as np
+
+
+@dataclass(frozen=True)
+class Selection:
+    """The paper's rule and this project's reading of its time resolution: steady parts are
+    spans longer than min_length over which E(t), averaged over windows of `resolution`, stays
+    within max_width; those whose mean lies in energy_range are kept."""
+    resolution: float = 1.0
+    min_length: float = 500.0
+    max_width: float = 0.45
+    energy_range: tuple = (0.4, 0.8)
+
+    def describe(self):
+        return (f"spans > {self.min_length:g} narrower than {self.max_width:g} with mean E in "
+                f"[{self.energy_range[0]:g}, {self.energy_range[1]:g}], E(t) averaged over "
+                f"windows of {self.resolution:g}")
 
 
 def steady_spans(t, energy, min_length=500.0, max_width=0.45):
@@ -65,12 +82,12 @@ def window_means(t, energy, resolution):
     return t[starts], means, edges
 
 
-def select_at_resolution(t, energy, resolution=1.0, min_length=500.0, max_width=0.45,
-                         energy_range=(0.4, 0.8)):
-    """docs/model.md section 5's rule applied to the energy series averaged over windows of `resolution`
-    time units: (kept, found) as sample-index spans of the original series."""
-    tw, ew, edges = window_means(t, energy, resolution)
-    kept, found = select_steady(tw, ew, min_length, max_width, energy_range)
+def select_at_resolution(t, energy, selection=Selection()):
+    """The selection applied to the energy series averaged over windows of
+    selection.resolution: (kept, found) as sample-index spans of the original series."""
+    tw, ew, edges = window_means(t, energy, selection.resolution)
+    kept, found = select_steady(tw, ew, selection.min_length, selection.max_width,
+                                selection.energy_range)
 
     def samples(spans):
         return [(int(edges[a]), int(edges[b])) for a, b in spans]

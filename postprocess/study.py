@@ -6,6 +6,7 @@ import numpy as np
 
 from .io import DataError, read_energy, read_params, read_profile, read_trajectory
 from .scenes import SCENES
+from .selection import Selection
 from .observables import RESOLUTIONS, kept_spans, point_observables, run_state
 from .signals import dominant_period
 
@@ -13,11 +14,11 @@ QUANTITIES = ("E_trans", "E_rot", "E_total", "N_c", "N_w", "t_c", "t_w", "mc_c",
               "t_multiple")
 
 
-def analyse(sweep_dir, resolution=1.0):
+def analyse(sweep_dir, selection=Selection()):
     """{scene: [observables of each usable point, sorted by kn]}, [(point, reason) left out],
     {scene: [completed points]} (usable or not: their time series can still be shown), and
     [run records] of the frictional runs (how each ended, what the selection kept: run_record).
-    The frictional selection works on E(t) averaged over windows of `resolution`."""
+    `selection`: the frictional steady-part rule (docs/model.md section 5)."""
     sweep_dir = Path(sweep_dir)
     if not sweep_dir.is_dir():
         raise DataError(f"{sweep_dir}: no such sweep directory")
@@ -37,8 +38,8 @@ def analyse(sweep_dir, resolution=1.0):
         completed.setdefault(point.parent.name, []).append(point)
         try:
             if what.selects_steady_parts:
-                runs.append(run_record(point, resolution))
-            o = point_observables(point, resolution=resolution)
+                runs.append(run_record(point, selection))
+            o = point_observables(point, selection=selection)
             o["point"] = point
             o["variables"] = read_variables(point)
             if what.has_period:
@@ -69,16 +70,16 @@ def read_variables(point):
     return variables
 
 
-def run_record(point, resolution):
+def run_record(point, selection):
     """How one frictional run went: kn, seed, state ('flowing' to the end or 'stopped'), the
     stop time, the steady parts kept at each of RESOLUTIONS, and whether any is kept at the
     analysis resolution."""
     params = read_params(point)
     state, stopped_at = run_state(point)
-    kept = kept_spans(point, sorted(set(RESOLUTIONS) | {resolution}))
+    kept = kept_spans(point, selection, sorted(set(RESOLUTIONS) | {selection.resolution}))
     variables = read_variables(point)
     return {"point": point, "kn": params["kn"], "seed": params["seed"], "state": state,
-            "stopped_at": stopped_at, "kept": kept, "selected": kept[resolution] > 0,
+            "stopped_at": stopped_at, "kept": kept, "selected": kept[selection.resolution] > 0,
             "variables": variables}
 
 

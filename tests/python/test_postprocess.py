@@ -226,21 +226,21 @@ def test_window_means_average_consecutive_windows():
 
 
 def test_a_steady_flow_with_wide_instantaneous_noise_is_kept_at_resolution_1():
-    from postprocess.selection import select_at_resolution
+    from postprocess.selection import Selection, select_at_resolution
     t = np.arange(0, 1200, 0.1)
     e = 0.65 + RNG.uniform(-0.3, 0.3, len(t))          # samples spread 0.6 > 0.45
-    kept, _ = select_at_resolution(t, e, 0.1)
+    kept, _ = select_at_resolution(t, e, Selection(resolution=0.1))
     assert kept == []                                  # instantaneous samples: too wide
-    kept, found = select_at_resolution(t, e, 1.0)
+    kept, found = select_at_resolution(t, e, Selection(resolution=1.0))
     assert kept == found == [(0, len(t))]              # the 1-unit means: narrow, kept whole
 
 
 def test_a_drifting_mean_is_rejected_at_every_resolution():
-    from postprocess.selection import select_at_resolution
+    from postprocess.selection import Selection, select_at_resolution
     t = np.arange(0, 1200, 0.1)
     e = 0.3 + 0.0012 * t + RNG.uniform(-0.05, 0.05, len(t))   # 0.6 over any 500 time units
     for resolution in (0.1, 1.0, 5.0):
-        assert select_at_resolution(t, e, resolution)[0] == []
+        assert select_at_resolution(t, e, Selection(resolution=resolution))[0] == []
 
 
 # ---- runs that stop
@@ -350,11 +350,25 @@ def test_claims_are_evaluated_on_the_main_series_only():
     assert d == pytest.approx(5.0 - kn[0] ** 0.4)
 
 
-def test_a_resolution_that_is_not_positive_is_refused(tmp_path, capsys):
+@pytest.mark.parametrize("option,message", [
+    (["--resolution", "0"], "--resolution 0 must be > 0"),
+    (["--energy-range", "0.8", "0.4"], "--energy-range 0.8 0.4 must satisfy 0 <= LOW < HIGH"),
+])
+def test_selection_options_that_make_no_sense_are_refused(tmp_path, capsys, option, message):
     from postprocess.__main__ import main
     with pytest.raises(SystemExit) as stop:
-        main(["compare", str(tmp_path), "--resolution", "0"])
-    assert stop.value.code == 2 and "--resolution 0 must be > 0" in capsys.readouterr().err
+        main(["compare", str(tmp_path)] + option)
+    assert stop.value.code == 2 and message in capsys.readouterr().err
+
+
+def test_a_wider_energy_range_keeps_a_flow_the_papers_range_refuses(tmp_path):
+    from postprocess.selection import Selection
+    point = write_point(tmp_path, scene="frictional_flow", run_time=700.0, dt=0.01,
+                        average_start=100.0, e_level=0.95)
+    with pytest.raises(DataError, match=r"no steady part with mean energy in \[0.4, 0.8\]"):
+        point_observables(point)
+    o = point_observables(point, selection=Selection(energy_range=(0.3, 1.2)))
+    assert o["E_total"] == pytest.approx(0.95, abs=0.01)
 
 
 def test_run_summary_counts_flowing_stopped_and_selected():
