@@ -394,25 +394,24 @@ def test_compare_on_a_directory_without_points_is_an_error(tmp_path, capsys):
     assert "no sweep points here" in capsys.readouterr().err
 
 
-def test_a_point_of_an_unknown_scene_is_listed_not_dropped(tmp_path):
+def left_out_of_a_sweep(tmp_path, scene, point_json):
+    """What analyse leaves out of a sweep holding one completed synthetic point."""
     from postprocess.study import analyse
-    (tmp_path / "avalanche" / "p1").mkdir(parents=True)
-    point = write_point(tmp_path / "avalanche" / "p1")
-    (point / "point.json").write_text("{}")
+    (tmp_path / scene / "p1").mkdir(parents=True)
+    point = write_point(tmp_path / scene / "p1")
+    (point / "point.json").write_text(point_json)
     (point / "done.txt").write_text("done\n")
-    _, left_out, _, _ = analyse(tmp_path)
-    assert [(p, r) for p, r in left_out] == [(point, "unknown scene 'avalanche' (expected one "
-                                                     "of single_disk, collisional_flow, "
-                                                     "frictional_flow)")]
+    return point, analyse(tmp_path)[1]
+
+
+def test_a_point_of_an_unknown_scene_is_listed_not_dropped(tmp_path):
+    point, left_out = left_out_of_a_sweep(tmp_path, "avalanche", "{}")
+    assert left_out == [(point, "unknown scene 'avalanche' (expected one of single_disk, "
+                                "collisional_flow, frictional_flow)")]
 
 
 def test_a_broken_point_json_is_named(tmp_path):
-    from postprocess.study import analyse
-    (tmp_path / "collisional_flow" / "p1").mkdir(parents=True)
-    point = write_point(tmp_path / "collisional_flow" / "p1")
-    (point / "point.json").write_text("{kn: 5")
-    (point / "done.txt").write_text("done\n")
-    _, left_out, _, _ = analyse(tmp_path)
+    _, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow", "{kn: 5")
     assert "point.json: not valid JSON" in left_out[0][1]
 
 
