@@ -12,6 +12,8 @@
 #include "force.h"
 #include "update.h"
 
+#include "mn_contact.h"
+
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
@@ -73,11 +75,11 @@ void FixNVEAB2::initial_integrate(int)
       prev[HAS_PREVIOUS] = 1.0;
     }
     for (int k = 0; k < 2; k++) {
-      const double v_new = v[i][k] + dt * (1.5 * a[k] - 0.5 * prev[k]);
-      x[i][k] += 0.5 * dt * (v[i][k] + v_new);
+      const double v_new = mn::ab2_velocity(v[i][k], a[k], prev[k], dt);
+      x[i][k] = mn::trapezoidal_position(x[i][k], v[i][k], v_new, dt);
       v[i][k] = v_new;
     }
-    omega[i][2] += dt * (1.5 * a[2] - 0.5 * prev[ALPHA]);
+    omega[i][2] = mn::ab2_velocity(omega[i][2], a[2], prev[ALPHA], dt);
     for (int k = 0; k < 3; k++) prev[k] = a[k];
   }
 }

@@ -153,6 +153,19 @@ inline Force contact_force(const Law &law, double mass_scale, const Kinematics &
 // it, so one step is a 3x3 matrix on the integrator's state; the step is stable while that
 // matrix's spectral radius is at most 1.
 
+// The paper's scheme for one coordinate (docs/model.md section 4), used by fix nve/ab2 and by
+// the stability analysis alike: the new velocity by Adams-Bashforth 2 from this step's and
+// the previous step's accelerations, the new position by the trapezoidal rule.
+inline double ab2_velocity(double v, double a, double a_previous, double dt)
+{
+  return v + dt * (1.5 * a - 0.5 * a_previous);
+}
+
+inline double trapezoidal_position(double x, double v, double v_new, double dt)
+{
+  return x + 0.5 * dt * (v + v_new);
+}
+
 enum class Integrator {
   VelocityVerlet,   // LAMMPS's: the force at a step sees the half-step velocity
   AdamsBashforth2   // the paper's: AB2 for velocities, trapezoidal rule for positions
@@ -175,8 +188,8 @@ inline void step(Integrator integrator, double w2, double g, double dt, const do
   } else {
     // s = (x, v, a_prev); the acceleration at this step follows from (x, v).
     const double a = -w2 * s[0] - g * s[1];
-    const double v = s[1] + dt * (1.5 * a - 0.5 * s[2]);
-    out[0] = s[0] + 0.5 * dt * (s[1] + v);
+    const double v = ab2_velocity(s[1], a, s[2], dt);
+    out[0] = trapezoidal_position(s[0], s[1], v, dt);
     out[1] = v;
     out[2] = a;
   }
