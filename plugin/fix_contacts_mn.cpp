@@ -133,23 +133,25 @@ void FixContactsMN::pre_force(int)
   }
 }
 
-void FixContactsMN::pair_ended(int i, int j, bool boundary, const double *state, double vn,
-                               bool record)
+void FixContactsMN::pair_ended(int i, int j, bool boundary, const double *record, double vn,
+                               bool write_row)
 {
   const int *mask = atom->mask;
-  if (!rows_every || !record || !((mask[i] | mask[j]) & groupbit)) return;
+  if (!write_row || !((mask[i] | mask[j]) & groupbit)) return;
   // the mobile atom first against a bump, else the smaller ID first (v_n is the same either way)
   const tagint *tag = atom->tag;
   const bool swap = !boundary && tag[j] < tag[i];
-  add_row(tag[swap ? j : i], tag[swap ? i : j], boundary ? 2 : 1, state[PAIR_START],
-          state[PAIR_VN_START], vn, state[PAIR_PEAK]);
+  ended(record, tag[swap ? j : i], tag[swap ? i : j], boundary ? 2 : 1, vn);
 }
 
-void FixContactsMN::add_row(double tag_i, double tag_j, double kind, double start_time,
-                            double vn_start, double vn_end, double peak)
+// A completed contact's row: IDs, kind, start, duration, v_n in and out, peak overlap.
+void FixContactsMN::ended(const double *record, double tag_i, double tag_j, double kind,
+                          double vn_end)
 {
-  const double row[ROW_COLS] = {tag_i, tag_j, kind, start_time, now - start_time,
-                                vn_start, vn_end, peak};
+  if (!rows_every) return;
+  const double row[ROW_COLS] = {tag_i, tag_j, kind, record[RECORD_START],
+                                now - record[RECORD_START], record[RECORD_VN_START], vn_end,
+                                record[RECORD_PEAK]};
   rows.insert(rows.end(), row, row + ROW_COLS);
 }
 

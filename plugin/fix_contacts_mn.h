@@ -19,11 +19,11 @@ class FixContactsMN : public FixPerAtomState {
  public:
   // Columns of the per-atom array.
   enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, NCOLS };
-  // Per-pair state the pair style keeps in its neighbor history for this fix.
-  enum { PAIR_START, PAIR_VN_START, PAIR_PEAK, PAIR_STATE_SIZE };
-  // Per atom, wall fix and wall side, kept by the wall fix: touching, start time, v_n at
-  // start, peak overlap.
-  enum { WALL_SLOTS = 4 };
+  // What this fix keeps per contact, wherever the contact lives: in the pair style's neighbor
+  // history (RECORD_SIZE values) or in a wall fix's per-atom state (WALL_SLOTS per side: the
+  // record, then whether the atom touches that wall).
+  enum { RECORD_START, RECORD_VN_START, RECORD_PEAK, RECORD_SIZE };
+  enum { WALL_TOUCHING = RECORD_SIZE, WALL_SLOTS };
 
   FixContactsMN(class LAMMPS *, int, char **);
   ~FixContactsMN() override;
@@ -43,17 +43,19 @@ class FixContactsMN : public FixPerAtomState {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // Called by pair_style gran/mn for a pair in contact at this force evaluation. `state`
-  // is the pair's PAIR_STATE_SIZE history slots; `began` that the pair was not touching
-  // before; `tally_j`: j's share is counted here (owned, or newton on).
-  void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, double *state,
+  // The contact events, one path for pairs and walls. A contact's record lives with the
+  // contact (see RECORD_*); the style that owns it reports:
+  //   touching(record, began, ...)  at every force evaluation while in contact,
+  //   ended(record, ...)            at the first one after it ends (its row, if asked).
+  // pair_style gran/mn: a pair in contact; `tally_j`: j's share is counted here (owned, or
+  // newton on).
+  void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, double *record,
                      bool began, double delta, double vn, bool tally_j);
-  // Called by pair_style gran/mn when a pair stops touching; `record`: this process
-  // writes the contact's row (avoids duplicates of pairs stored on two processes).
-  // i is the mobile atom when one of the two is a boundary element.
-  void pair_ended(int i, int j, bool boundary, const double *state, double vn, bool record);
-  // Called by fix wall/gran/mn for every atom of its group and wall side; w is that atom's
-  // WALL_SLOTS for this wall fix and side.
+  // pair_style gran/mn: a pair stopped touching; `write_row`: this process writes its row
+  // (a pair stored on two processes has one row). i is the mobile atom against a bump.
+  void pair_ended(int i, int j, bool boundary, const double *record, double vn, bool write_row);
+  // fix wall/gran/mn, for every atom of its group and wall side; `w` is that atom's
+  // WALL_SLOTS for the wall fix and side.
   void wall_state(int i, double *w, bool touching, double delta, double vn);
 
  private:
@@ -76,25 +78,30 @@ class FixContactsMN : public FixPerAtomState {
   bigint vector_step;
 
   void advance_clock();
-  void add_row(double tag_i, double tag_j, double kind, double start_time, double vn_start,
-               double vn_end, double peak);
+  void touching(double *record, bool began, double delta, double vn);
+  void ended(const double *record, double tag_i, double tag_j, double kind, double vn_end);
   void collect(bool accumulate_time);
   void grow_step_arrays();
   void publish_rows();
 };
 
 // Inline: called for every contact (and every atom near a wall) at every step.
-inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary,
-                                  double *state, bool began, double delta, double vn,
-                                  bool tally_j)
+inline void FixContactsMN::touching(double *record, bool began, double delta, double vn)
 {
   if (began) {
-    state[PAIR_START] = now;
-    state[PAIR_VN_START] = vn;
-    state[PAIR_PEAK] = delta;
-  } else if (delta > state[PAIR_PEAK]) {
-    state[PAIR_PEAK] = delta;
+    record[RECORD_START] = now;
+    record[RECORD_VN_START] = vn;
+    record[RECORD_PEAK] = delta;
+  } else if (delta > record[RECORD_PEAK]) {
+    record[RECORD_PEAK] = delta;
   }
+}
+
+inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary,
+                                         double *record, bool began, double delta, double vn,
+                                         bool tally_j)
+{
+  touching(record, began, delta, vn);
   (j_is_boundary ? step_boundary : step_particle)[i] += 1.0;
   if (began) (j_is_boundary ? begun_boundary : begun_particle)[i] += 1.0;
   if (tally_j) {
@@ -103,23 +110,18 @@ inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool 
   }
 }
 
-inline void FixContactsMN::wall_state(int i, double *w, bool touching, double delta, double vn)
+inline void FixContactsMN::wall_state(int i, double *w, bool in_contact, double delta, double vn)
 {
-  if (touching) {
-    if (w[0] == 0.0) {
-      w[0] = 1.0;
-      w[1] = now;
-      w[2] = vn;
-      w[3] = delta;
-      // owned atom: counted directly, so that the order of fix setups does not matter
-      if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
-    } else if (delta > w[3]) {
-      w[3] = delta;
-    }
+  if (in_contact) {
+    const bool began = w[WALL_TOUCHING] == 0.0;
+    touching(w, began, delta, vn);
+    w[WALL_TOUCHING] = 1.0;
+    // owned atom: counted directly, so that the order of fix setups does not matter
+    if (began && (atom->mask[i] & groupbit)) state[i][BEGUN_BOUNDARY] += 1.0;
     step_boundary[i] += 1.0;
-  } else if (w[0] != 0.0) {
-    w[0] = 0.0;
-    if (rows_every && (atom->mask[i] & groupbit)) add_row(atom->tag[i], 0, 2, w[1], w[2], vn, w[3]);
+  } else if (w[WALL_TOUCHING] != 0.0) {
+    w[WALL_TOUCHING] = 0.0;
+    if (atom->mask[i] & groupbit) ended(w, atom->tag[i], 0, 2, vn);
   }
 }
 

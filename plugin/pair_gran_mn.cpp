@@ -30,7 +30,7 @@
 using namespace LAMMPS_NS;
 
 PairGranMN::PairGranMN(LAMMPS *lmp) :
-    Pair(lmp), history(0), size_history(0), counter_offset(0), restart_history_size(-1),
+    Pair(lmp), history(0), size_history(0), restart_history_size(-1),
     counters(nullptr),
     law_reported(false), force_per_mass_acceleration(1.0), max_radius(nullptr),
     fix_history(nullptr)
@@ -120,7 +120,6 @@ void PairGranMN::compute(int eflag, int vflag)
   int **firstneigh = list->firstneigh;
   int **firsttouch = history ? fix_history->firstflag : nullptr;
   double **firstslots = history ? fix_history->firstvalue : nullptr;
-  const bool friction = law.mu > 0.0;
   const int *type = atom->type;
   const tagint *tag = atom->tag;
 
@@ -142,7 +141,7 @@ void PairGranMN::compute(int eflag, int vflag)
 
       if (rsq >= radsum * radsum) {
         if (history) {
-          if (counters && touch[jj]) report_end(i, j, dx, dy, rsq, slots + counter_offset, tag);
+          if (counters && touch[jj]) report_end(i, j, dx, dy, rsq, slots + layout.record, tag);
           touch[jj] = 0;
           for (int k = 0; k < size_history; k++) slots[k] = 0.0;
         }
@@ -158,10 +157,10 @@ void PairGranMN::compute(int eflag, int vflag)
                          radi * omega[i][2] + radius[j] * omega[j][2]);
       if (counters)
         counters->pair_touching(i, j, is_wall_type[type[j]], is_wall_type[type[i]],
-                                slots + counter_offset, !touch[jj], kin.delta, kin.vn,
+                                slots + layout.record, !touch[jj], kin.delta, kin.vn,
                                 newton_pair || j < nlocal);
       if (history) touch[jj] = 1;
-      double *ut = friction ? slots : nullptr;
+      double *ut = layout.ut >= 0 ? slots + layout.ut : nullptr;
       const mn::Force fc = mn::contact_force(law, mass_scale(i, j), kin, ut, dt_history);
 
       const double fx = fc.fn * kin.nx - fc.ft * kin.ny;
@@ -315,11 +314,16 @@ void PairGranMN::init_style()
   granmn::check_timestep(lmp, "pair_style gran/mn", dt, dt_max, law.tau_c, integrator,
                          mn::amplifies_undamped_mode(law, integrator));
 
-  // The history holds u_t when there is friction and the counters' per-pair state if asked.
+  // The per-contact history: u_t when there is friction, then the counters' record if asked.
   const int icounters = modify->find_fix_by_style("^contacts/mn");
   counters = icounters >= 0 ? (FixContactsMN *) modify->fix[icounters] : nullptr;
-  counter_offset = material.mu > 0.0 ? 1 : 0;
-  const int needed = counter_offset + (counters ? (int) FixContactsMN::PAIR_STATE_SIZE : 0);
+  layout = HistoryLayout();
+  if (material.mu > 0.0) layout.ut = layout.size++;
+  if (counters) {
+    layout.record = layout.size;
+    layout.size += FixContactsMN::RECORD_SIZE;
+  }
+  const int needed = layout.size;
   if (fix_history && needed != size_history)
     error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
                       "mu or fix contacts/mn; define fix contacts/mn and mu before the first run");
@@ -470,12 +474,12 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
       atom->radius[i] * omega[i][2] + atom->radius[j] * omega[j][2]);
 
   double ut = 0.0;
-  if (law.mu > 0.0 && history) {
+  if (layout.ut >= 0) {
     const int jnum = list->numneigh[i];
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < jnum; jj++)
       if ((jlist[jj] & NEIGHMASK) == j) {
-        ut = fix_history->firstvalue[i][size_history * jj];
+        ut = fix_history->firstvalue[i][size_history * jj + layout.ut];
         break;
       }
   }

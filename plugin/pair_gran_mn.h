@@ -44,8 +44,12 @@ class PairGranMN : public Pair {
   std::vector<int> wall_types;       // types of immobile boundary elements (bumps)
   std::vector<char> is_wall_type;    // per type, 1..ntypes
   int history;                       // 1: per-pair history kept
-  int size_history;                  // u_t (mu > 0), then the counters' state (if any)
-  int counter_offset;                // where the counters' state starts in a pair's history
+  int size_history;                  // values per contact in the neighbor history
+  // Where each part of a contact's history sits (-1: not kept): u_t (mu > 0), then fix
+  // contacts/mn's record (if defined).
+  struct HistoryLayout {
+    int ut = -1, record = -1, size = 0;
+  } layout;
   int restart_history_size;          // per-pair history size in the restart read, -1 if none
   class FixContactsMN *counters;     // nullptr unless fix contacts/mn is defined
   std::vector<std::pair<int, int>> excluded_types;    // type pairs this style excluded
