@@ -73,7 +73,7 @@ def run_table(runs, selection):
     if not summary:
         return []
     resolutions = sorted(next(iter(summary.values()))["kept"])
-    lines = [f"Runs per point: flowing to the end, stopped (the pile came to rest and the run "
+    lines = [f"Runs per point (each run: `runs.csv`): flowing to the end, stopped (the pile came to rest and the run "
              f"ended early; median time of the stop), selected (at least one steady part kept "
              f"at resolution {selection.resolution:g}), and the steady parts kept in all when E(t) is "
              "averaged over windows of each resolution (time units):", "",
@@ -104,6 +104,19 @@ def variant_lines(rows):
     return lines + [""]
 
 
+def write_runs(runs, path):
+    """One row per run that the selection looked at: how it ended, what was kept."""
+    resolutions = sorted(runs[0]["kept"])
+    with open(path, "w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(["kn", "seed", "variables", "state", "stopped_at", "selected"] +
+                        [f"kept_at_{r:g}" for r in resolutions] + ["point"])
+        for r in sorted(runs, key=lambda r: (r["kn"], r["label"], r["seed"])):
+            writer.writerow([r["kn"], int(r["seed"]), r["label"], r["state"],
+                             "" if r["stopped_at"] is None else r["stopped_at"], r["selected"]] +
+                            [r["kept"][k] for k in resolutions] + [r["point"]])
+
+
 def comparison_lines(results):
     lines = ["| claim | quantity | k_n range | measured | accepted range | status | source |",
              "|---|---|---|---|---|---|---|"]
@@ -118,6 +131,8 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
     out.mkdir(parents=True, exist_ok=True)
     write_tables(scenes, out)
     made, problems = make_figures(scenes, completed, out, selection)
+    if runs:
+        write_runs(runs, out / "runs.csv")
     results = evaluate(scenes)
     with open(out / "comparison.csv", "w", newline="") as f:
         writer = csv.writer(f)
