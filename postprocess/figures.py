@@ -12,15 +12,16 @@ from .study import energy_series, profiles, series  # noqa: E402
 
 
 
-def _errorbar(ax, kn, quantity, rows, label, x=None):
+def _errorbar(ax, kn, quantity, rows, label, x=None, **style):
     k, v, e = series(rows, quantity)
-    ax.errorbar(k if x is None else x(k), v, yerr=np.nan_to_num(e), marker="o", ms=4,
-                capsize=2, label=label)
+    style = {"marker": "o", "ms": 4, "capsize": 2, **style}
+    ax.errorbar(k if x is None else x(k), v, yerr=np.nan_to_num(e), label=label, **style)
 
 
-def stiffness(scene, rows, path):
+def stiffness(scene, rows, path, variants=()):
     """(a) E against 1/kn, (b) collision rates, (c) contact-time fractions, (d) multiple-contact
-    estimates, against kn, with block-average error bars."""
+    estimates, against kn, with block-average error bars; the variants' points (other labels
+    than the main series) as open markers in (a), (b) and (d)."""
     fig, axes = plt.subplots(2, 2, figsize=(10, 8))
     a, b, c, d = axes.flat
     inverse = lambda k: 1.0 / k
@@ -49,8 +50,13 @@ def stiffness(scene, rows, path):
     d.axhline(0, color="gray", lw=0.5)
     d.set(xscale="log", xlabel="k_n", ylabel="fraction of time",
           title="(d) multiple-contact estimates")
+    for label, points in variants:
+        style = dict(mfc="none", ls=":", color="gray", marker="s")
+        _errorbar(a, None, "E_total", points, f"E ({label})", x=inverse, **style)
+        _errorbar(b, None, "N_c", points, f"N_c ({label})", **style)
+        _errorbar(d, None, "mc_c", points, f"t_c - N_c tau_c ({label})", **style)
     for ax in axes.flat:
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=7)
         ax.grid(alpha=0.3, which="both")
     fig.suptitle(f"{what.title}: stiffness dependence")
     fig.tight_layout()

@@ -41,13 +41,16 @@ def make_figures(scenes, completed, out, selection):
     for scene, points in completed.items():
         items = made.setdefault(scene, [])
         rows = main_series(scenes.get(scene, []))
+        others = [o for o in scenes.get(scene, []) if rows and o["label"] != rows[0]["label"]]
+        variants = [(label, [o for o in others if o["label"] == label])
+                    for label in sorted({o["label"] for o in others})]
         jobs = [("kinetic energy against time", f"energy_{scene}.png",
                  lambda p, s=scene, c=points: figures.energy_figure(s, c, p, selection)),
                 ("snapshot (stiffest point)", f"snapshot_{scene}.png",
                  lambda p, s=scene, c=points: figures.snapshot_figure(s, c[-1], p))]
         if rows:
             jobs += [("stiffness dependence", f"stiffness_{scene}.png",
-                      lambda p, s=scene, r=rows: figures.stiffness(s, r, p)),
+                      lambda p, s=scene, r=rows, v=variants: figures.stiffness(s, r, p, v)),
                      ("profiles", f"profiles_{scene}.png",
                       lambda p, s=scene, r=rows: figures.profile_figure(s, r, p))]
         if scene_of(scene).has_period and rows:
