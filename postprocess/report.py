@@ -166,7 +166,8 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
                 [f"{o['kn']:g}"] + [fmt(o[q], o[q + "_err"]) for q in
                                     ("E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w",
                                      "t_multiple")] + [f"{o['span']:g}", o["label"]]) + " |")
-        notes = [f"k_n = {o['kn']:g}: {o['notes']}" for o in rows if o["notes"]]
+        notes = [f"k_n = {o['kn']:g}{' (' + o['label'] + ')' if o['label'] else ''}: {o['notes']}"
+                 for o in rows if o["notes"]]
         if what.selects_steady_parts:
             lines += run_table(runs, selection)
         lines += variant_lines(rows)

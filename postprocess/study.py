@@ -126,7 +126,10 @@ def combine_seeds(rows):
                 o[q + "_err"] = float(np.sqrt(n / (n - 1) * np.sum(weights ** 2 *
                                                                   (values - o[q]) ** 2)))
             o["span"] = sum(m["span"] for m in members)
-            o["notes"] = f"{len(members)} seeds; " + "; ".join(m["notes"] for m in members if m["notes"])
+            said = [m["notes"] for m in members if m["notes"]]
+            o["notes"] = f"{len(members)} seeds" + "".join(
+                f"; {note}" + (f" (x{said.count(note)})" if said.count(note) > 1 else "")
+                for note in sorted(set(said), key=said.index))
         o["label"] = label(members[0]["variables"], varying)
         combined.append(o)
     combined.sort(key=lambda o: (o["kn"], o["label"]))
