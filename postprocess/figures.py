@@ -120,7 +120,7 @@ def energy_figure(scene, points, path, selection=Selection()):
     else:
         columns = min(3, len(series_by_kn))
         rows = -(-len(series_by_kn) // columns)
-        fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 2.6 * rows),
+        fig, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 2.2 * rows),
                                  sharex=True, sharey=True, squeeze=False)
         for ax in axes.flat[len(series_by_kn):]:
             ax.set_visible(False)
@@ -128,7 +128,7 @@ def energy_figure(scene, points, path, selection=Selection()):
             ax.axhspan(*selection.energy_range, color="gray", alpha=0.12)
             for energy in runs:
                 t, e, _ = window_means(energy["time"], energy["e_total"], selection.resolution)
-                line, = ax.plot(t, e, lw=0.5)
+                line, = ax.plot(t, e, lw=0.4)
                 kept, _ = select_steady(t, e, selection.min_length, selection.max_width,
                                         selection.energy_range)
                 for a, b in kept:
@@ -144,7 +144,7 @@ def energy_figure(scene, points, path, selection=Selection()):
         fig.suptitle(f"{scene_of(scene).title}: E(t); thick: selected steady parts; grey band: "
                      f"[{low:g}, {high:g}]", fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=100)
+    fig.savefig(path, dpi=80 if scene_of(scene).selects_steady_parts else 100)
     plt.close(fig)
 
 

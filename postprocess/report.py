@@ -10,7 +10,8 @@ from .io import DataError, read_trajectory
 from .reference import evaluate
 from .scenes import scene as scene_of
 from .selection import Selection
-from .study import QUANTITIES, VARIANT_QUANTITIES, main_series, run_summary, variant_differences
+from .study import (QUANTITIES, VARIANT_QUANTITIES, main_series, read_variables, run_summary,
+                    same_series, variant_differences)
 
 
 def fmt(value, error=None):
@@ -44,8 +45,11 @@ def make_figures(scenes, completed, out, selection):
         others = [o for o in scenes.get(scene, []) if rows and o["label"] != rows[0]["label"]]
         variants = [(label, [o for o in others if o["label"] == label])
                     for label in sorted({o["label"] for o in others})]
-        jobs = [("kinetic energy against time", f"energy_{scene}.png",
-                 lambda p, s=scene, c=points: figures.energy_figure(s, c, p, selection)),
+        # the time series of the main series' runs (all runs if none is usable)
+        series_points = [p for p in points if not rows or
+                         same_series(read_variables(p), rows[0]["variables"])]
+        jobs = [("kinetic energy against time (main series)", f"energy_{scene}.png",
+                 lambda p, s=scene, c=series_points: figures.energy_figure(s, c, p, selection)),
                 ("snapshot (stiffest point)", f"snapshot_{scene}.png",
                  lambda p, s=scene, c=points: figures.snapshot_figure(s, c[-1], p))]
         if rows:

@@ -136,6 +136,13 @@ def combine_seeds(rows):
     return combined
 
 
+def same_series(a, b):
+    """Two points' variables differ at most in kn and seed."""
+    ignore = ("kn", "seed")
+    return ({k: v for k, v in a.items() if k not in ignore} ==
+            {k: v for k, v in b.items() if k not in ignore})
+
+
 def label(variables, varying):
     """A point's variables other than seed and kn that vary among its scene's points
     (`varying`), as text: what tells it apart from its neighbours."""
