@@ -130,6 +130,8 @@ BAD_VARIABLES = {
     "seed not an integer": (dict(seed=1.5), "seed = 1.5 must be a positive integer"),
     "unknown tangential law": (dict(tangential="sticky"),
                                "deck variable tangential = sticky must be literal or cutback"),
+    "snapshots too far apart": (dict(snapshot_interval=1e9),
+                                "snapshot_interval = 1000000000.0 is more than 2^31 - 1 steps"),
 }
 
 
