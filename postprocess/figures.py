@@ -50,13 +50,16 @@ def stiffness(scene, rows, path, variants=()):
     d.axhline(0, color="gray", lw=0.5)
     d.set(xscale="log", xlabel="k_n", ylabel="fraction of time",
           title="(d) multiple-contact estimates")
-    for label, points in variants:
-        style = dict(mfc="none", ls=":", color="gray", marker="s")
+    looks = [("s", "dimgray"), ("^", "purple"), ("D", "olive"), ("v", "teal")]
+    # the variants' particle contacts, or their boundary contacts where there are no others
+    rate, multiple = (("N_c", "mc_c") if any(o["N_c"] > 0 for o in rows) else ("N_w", "mc_w"))
+    for (label, points), (marker, color) in zip(variants, looks * len(variants)):
+        style = dict(mfc="none", ls=":", color=color, marker=marker)
         _errorbar(a, None, "E_total", points, f"E ({label})", x=inverse, **style)
-        _errorbar(b, None, "N_c", points, f"N_c ({label})", **style)
-        _errorbar(d, None, "mc_c", points, f"t_c - N_c tau_c ({label})", **style)
+        _errorbar(b, None, rate, points, f"{rate} ({label})", **style)
+        _errorbar(d, None, multiple, points, f"{multiple} ({label})", **style)
     for ax in axes.flat:
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=6 if variants else 8)
         ax.grid(alpha=0.3, which="both")
     fig.suptitle(f"{what.title}: stiffness dependence")
     fig.tight_layout()
