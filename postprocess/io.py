@@ -12,8 +12,10 @@ class DataError(Exception):
 # the columns of energy.txt the analysis uses
 ENERGY_COLUMNS = ("step", "e_trans", "e_rot", "e_total", "begun_disk", "begun_boundary",
                   "time_disk", "time_boundary", "time_multiple", "contacts_now", "window")
-COUNT_COLUMNS = ("id", "diameter", "begun_disk", "begun_boundary", "time_disk",
-                 "time_boundary", "time_multiple", "contacts_now")
+# counts.txt's header names the per-atom columns of fix contacts/mn by number (f_c[1] ...);
+# their meaning is the fix's documented column order (docs/fix_contacts_mn.rst)
+COUNTER_COLUMNS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary",
+                   "time_multiple", "contacts_now")
 ROW_COLUMNS = ("id_i", "id_j", "kind", "start", "duration", "vn_start", "vn_end", "peak")
 
 
@@ -105,8 +107,9 @@ def read_energy(point, params):
     return table
 
 
-def read_dump_atoms(path, columns):
-    """The single snapshot of a LAMMPS text dump (write_dump) with the given columns."""
+def read_dump_atoms(path, needed):
+    """The single snapshot of a LAMMPS text dump (write_dump), its columns named by its own
+    header; every name in `needed` must be there."""
     path = Path(path)
     if not path.exists():
         raise DataError(f"{path}: missing")
@@ -116,9 +119,11 @@ def read_dump_atoms(path, columns):
         count = int(lines[lines.index("ITEM: NUMBER OF ATOMS") + 1])
     except (StopIteration, ValueError, IndexError):
         raise DataError(f"{path}: not a LAMMPS dump snapshot")
-    header = lines[start].split()[2:]
-    if len(header) != len(columns):
-        raise DataError(f"{path}: columns {header}, expected {len(columns)}")
+    columns = lines[start].split()[2:]
+    missing = [n for n in needed if n not in columns]
+    if missing:
+        raise DataError(f"{path}: the header {' '.join(columns)} names no column "
+                        f"{', '.join(missing)}")
     body = lines[start + 1:]
     if len(body) != count:
         raise DataError(f"{path}: {len(body)} atoms, the header says {count}: truncated?")
@@ -133,7 +138,10 @@ def read_dump_atoms(path, columns):
 
 
 def read_counts(point):
-    return read_dump_atoms(Path(point) / "counts.txt", COUNT_COLUMNS)
+    """counts.txt: id, diameter and the counters of fix contacts/mn per disk, by name."""
+    fix_columns = {f"f_c[{k}]": name for k, name in enumerate(COUNTER_COLUMNS, 1)}
+    table = read_dump_atoms(Path(point) / "counts.txt", ("id", "diameter", *fix_columns))
+    return {fix_columns.get(name, name): values for name, values in table.items()}
 
 
 def read_profile(point):

@@ -130,6 +130,7 @@ def test_frictional_point_outside_the_energy_range_is_refused(tmp_path):
 @pytest.mark.parametrize("damage,message", [
     ("truncate", "columns, expected 11"),
     ("header", "the header names no column time_multiple"),
+    ("counts header", "names no column f_c\\[3\\]"),
     ("no params", "params.txt: missing"),
     ("short run", "before run_time"),
     ("counts", "atoms, the header says"),
@@ -140,6 +141,9 @@ def test_broken_outputs_name_the_file_and_the_problem(tmp_path, damage, message)
     point = write_point(tmp_path, truncate=(damage == "truncate"))
     if damage == "no params":
         (point / "params.txt").unlink()
+    if damage == "counts header":
+        text = (point / "counts.txt").read_text()
+        (point / "counts.txt").write_text(text.replace("f_c[3]", "f_c[9]"))
     if damage == "header":
         text = (point / "energy.txt").read_text()
         (point / "energy.txt").write_text(text.replace(" time_multiple", " t_multiple"))
