@@ -23,6 +23,7 @@ import time
 from pathlib import Path
 
 from equivalent_laws import LIGGGHTS_FLOOR, hooke_history_contacts, liggghts_contacts
+from postprocess.law import derived    # bench/postprocess links the package
 
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = ROOT / "build"
@@ -34,9 +35,7 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 
 
 def law():
-    out = subprocess.run([str(MN_LAW), str(KN), str(E), str(BETA)], capture_output=True,
-                         text=True, check=True).stdout
-    return {k: float(v) for k, v in (line.split() for line in out.splitlines())}
+    return derived(MN_LAW, KN, E, BETA)
 
 
 def data_file(path, side):

@@ -21,9 +21,9 @@ from pathlib import Path
 
 import numpy as np
 
+from postprocess.study import analyse, fit_power    # scripts/postprocess links the package
+
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-from postprocess.study import analyse, fit_power  # noqa: E402
 
 LMP = ROOT / "build" / "lammps" / "lmp"
 PLUGIN = ROOT / "build" / "plugin" / "granmnplugin.so"

@@ -41,6 +41,8 @@ import tomllib
 from itertools import product
 from pathlib import Path
 
+from postprocess.law import LawError, derived    # scripts/postprocess links the package
+
 ROOT = Path(__file__).resolve().parent.parent
 # The scenes are the decks that name themselves (`variable scene index NAME`).
 SCENES = tuple(sorted(deck.stem for deck in (ROOT / "inputs").glob("*.lmp")
@@ -153,11 +155,10 @@ def deck_default(scene, name):
 
 
 def law(mn_law, kn, e, beta):
-    out = subprocess.run([str(mn_law), str(kn), str(e), str(beta)], capture_output=True,
-                         text=True)
-    if out.returncode != 0:
-        raise SweepError(f"kn {kn} e {e} beta {beta}: {out.stderr.strip()}")
-    return {k: float(v) for k, v in (line.split() for line in out.stdout.splitlines())}
+    try:
+        return derived(mn_law, kn, e, beta)
+    except LawError as error:
+        raise SweepError(str(error))
 
 
 def predicted_steps(point, mn_law):

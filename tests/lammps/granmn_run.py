@@ -9,6 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
+from postprocess.law import derived
+
 LMP = os.environ.get("GRANMN_LMP", "lmp")
 PLUGIN = os.environ.get("GRANMN_PLUGIN", "granmnplugin.so")
 MPIEXEC = os.environ.get("GRANMN_MPIEXEC", "mpirun")
@@ -95,12 +97,10 @@ def run_lammps(deck, workdir, nprocs=1, header=True, check=True):
 
 
 def law(kn, e, beta):
-    """The coefficients of docs/model.md section 3 as the header derives them (build/plugin/mn-law, next
-    to the plugin): one copy of the mapping, checked against its definitions by the unit tests."""
-    tool = Path(PLUGIN).resolve().parent / "mn-law"
-    out = subprocess.run([str(tool), repr(kn), repr(e), repr(beta)], capture_output=True,
-                         text=True, check=True).stdout
-    return {name: float(value) for name, value in (line.split() for line in out.splitlines())}
+    """The coefficients of docs/model.md section 3 as the header derives them (build/plugin/mn-law,
+    next to the plugin): one copy of the mapping, checked against its definitions by the unit
+    tests."""
+    return derived(Path(PLUGIN).resolve().parent / "mn-law", kn, e, beta)
 
 
 def restitution_error_bound(e, dt_over_tau):
