@@ -1,6 +1,7 @@
 #include "fix_per_atom_state.h"
 
 #include "atom.h"
+#include "error.h"
 #include "memory.h"
 
 using namespace LAMMPS_NS;
@@ -9,6 +10,7 @@ void FixPerAtomState::allocate_state(int columns)
 {
   ncols = columns;
   restart_peratom = 1;
+  wd_header = 1;    // only to say, when write_data runs, that the state is not in the file
   create_attribute = 1;
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -30,6 +32,16 @@ void FixPerAtomState::widen_state(int columns)
   memory->destroy(state);
   state = wider;
   ncols = columns;
+}
+
+// Called by write_data (on its writing process): writes nothing, warns that the per-atom state
+// (contact history, previous accelerations) will not come back from the data file.
+void FixPerAtomState::write_data_header(FILE *, int)
+{
+  error->warning(FLERR,
+                 "write_data does not carry the per-atom state of fix {} ({}): a run from "
+                 "read_data starts it afresh; use write_restart to continue exactly",
+                 id, style);
 }
 
 FixPerAtomState::~FixPerAtomState()

@@ -25,6 +25,7 @@ class FixPerAtomState : public Fix {
   void unpack_restart(int, int) override;
   int size_restart(int) override;
   int maxsize_restart() override;
+  void write_data_header(FILE *, int) override;
 
  protected:
   double **state = nullptr;    // ncols per atom, zero for new atoms

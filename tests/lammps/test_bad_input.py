@@ -128,3 +128,11 @@ def test_elastic_collisions_under_the_papers_integrator_run_at_its_step(tmp_path
                           fix="unfix integrate\nfix integrate all nve/ab2"), tmp_path,
                      header=False)
     assert "slowly amplifies an undamped contact mode" in run.output
+
+
+def test_write_data_warns_that_the_state_of_the_fixes_is_not_in_the_file(tmp_path):
+    """A data file holds positions and velocities, not fix nve/ab2's previous accelerations nor
+    the walls' u_t: a run from read_data starts them afresh. write_data says so."""
+    run = run_lammps(deck(fix="unfix integrate\nfix integrate all nve/ab2") +
+                     "write_data state.data\n", tmp_path, header=False)
+    assert "write_data does not carry the per-atom state of fix integrate (nve/ab2)" in run.output
