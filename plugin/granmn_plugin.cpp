@@ -7,6 +7,7 @@
 #include "version.h"
 
 #include "fix_contacts_mn.h"
+#include "fix_per_atom_state.h"
 #include "fix_nve_ab2.h"
 #include "fix_wall_gran_mn.h"
 #include "pair_gran_mn.h"
@@ -18,19 +19,9 @@ static Pair *pair_gran_mn_creator(LAMMPS *lmp)
   return new PairGranMN(lmp);
 }
 
-static Fix *fix_contacts_mn_creator(LAMMPS *lmp, int argc, char **argv)
+template <class FixStyle> static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 {
-  return new FixContactsMN(lmp, argc, argv);
-}
-
-static Fix *fix_nve_ab2_creator(LAMMPS *lmp, int argc, char **argv)
-{
-  return new FixNVEAB2(lmp, argc, argv);
-}
-
-static Fix *fix_wall_gran_mn_creator(LAMMPS *lmp, int argc, char **argv)
-{
-  return new FixWallGranMN(lmp, argc, argv);
+  return new FixStyle(lmp, argc, argv);
 }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
@@ -48,18 +39,22 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "fix";
-  plugin.name = "wall/gran/mn";
-  plugin.info = "Flat walls with the Mitarai-Nakanishi boundary contact law";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_wall_gran_mn_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.name = "contacts/mn";
-  plugin.info = "Per-contact counters for the gran/mn styles";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_contacts_mn_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.name = "nve/ab2";
-  plugin.info = "Adams-Bashforth 2 / trapezoidal integrator for disks (Mitarai-Nakanishi)";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_nve_ab2_creator;
-  (*register_plugin)(&plugin, lmp);
+  const struct {
+    const char *name, *info;
+    lammpsplugin_factory2 *creator;
+  } fixes[] = {
+      {"wall/gran/mn", "Flat walls with the Mitarai-Nakanishi boundary contact law",
+       (lammpsplugin_factory2 *) &fix_creator<FixWallGranMN>},
+      {"contacts/mn", "Per-contact counters for the gran/mn styles",
+       (lammpsplugin_factory2 *) &fix_creator<FixContactsMN>},
+      {"nve/ab2", "Adams-Bashforth 2 / trapezoidal integrator for disks (Mitarai-Nakanishi)",
+       (lammpsplugin_factory2 *) &fix_creator<FixNVEAB2>},
+      {"GRANMN/ATOM_IDS", "internal to pair_style gran/mn: each atom's ID, carried with it",
+       (lammpsplugin_factory2 *) &fix_creator<FixAtomIDs>}};
+  for (const auto &fix : fixes) {
+    plugin.name = fix.name;
+    plugin.info = fix.info;
+    plugin.creator.v2 = fix.creator;
+    (*register_plugin)(&plugin, lmp);
+  }
 }

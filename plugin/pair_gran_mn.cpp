@@ -12,6 +12,7 @@
 #include "error.h"
 #include "fix_contacts_mn.h"
 #include "fix_dummy.h"
+#include "fix_per_atom_state.h"
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "granmn_glue.h"
@@ -54,6 +55,8 @@ PairGranMN::PairGranMN(LAMMPS *lmp) :
 
 PairGranMN::~PairGranMN()
 {
+  if (modify->find_fix("GRANMN_ATOM_IDS" + std::to_string(instance_me)) >= 0)
+    modify->delete_fix("GRANMN_ATOM_IDS" + std::to_string(instance_me));
   // replaced by another pair style: the former wall types interact again (at exit the
   // neighbor class is already gone)
   if (neighbor) remove_exclusions();
@@ -339,6 +342,17 @@ void PairGranMN::init_style()
   int irequest = neighbor->request(this, instance_me);
   neighbor->requests[irequest]->size = 1;
   if (history) neighbor->requests[irequest]->history = 1;
+
+  // the history is keyed by atom IDs: say when they have changed under it
+  if (history) {
+    const std::string ids = "GRANMN_ATOM_IDS" + std::to_string(instance_me);
+    if (modify->find_fix(ids) < 0) modify->add_fix(ids + " all GRANMN/ATOM_IDS");
+    const bigint changed = ((FixAtomIDs *) modify->fix[modify->find_fix(ids)])->renumbered();
+    if (changed && comm->me == 0)
+      error->warning(FLERR, "pair_style gran/mn: {} atoms have other IDs than in the last run "
+                            "(delete_atoms compress yes?): their contacts lost their history "
+                            "(u_t, counters); use delete_atoms ... compress no", changed);
+  }
 
   if (history && !fix_history) {
     auto cmd = fmt::format("NEIGH_HISTORY_GRANMN{} all NEIGH_HISTORY {}", instance_me,

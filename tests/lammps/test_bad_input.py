@@ -136,3 +136,21 @@ def test_write_data_warns_that_the_state_of_the_fixes_is_not_in_the_file(tmp_pat
     run = run_lammps(deck(fix="unfix integrate\nfix integrate all nve/ab2") +
                      "write_data state.data\n", tmp_path, header=False)
     assert "write_data does not carry the per-atom state of fix integrate (nve/ab2)" in run.output
+
+
+@pytest.mark.parametrize("compress", ["yes", "no"])
+def test_renumbered_atoms_are_said_to_lose_their_contact_history(tmp_path, compress):
+    """LAMMPS keys per-contact history by atom IDs: delete_atoms with compress yes (its
+    default) renumbers the atoms left, and their contacts start afresh. The pair style says
+    so at the next run; with compress no the IDs and the history stay."""
+    text = deck(second="0.95 0.5 0") + f"""
+create_atoms 1 single -2.5 -2.5 0
+set atom 3 density/disc 1.2732395447351628
+run 10
+group first id 1
+delete_atoms group first compress {compress}
+run 10
+"""
+    run = run_lammps(text, tmp_path, header=False)
+    said = "atoms have other IDs than in the last run" in run.output
+    assert said == (compress == "yes"), run.output[-2000:]
