@@ -129,7 +129,7 @@ void FixWallGranMN::setup(int vflag)
 
 void FixWallGranMN::post_force(int)
 {
-  const double dt_history = update->setupflag ? 0.0 : update->dt;
+  const double dt_history = granmn::history_dt(update);
   double **x = atom->x;
   double **v = atom->v;
   double **f = atom->f;

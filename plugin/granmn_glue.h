@@ -9,6 +9,7 @@
 #include "fix_nve_sphere.h"
 #include "lammps.h"
 #include "modify.h"
+#include "update.h"
 #include "utils.h"
 
 #include "mn_contact.h"
@@ -16,6 +17,13 @@
 #include <cstring>
 
 namespace granmn {
+
+// The time over which a force evaluation advances u_t: none for the forces LAMMPS re-evaluates
+// in a run's setup (u_t must not advance twice for one step).
+inline double history_dt(LAMMPS_NS::Update *update)
+{
+  return update->setupflag ? 0.0 : update->dt;
+}
 
 // The paper's integrator (fix nve/ab2) if a deck uses it, else LAMMPS's velocity Verlet.
 inline mn::Integrator integrator_in_use(LAMMPS_NS::Modify *modify)

@@ -105,8 +105,7 @@ void PairGranMN::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
 
-  // forces re-evaluated in setup must not advance u_t a second time
-  const double dt_history = update->setupflag ? 0.0 : update->dt;
+  const double dt_history = granmn::history_dt(update);
 
   double **x = atom->x;
   double **v = atom->v;
