@@ -168,11 +168,11 @@ void FixWallGranMN::post_force(int)
       const double scale = mn::boundary_mass_scale(rmass[i]) * force_per_mass_acceleration;
       const mn::Force fc = mn::contact_force(law, scale, kin,
                                              use_history ? &state[i][side] : nullptr, dt_history);
-      const double fx = fc.fn * kin.nx - fc.ft * kin.ny;
-      const double fy = fc.fn * kin.ny + fc.ft * kin.nx;
+      const mn::Cartesian fxy = mn::cartesian(kin, fc);
+      const double fx = fxy.fx, fy = fxy.fy;
       f[i][0] += fx;
       f[i][1] += fy;
-      torque[i][2] -= radius[i] * fc.ft;
+      torque[i][2] += mn::torque(fc, radius[i]);
       wall_force[0] -= fx;
       wall_force[1] -= fy;
     }

@@ -1,7 +1,7 @@
 // The Mitarai-Nakanishi 2D linear spring-dashpot contact law (PRE 67, 021301 (2003)),
 // free of LAMMPS so that the pair style, the wall fix and the unit tests share one copy.
 //
-// Conventions (SPEC sections 2-3): for a contact of disk i with partner j, n points from j
+// Conventions (docs/model.md sections 2-3): for a contact of disk i with partner j, n points from j
 // to i, t = (-n_y, n_x), delta > 0 is the overlap, v_n = n.v_ij and v_t = t.v_ij with the full
 // radii as lever arms. The force on i is fn*n + ft*t and the torque on i is -radius_i*ft.
 // "mass_scale" is 2M = 2 m_i m_j/(m_i+m_j) for two mobile disks and m_i against the boundary.
@@ -30,7 +30,7 @@ struct Options {
   bool coulomb_cutback = false;   // Cundall-Strack: cut u_t back to the Coulomb limit while sliding
 };
 
-// The coefficients derived from a Material (SPEC section 3).
+// The coefficients derived from a Material (docs/model.md section 3).
 struct Law {
   double kn, eta_n, kt, eta_t, mu;
   double tau_c;   // duration of a binary normal collision
@@ -144,6 +144,23 @@ inline Force contact_force(const Law &law, double mass_scale, const Kinematics &
     f.ft = trial;
   }
   return f;
+}
+
+// The contact's force on i in Cartesian components (fn along n, ft along t), and the torque
+// about i's centre for a lever arm `radius` (the partner's torque uses its own radius: both
+// turn the same way, docs/model.md section 2).
+struct Cartesian {
+  double fx, fy;
+};
+
+inline Cartesian cartesian(const Kinematics &k, const Force &f)
+{
+  return {f.fn * k.nx - f.ft * k.ny, f.fn * k.ny + f.ft * k.nx};
+}
+
+inline double torque(const Force &f, double radius)
+{
+  return -radius * f.ft;
 }
 
 // ---------------------------------------------------------------------------------------

@@ -165,15 +165,15 @@ void PairGranMN::compute(int eflag, int vflag)
       double *ut = layout.ut >= 0 ? slots + layout.ut : nullptr;
       const mn::Force fc = mn::contact_force(law, mass_scale(i, j), kin, ut, dt_history);
 
-      const double fx = fc.fn * kin.nx - fc.ft * kin.ny;
-      const double fy = fc.fn * kin.ny + fc.ft * kin.nx;
+      const mn::Cartesian fxy = mn::cartesian(kin, fc);
+      const double fx = fxy.fx, fy = fxy.fy;
       f[i][0] += fx;
       f[i][1] += fy;
-      torque[i][2] -= radi * fc.ft;
+      torque[i][2] += mn::torque(fc, radi);
       if (newton_pair || j < nlocal) {
         f[j][0] -= fx;
         f[j][1] -= fy;
-        torque[j][2] -= radius[j] * fc.ft;
+        torque[j][2] += mn::torque(fc, radius[j]);
       }
       if (evflag) ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fx, fy, 0.0, dx, dy, 0.0);
     }

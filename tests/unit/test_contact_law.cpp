@@ -117,7 +117,7 @@ Disk disk(double diameter, double x, double y, double vx, double vy)
 }
 
 // Relative normal and tangential velocity of a with respect to b, in the frame of their
-// current line of centres (SPEC conventions: n from b to a, t = (-n_y, n_x)).
+// current line of centres (docs/model.md conventions: n from b to a, t = (-n_y, n_x)).
 mn::Kinematics relative_motion(const Scene &s)
 {
   const double dx = s.a.x - s.b.x, dy = s.a.y - s.b.y;
@@ -142,7 +142,7 @@ TEST(Mapping, DerivedCoefficientsSatisfyTheirDefinitions)
       EXPECT_NEAR(law.tau_w, mn::PI / std::sqrt(kn - law.eta_n * law.eta_n / 4), 1e-12 * law.tau_w);
       (void) ln_e;
     }
-  // SPEC section 3: e = 0.7 gives e_w ~ 0.778
+  // docs/model.md section 3: e = 0.7 gives e_w ~ 0.778
   EXPECT_NEAR(mn::derive({1e5, 0.7, 0.7, 0.5}).e_w, 0.778, 5e-4);
 }
 
