@@ -28,6 +28,7 @@ Px1`, LAMMPS's own multi-partition mode, as on a cluster.
 """
 import argparse
 import concurrent.futures
+import functools
 import json
 import math
 import os
@@ -112,10 +113,15 @@ def expand(config, path):
             if point["scene"] not in SCENES:
                 raise SweepError(f"{path}: grid {number}: unknown scene '{point['scene']}' "
                                  f"(expected one of {', '.join(SCENES)})")
-            unknown = sorted(set(point) - {"scene"} - deck_variables(point["scene"]))
+            defaults = deck_defaults(point["scene"])
+            unknown = sorted(set(point) - {"scene"} - set(defaults))
             if unknown:
                 raise SweepError(f"{path}: grid {number}: {', '.join(unknown)}: not a variable "
                                  f"of inputs/{point['scene']}.lmp (docs/scenes.md lists them)")
+            # a deck takes a word where it expects a number without complaint (as 0)
+            for name, value in point.items():
+                if name in defaults and is_number(defaults[name]) and not is_number(value):
+                    raise SweepError(f"{point['scene']} point: {name} = {value!r} is not a number")
             points.append(point)
     names = [(p["scene"], point_name(p)) for p in points]
     if len(set(names)) != len(names):
@@ -136,22 +142,23 @@ def point_name(point):
     return "_".join(f"{k}{format_value(v)}" for k, v in sorted(point.items()) if k != "scene")
 
 
-def deck_variables(scene):
-    """The variables a scene deck declares (`variable NAME index ...`, its own and the shared
-    defaults), i.e. what -var can set."""
-    names = set()
+@functools.lru_cache(maxsize=None)
+def deck_defaults(scene):
+    """{name: default} of the variables a scene deck declares (`variable NAME index VALUE`, its
+    own first, then the shared defaults), i.e. what -var can set."""
+    defaults = {}
     for deck in (ROOT / "inputs" / f"{scene}.lmp", ROOT / "inputs" / "lib" / "defaults.lmp"):
-        names |= set(re.findall(r"^variable (\w+) index ", deck.read_text(), re.M))
-    return names - RESERVED
+        for name, value in re.findall(r"^variable (\w+) index (\S+)", deck.read_text(), re.M):
+            defaults.setdefault(name, value)
+    return {name: value for name, value in defaults.items() if name not in RESERVED}
 
 
-def deck_default(scene, name):
-    """A scene deck's own default for a variable (`variable NAME index VALUE`)."""
-    for deck in (ROOT / "inputs" / f"{scene}.lmp", ROOT / "inputs" / "lib" / "defaults.lmp"):
-        m = re.search(rf"^variable {name} index (\S+)", deck.read_text(), re.M)
-        if m:
-            return m.group(1)
-    raise SweepError(f"inputs/{scene}.lmp sets no default for {name}")
+def is_number(value):
+    try:
+        float(value)
+        return True
+    except (TypeError, ValueError):
+        return False
 
 
 def law(mn_law, kn, e, beta):
@@ -164,11 +171,8 @@ def law(mn_law, kn, e, beta):
 def predicted_steps(point, mn_law):
     """Steps of a point; the values it needs must be numbers > 0 (the deck checks the rest)."""
     def get(name):
-        value = point.get(name, deck_default(point["scene"], name))
-        try:
-            number = float(value)
-        except ValueError:
-            raise SweepError(f"{point['scene']} point: {name} = {value!r} is not a number")
+        value = point.get(name, deck_defaults(point["scene"]).get(name))
+        number = float(value)    # expand() made sure it is one
         if not (number > 0 and math.isfinite(number)):
             raise SweepError(f"{point['scene']} point: {name} = {value!r} must be > 0")
         return number

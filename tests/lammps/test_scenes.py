@@ -145,6 +145,7 @@ def test_bad_deck_variables_stop_with_a_message(tmp_path, scene, case):
 
 BAD_FRICTIONAL_VARIABLES = {
     "rows overlapping": (dict(row_spacing=0.9), "row_spacing = 0.9 must be >= 1"),
+    "rows a word apart": (dict(row_spacing="wide"), "row_spacing = wide must be >= 1"),
     "negative rise": (dict(top_rise=-1), "top_rise = -1 must be >= 0"),
     "negative stop energy": (dict(stop_energy=-0.5), "stop_energy = -0.5 must be >= 0"),
     "stop time below the output interval": (dict(stop_time=0.05),

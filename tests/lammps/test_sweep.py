@@ -114,6 +114,8 @@ BAD_CONFIGS = {
     "grid not tables": ('grid = [1, 2]\n', "grid must be a list of tables"),
     "stiffness without a finite step": ('[[grid]]\nscene = "single_disk"\nkn = 1e308\n',
                                         "give no finite number of steps"),
+    "a word for a number": ('[[grid]]\nscene = "frictional_flow"\nrow_spacing = "wide"\n',
+                            "row_spacing = 'wide' is not a number"),
 }
 
 
