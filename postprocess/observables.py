@@ -135,7 +135,7 @@ def point_observables(point, n_blocks=5, selection=Selection()):
     else:
         spans = [(first, len(energy["time"]))]
         resting = rest_time(energy["time"], energy["e_total"])
-        if resting is not None and resting < energy["time"][-1] - REST_TIME:
+        if resting is not None:
             raise DataError(f"{point}: came to rest at t = {resting:.4g} (E per disk below "
                             f"{REST_ENERGY:g} from then on): no steady motion to average")
     if n_boundary == 0:

@@ -34,7 +34,7 @@ def measure(claim, rows):
         top, bottom = quantity.split("/")
         o = rows[-1]
         ratio = o[top] / o[bottom]
-        error = abs(ratio) * np.hypot(o[top + "_err"] / o[top], o[bottom + "_err"] / o[bottom])
+        error = np.hypot(o[top + "_err"], ratio * o[bottom + "_err"]) / abs(o[bottom])
         return ratio, error, ""
     if len(rows) < 2:
         return np.nan, np.nan, f"needs at least 2 points with {where}, has {len(rows)}"

@@ -437,3 +437,17 @@ def test_claims_on_a_quantity_without_errors():
         del o["bump_time_err"]
     results = {c["id"]: (v, s) for c, v, _, s in evaluate({"single_disk": rows})}
     assert results["single-period"] == (pytest.approx(0.1), "pass")
+
+
+def test_a_run_that_came_to_rest_has_no_steady_motion_to_average(tmp_path):
+    """A single disk trapped between bumps (E = 0 from t = 60 on, far longer than REST_TIME):
+    averaging it would report a rolling disk's observables for a disk at rest."""
+    point = write_point(tmp_path, scene="single_disk")
+    lines = (point / "energy.txt").read_text().splitlines()
+    for k, line in enumerate(lines):
+        words = line.split()
+        if not line.startswith("#") and int(words[0]) * 0.001 >= 60:
+            lines[k] = " ".join([words[0], "0", "0", "0"] + words[4:])
+    (point / "energy.txt").write_text("\n".join(lines) + "\n")
+    with pytest.raises(DataError, match="came to rest at t = 60"):
+        point_observables(point)
