@@ -8,6 +8,8 @@
 #include "comm.h"
 #include "error.h"
 #include "force.h"
+#include "granmn_compat.h"
+#include "granmn_glue.h"
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
@@ -83,7 +85,7 @@ void FixContactsMN::init()
   for (int k = 0; k < modify->nfix; k++)
     if (utils::strmatch(modify->fix[k]->style, "^contacts/mn")) count++;
   if (count > 1) error->all(FLERR, "Only one fix contacts/mn may be defined");
-  if (!force->pair_match("gran/mn", 1) && modify->find_fix_by_style("^wall/gran/mn") < 0)
+  if (!force->pair_match("gran/mn", 1) && !granmn::first_fix(modify, "^wall/gran/mn"))
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");
 }
@@ -160,7 +162,7 @@ void FixContactsMN::ended(const double *record, double tag_i, double tag_j, doub
 // Bring ghost tallies home, then add this step to each atom's counts and times.
 void FixContactsMN::collect(bool accumulate_time)
 {
-  if (force->newton_pair) comm->reverse_comm_fix(this);
+  if (force->newton_pair) granmn::reverse_comm(comm, this);
   const int *mask = atom->mask;
   const double dt = update->dt;
   for (int i = 0; i < atom->nlocal; i++) {

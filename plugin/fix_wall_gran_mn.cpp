@@ -107,8 +107,7 @@ void FixWallGranMN::init()
   granmn::check_disc_integration(lmp, "fix wall/gran/mn");
   // the law gives mass x acceleration; LAMMPS turns force back into acceleration with ftm2v
   force_per_mass_acceleration = 1.0 / force->ftm2v;
-  const int icounters = modify->find_fix_by_style("^contacts/mn");
-  counters = icounters >= 0 ? (FixContactsMN *) modify->fix[icounters] : nullptr;
+  counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
   // each wall fix keeps its own contact state for the counters, per atom and side
   if (counters) widen_state(UT_COLUMNS + 2 * FixContactsMN::WALL_SLOTS);
   if (law.mu > 0.0 && !use_history)

@@ -18,6 +18,15 @@
 
 namespace granmn {
 
+// The first fix whose style matches a regex (utils::strmatch), or nullptr: Modify's own look-ups
+// by style differ between LAMMPS generations, its list of fixes does not.
+inline LAMMPS_NS::Fix *first_fix(LAMMPS_NS::Modify *modify, const char *style)
+{
+  for (int k = 0; k < modify->nfix; k++)
+    if (LAMMPS_NS::utils::strmatch(modify->fix[k]->style, style)) return modify->fix[k];
+  return nullptr;
+}
+
 // The time over which a force evaluation advances u_t: none for the forces LAMMPS re-evaluates
 // in a run's setup (u_t must not advance twice for one step).
 inline double history_dt(LAMMPS_NS::Update *update)
@@ -28,8 +37,8 @@ inline double history_dt(LAMMPS_NS::Update *update)
 // The paper's integrator (fix nve/ab2) if a deck uses it, else LAMMPS's velocity Verlet.
 inline mn::Integrator integrator_in_use(LAMMPS_NS::Modify *modify)
 {
-  return modify->find_fix_by_style("^nve/ab2") >= 0 ? mn::Integrator::AdamsBashforth2
-                                                    : mn::Integrator::VelocityVerlet;
+  return first_fix(modify, "^nve/ab2") ? mn::Integrator::AdamsBashforth2
+                                        : mn::Integrator::VelocityVerlet;
 }
 
 // FixNVESphere keeps its moment-of-inertia prefactor (2/5 sphere, 1/2 disc) protected; a

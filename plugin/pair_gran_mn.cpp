@@ -15,6 +15,7 @@
 #include "fix_per_atom_state.h"
 #include "fix_neigh_history.h"
 #include "force.h"
+#include "granmn_compat.h"
 #include "granmn_glue.h"
 #include "input.h"
 #include "memory.h"
@@ -317,8 +318,7 @@ void PairGranMN::init_style()
                          mn::amplifies_undamped_mode(law, integrator));
 
   // The per-contact history: u_t when there is friction, then the counters' record if asked.
-  const int icounters = modify->find_fix_by_style("^contacts/mn");
-  counters = icounters >= 0 ? (FixContactsMN *) modify->fix[icounters] : nullptr;
+  counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
   layout = HistoryLayout();
   if (material.mu > 0.0) layout.ut = layout.size++;
   if (counters) {
@@ -338,9 +338,7 @@ void PairGranMN::init_style()
   size_history = needed;
   history = size_history > 0 ? 1 : 0;
 
-  int irequest = neighbor->request(this, instance_me);
-  neighbor->requests[irequest]->size = 1;
-  if (history) neighbor->requests[irequest]->history = 1;
+  granmn::request_size_list(neighbor, this, instance_me, history);
 
   // the history is keyed by atom IDs: say when they have changed under it
   if (history) {
@@ -464,7 +462,7 @@ void PairGranMN::read_restart(FILE *fp)
 
 /* ---------------------------------------------------------------------- */
 
-void PairGranMN::transfer_history(double *source, double *target)
+void PairGranMN::GRANMN_TRANSFER_HISTORY(source, target)
 {
   for (int k = 0; k < size_history; k++) target[k] = source[k];
 }

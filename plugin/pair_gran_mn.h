@@ -6,6 +6,7 @@
 #ifndef LMP_PAIR_GRAN_MN_H
 #define LMP_PAIR_GRAN_MN_H
 
+#include "granmn_compat.h"
 #include "pair.h"
 
 #include "mn_contact.h"
@@ -29,7 +30,7 @@ class PairGranMN : public Pair {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   double single(int, int, int, int, double, double, double, double &) override;
-  void transfer_history(double *, double *) override;
+  void GRANMN_TRANSFER_HISTORY(, ) override;
   double atom2cut(int) override;
   double radii2cut(double, double) override;
 

@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # Installs what is missing, then configures and builds LAMMPS, the plugin and the tests
-# in build/ (incremental after the first time).
+# (incremental after the first time).
+#   scripts/build.sh [--lammps debian12|2025] [cmake options for the first configure]
+# debian12 (default): Debian 12's LAMMPS (29 Sep 2021), in build/
+# 2025:               LAMMPS 4 Feb 2025 (Debian trixie's source), in build-2025/
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+source "$root/scripts/lammps-generation.sh" "$@"
 "$root/scripts/setup.sh"
-if [ ! -f "$root/build/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$root/build" "$@"
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build" -DGRANMN_LAMMPS="$generation" "${args[@]}"
 fi
-cmake --build "$root/build" -j "$(nproc)"
+cmake --build "$build" -j "$(nproc)"

@@ -1,31 +1,65 @@
 #!/usr/bin/env bash
-# Prints the path of an unpacked LAMMPS source tree matching Debian's packaged LAMMPS,
-# fetching it with `apt-get source` into a cache directory on first use.
-# Usage: get-lammps-source.sh CACHE_DIR
+# Prints the path of an unpacked LAMMPS source tree from Debian's archive, fetching it with
+# `apt-get source` into a cache directory on first use.
+# Usage: get-lammps-source.sh CACHE_DIR [debian12|2025]
+#   debian12 (default): the LAMMPS Debian 12 packages (20220106, "29 Sep 2021 - Update 2")
+#   2025:               the LAMMPS of Debian's trixie suite (20250204, "4 Feb 2025")
 set -euo pipefail
-cache=${1:?usage: get-lammps-source.sh CACHE_DIR}
-tree="$cache/lammps-src"
+cache=${1:?usage: get-lammps-source.sh CACHE_DIR [debian12|2025]}
+generation=${2:-debian12}
+case $generation in
+  debian12) tree="$cache/lammps-src"; suite=""; version=20220106 ;;
+  2025)     tree="$cache/lammps-2025-src"; suite=trixie; version=20250204 ;;
+  *) echo "get-lammps-source.sh: unknown LAMMPS generation '$generation' (debian12 or 2025)" >&2
+     exit 2 ;;
+esac
 if [ -f "$tree/.unpacked" ]; then echo "$tree"; exit 0; fi
 
 sudo=""
 [ "$(id -u)" -ne 0 ] && sudo="sudo"
 
-# apt-get source needs a deb-src entry: derive one from the existing deb entries.
-if ! apt-cache showsrc lammps 2>/dev/null | grep -q '^Package: lammps'; then
-  src_list=/etc/apt/sources.list.d/granmn-deb-src.sources
-  debian_sources=$(grep -l '^URIs:.*debian' /etc/apt/sources.list.d/*.sources 2>/dev/null || true)
+# Debian's deb entries for the main archive (not the security one); their deb-src twins are
+# derived from them, for this machine's suites or for trixie.
+debian_sources=$(grep -l '^URIs:.*debian' /etc/apt/sources.list.d/*.sources 2>/dev/null || true)
+deb_src_entry() {  # $1: suite to name instead of the listed ones ("" keeps them all)
   if [ -n "$debian_sources" ]; then
-    cat $debian_sources | sed -e 's/^Types: deb$/Types: deb-src/' | $sudo tee "$src_list" >/dev/null
+    awk -v suite="$1" 'BEGIN { RS = ""; ORS = "\n\n" }
+      suite != "" && /URIs:[^\n]*-security/ { next }
+      /^Types: deb\n|\nTypes: deb\n/ {
+        sub(/Types: deb\n/, "Types: deb-src\n")
+        if (suite != "") sub(/Suites:[^\n]*/, "Suites: " suite)
+        print }' $debian_sources
   else
-    grep -h '^deb ' /etc/apt/sources.list | sed -e 's/^deb /deb-src /' \
-      | $sudo tee /etc/apt/sources.list.d/granmn-deb-src.list >/dev/null
+    grep -h '^deb ' /etc/apt/sources.list | awk -v suite="$1" '
+      suite != "" && $2 ~ /-security/ { next }
+      { $1 = "deb-src"; if (suite != "") $3 = suite; print }'
   fi
+}
+# The Debian revision of the wanted upstream version.
+source_version() {
+  apt-cache showsrc lammps 2>/dev/null | awk -v v="$version" '/^Version: / && index($2, v) == 1 {
+    print $2; exit }'
+}
+src_list=/etc/apt/sources.list.d/granmn-${suite:-deb}-src.sources
+if [ -z "$(source_version)" ]; then
+  [ -z "$debian_sources" ] && src_list=${src_list%.sources}.list
+  deb_src_entry "$suite" | $sudo tee "$src_list" >/dev/null
   $sudo apt-get update -q >&2
 fi
 
+mkdir -p "$cache"
 work=$(mktemp -d "$cache/fetch.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-(cd "$work" && apt-get source --download-only lammps >&2 && dpkg-source -x ./*.dsc src >&2)
+# Debian's patches only touch packaging (potential paths, docs), so where the archive serves
+# the tarballs but not the .dsc (as it does for trixie) the upstream tarball is the same tree.
+(cd "$work" && { apt-get source --download-only "lammps=$(source_version)" >&2 || true; }
+ if ls ./*.dsc >/dev/null 2>&1; then
+   dpkg-source -x ./*.dsc src >&2
+ elif ls ./*.orig.tar.* >/dev/null 2>&1; then
+   mkdir src && tar -xf ./*.orig.tar.* -C src --strip-components=1
+ else
+   echo "get-lammps-source.sh: apt-get source fetched no LAMMPS source" >&2; exit 1
+ fi)
 rm -rf "$tree"
 mv "$work/src" "$tree"
 touch "$tree/.unpacked"

@@ -1,7 +1,13 @@
 #!/usr/bin/env bash
 # The README's test command: build (installing what is missing) and run every test.
+#   scripts/test.sh [--lammps debian12|2025] [ctest options]
+# debian12 (default) tests against Debian 12's LAMMPS in build/, 2025 against LAMMPS 4 Feb 2025
+# in build-2025/.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-"$root/scripts/build.sh"
-cd "$root/build"
-ctest --output-on-failure -j "$(nproc)" "$@"
+source "$root/scripts/lammps-generation.sh" "$@"
+"$root/scripts/build.sh" --lammps "$generation"
+tree=$(sed -n 's/^LAMMPS_SOURCE_DIR:PATH=//p' "$build/CMakeCache.txt")
+echo "== tests against LAMMPS $(sed -n 's/^#define LAMMPS_VERSION "\(.*\)"/\1/p' "$tree/src/version.h") ($tree), in $build"
+cd "$build"
+ctest --output-on-failure -j "$(nproc)" "${args[@]}"
