@@ -337,6 +337,12 @@ void PairGranMN::init_style()
                       "(or not) as in the run that wrote it", restart_history_size, needed);
   size_history = needed;
   history = size_history > 0 ? 1 : 0;
+  // At a reneighboring, fix neigh/history keeps a pair's history only if the pair overlapped
+  // when the list was built, i.e. before this step's force evaluation: a contact that ended in
+  // the step's move would lose its record before the counters see it end (found by the
+  // cross-check with pair_style tracker). The counters keep every pair's flags; the force
+  // evaluation clears them when a contact ends, so forces do not change.
+  beyond_contact = counters ? 1 : 0;
 
   granmn::request_size_list(neighbor, this, instance_me, history);
 
