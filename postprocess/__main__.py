@@ -1,8 +1,11 @@
-"""python3 -m postprocess {report,compare} SWEEP_DIR [--output DIR] [--resolution T]
-                                           [--energy-range LOW HIGH]
+"""python3 -m postprocess {report,compare,transition} SWEEP_DIR [--output DIR] [--resolution T]
+                                                      [--energy-range LOW HIGH]
 
-report   tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
-compare  the comparison table on the terminal; exit status 1 if a claim fails
+report      tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
+compare     the comparison table on the terminal; exit status 1 if a claim fails
+transition  a transition sweep (inputs/sweeps/transition.toml, docs/transition.md): per base
+            and inclination, how the runs ended, the stiffness exponents, the multiple
+            contacts and P(tau), with figures, in DIR (default SWEEP_DIR/transition)
 
 --resolution T: the frictional steady-part selection works on E(t) averaged over windows of
 T time units (default 1).
@@ -14,15 +17,16 @@ from pathlib import Path
 
 from .io import DataError
 from .reference import evaluate
-from .report import fmt, write_report
+from .report import fmt, write_report, write_transition_report
 from .selection import Selection
 from .study import analyse
+from .transition import analyse_transition
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m postprocess", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("command", choices=("report", "compare"))
+    parser.add_argument("command", choices=("report", "compare", "transition"))
     parser.add_argument("sweep", type=Path)
     parser.add_argument("--output", type=Path)
     parser.add_argument("--resolution", type=float, default=1.0)
@@ -35,6 +39,18 @@ def main(argv=None):
     if not 0 <= low < high:
         parser.error(f"--energy-range {low:g} {high:g} must satisfy 0 <= LOW < HIGH")
     selection = Selection(resolution=args.resolution, energy_range=(low, high))
+    if args.command == "transition":
+        try:
+            runs, groups, left_out = analyse_transition(args.sweep)
+        except DataError as error:
+            print(f"postprocess: {error}", file=sys.stderr)
+            return 2
+        for point, reason in left_out:
+            print(f"left out {point}: {reason}", file=sys.stderr)
+        path = write_transition_report(args.sweep, runs, groups, left_out,
+                                       args.output or args.sweep / "transition")
+        print(f"transition report: {path}")
+        return 0
     try:
         scenes, left_out, completed, runs = analyse(args.sweep, selection)
     except DataError as error:

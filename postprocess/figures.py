@@ -174,3 +174,88 @@ def snapshot_figure(scene, point, path):
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
+
+
+STATE_COLOURS = {"flowing": None, "stopped": "0.8", "accelerating": "mistyrose"}
+
+
+def _state_regions(ax, rows):
+    """Shade each inclination by the state of most of its runs; the counts
+    flowing/stopped/accelerating at the bottom."""
+    s = np.array([r["sin_theta"] for r in rows])
+    edges = np.r_[s[0] - 0.025, 0.5 * (s[1:] + s[:-1]), s[-1] + 0.025] if len(s) > 1 else \
+        np.array([s[0] - 0.025, s[0] + 0.025])
+    for r, a, b in zip(rows, edges[:-1], edges[1:]):
+        if STATE_COLOURS[r["state"]]:
+            ax.axvspan(a, b, color=STATE_COLOURS[r["state"]], lw=0)
+        ax.text(r["sin_theta"], 0.02, f"{r['flowing']}/{r['stopped']}/{r['accelerating']}",
+                transform=ax.get_xaxis_transform(), ha="center", fontsize=6)
+
+
+def transition_figure(table, path):
+    """Per base (columns): (top) the stiffness exponents of N_c and N_w against sin theta,
+    with the paper's 0 (collisional) and 0.4 (frictional); (bottom) at the stiffest flowing
+    k_n, the multiple-contact fraction (t_c - N_c tau_c)/t_c, the time with two or more
+    contacts (boundary contacts included), and the fraction of disk contacts longer than 2 tau_c. Inclinations
+    where most runs stopped are grey, where most accelerated pink."""
+    scenes = sorted({r["scene"] for r in table})
+    fig, axes = plt.subplots(2, len(scenes), figsize=(5.5 * len(scenes), 7.5), sharex=True,
+                             squeeze=False)
+    for column, scene in enumerate(scenes):
+        rows = [r for r in table if r["scene"] == scene]
+        s = np.array([r["sin_theta"] for r in rows])
+        top, bottom = axes[:, column]
+
+        def plot(ax, key, label, marker):
+            values = np.array([r.get(key, np.nan) for r in rows], dtype=float)
+            errors = np.array([r.get(key + "_err", np.nan) for r in rows], dtype=float)
+            ax.errorbar(s, values, yerr=np.nan_to_num(errors), marker=marker, ms=5, capsize=2,
+                        label=label)
+        plot(top, "exponent_N_c", "N_c exponent", "o")
+        plot(top, "exponent_N_w", "N_w exponent", "s")
+        top.axhline(0.0, color="k", lw=0.6, ls=":", label="collisional (paper): 0")
+        top.axhline(0.4, color="k", lw=0.6, ls="--", label="frictional (paper): 0.4")
+        top.set(ylabel="stiffness exponent", title=f"{scene_of(scene).base}")
+        plot(bottom, "mc_fraction", "(t_c - N_c tau_c)/t_c", "o")
+        plot(bottom, "t_multiple", "time with >= 2 contacts (any kind)", "^")
+        bottom.plot(s, [r.get("tail_disk", np.nan) for r in rows], "D--",
+                    label="disk contacts > 2 tau_c")
+        bottom.axhline(0.0, color="k", lw=0.6, ls=":")
+        bottom.set(xlabel="sin theta", ylabel="fraction (stiffest flowing k_n)")
+        for ax in (top, bottom):
+            _state_regions(ax, rows)
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=7)
+    fig.suptitle("collisional-frictional transition; grey: most runs stopped, pink: most "
+                 "accelerated; counts flowing/stopped/accelerating", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def duration_figure(densities, edges, path):
+    """P(tau/tau_c) of disk contacts and P(tau/tau_w) of boundary contacts (columns) per base
+    (rows), one line per inclination, log-log; densities: {(scene, sin_theta, kn): {kind:
+    density}}."""
+    scenes = sorted({key[0] for key in densities})
+    fig, axes = plt.subplots(len(scenes), 2, figsize=(10, 4 * len(scenes)), squeeze=False)
+    centres = np.sqrt(edges[1:] * edges[:-1])
+    for row, scene in enumerate(scenes):
+        for column, (kind, unit) in enumerate((("disk", "tau_c"), ("boundary", "tau_w"))):
+            ax = axes[row, column]
+            for (s, sin_theta, kn), density in sorted(densities.items()):
+                if s == scene and np.any(density[kind] > 0):
+                    shown = np.where(density[kind] > 0, density[kind], np.nan)
+                    ax.plot(centres, shown, "-", marker=".", lw=1,
+                            label=f"sin theta {sin_theta:g} (k_n {kn:g})")
+            ax.axvline(1.0, color="k", lw=0.6, ls=":")
+            ax.set(xscale="log", yscale="log", xlabel=f"tau / {unit}",
+                   ylabel=f"P(tau / {unit})",
+                   title=f"{scene_of(scene).base}: {kind} contacts")
+            ax.grid(alpha=0.3, which="both")
+            ax.legend(fontsize=7)
+    fig.suptitle("contact durations at the stiffest flowing k_n (a binary contact lasts 1)",
+                 fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)

@@ -84,11 +84,18 @@ def run_state(point):
     return ("flowing", None) if stopped_at is None else ("stopped", stopped_at)
 
 
-def point_observables(point, n_blocks=5, selection=Selection()):
-    """E, N_c, N_w, t_c, t_w, the multiple-contact estimates and the direct fraction of time
-    with two or more contacts, averaged over the point's averaging window (or, for the
-    frictional flow, over its steady parts kept by the selection), each with a block-average
-    error."""
+def contacts_per_disk(contacts_now, n_disks):
+    """Mean number of contacts a disk has, boundary contacts included (docs/model.md section
+    6), from samples of the sum over the disks of their current contacts: a disk-disk contact
+    is in the sum twice, once for each disk, a boundary contact once."""
+    return float(np.mean(contacts_now)) / n_disks
+
+
+def point_observables(point, n_blocks=5, selection=Selection(), what=None):
+    """E, N_c, N_w, t_c, t_w, the multiple-contact estimates, the direct fraction of time
+    with two or more contacts and the contacts per disk, averaged over the point's averaging
+    window (or, where the scene selects steady parts, over the parts the selection keeps), each
+    with a block-average error. `what`: the Scene to average as (default: the point's own)."""
     params = read_params(point)
     energy = read_energy(point, params)
     counts = read_counts(point)
@@ -113,7 +120,7 @@ def point_observables(point, n_blocks=5, selection=Selection()):
     n_boundary = n
     notes = [f"stopped at t = {stopped_at:g}"] if stopped_at is not None else []
     try:
-        what = scene(params["scene"])
+        what = what or scene(params["scene"])
     except KeyError as error:
         raise DataError(f"{point}/params.txt: {error.args[0]}")
     if what.boundary_per_bottom_layer:
@@ -153,6 +160,7 @@ def point_observables(point, n_blocks=5, selection=Selection()):
                 block[key.replace("e_", "E_")] = energy[key][lo:hi].mean()
             block["mc_c"] = block["t_c"] - block["N_c"] * params["tau_c"]
             block["mc_w"] = block["t_w"] - block["N_w"] * params["tau_w"]
+            block["z"] = contacts_per_disk(energy["contacts_now"][lo:hi], n)
             blocks.append(block)
     if len(blocks) < 2:
         raise DataError(f"{point}: the averaging span is too short for error bars")

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .study import fit_log, fit_power, main_series, series
+from .study import fit_log, fit_power, main_series, ratio_with_error, series
 
 CLAIMS = Path(__file__).with_name("claims.csv")
 MEASURES = ("max_abs_deviation", "power_exponent", "log_slope", "log_r2", "ratio_at_stiffest")
@@ -31,11 +31,7 @@ def measure(claim, rows):
     if kind == "ratio_at_stiffest":
         if not rows:
             return np.nan, np.nan, f"no point with {where}"
-        top, bottom = quantity.split("/")
-        o = rows[-1]
-        ratio = o[top] / o[bottom]
-        error = np.hypot(o[top + "_err"], ratio * o[bottom + "_err"]) / abs(o[bottom])
-        return ratio, error, ""
+        return (*ratio_with_error(rows[-1], *quantity.split("/")), "")
     if len(rows) < 2:
         return np.nan, np.nan, f"needs at least 2 points with {where}, has {len(rows)}"
     kn, values, errors = series(rows, quantity)

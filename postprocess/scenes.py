@@ -1,7 +1,7 @@
 """What each scene is, for the analysis: the one place that says how a scene is normalised,
 which part of a run is averaged, what extra observable it has and how its figures look
 (docs/model.md sections 5-7). The modules ask a Scene; none tests a scene's name."""
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 
 @dataclass(frozen=True)
@@ -30,17 +30,21 @@ class Scene:
     rates_log_law: bool = False
     guides: tuple = ()
     notes: tuple = ()
+    # the slope and the system, as the transition study (docs/transition.md) names the scene
+    base: str = ""
 
 
 SCENES = {s.name: s for s in (
     Scene("single_disk", "single disk on a bumpy slope", has_period=True, rates_log_law=True),
     Scene("collisional_flow", "collisional flow",
-          guides=(Guide("times", "t_c", -0.5, "k_n^-1/2 guide"),)),
+          guides=(Guide("times", "t_c", -0.5, "k_n^-1/2 guide"),),
+          base="bumpy base, 50 disks"),
     Scene("frictional_flow", "frictional flow", selects_steady_parts=True,
           boundary_per_bottom_layer=True,
           guides=(Guide("rates", "N_c", 0.4, "k_n^0.4 guide (the paper's)"),),
           notes=("N_w and t_w are per disk of the bottom layer (disks that touched the floor in "
-                 "the averaging window; the paper: during the averaging span).",)),
+                 "the averaging window; the paper: during the averaging span).",),
+          base="flat base, 100 polydisperse disks"),
 )}
 
 
@@ -50,3 +54,11 @@ def scene(name):
         return SCENES[name]
     except KeyError:
         raise KeyError(f"unknown scene '{name}' (expected one of {', '.join(SCENES)})") from None
+
+
+def transition_scene(name):
+    """A scene as the transition study averages it (docs/transition.md): away from sin theta =
+    0.20 the paper's energy window [0.4, 0.8] means nothing, so a run classified as flowing is
+    averaged over its whole span after the transient, as the collisional flow is; the
+    normalisations stay the scene's."""
+    return replace(scene(name), selects_steady_parts=False)

@@ -11,7 +11,7 @@ from .observables import RESOLUTIONS, kept_spans, point_observables, run_state
 from .signals import dominant_period
 
 QUANTITIES = ("E_trans", "E_rot", "E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w",
-              "t_multiple")
+              "t_multiple", "z")
 
 
 def analyse(sweep_dir, selection=Selection()):
@@ -195,6 +195,13 @@ def series(rows, quantity):
     kn = np.array([o["kn"] for o in rows])
     return kn, np.array([o[quantity] for o in rows]), np.array([o.get(quantity + "_err", np.nan)
                                                                 for o in rows])
+
+
+def ratio_with_error(o, top, bottom):
+    """o[top] / o[bottom] and its error from both errors (not relative to the numerator, which
+    may be zero)."""
+    ratio = o[top] / o[bottom]
+    return ratio, np.hypot(o[top + "_err"], ratio * o[bottom + "_err"]) / abs(o[bottom])
 
 
 def fit_power(kn, values, errors=None):

@@ -5,6 +5,7 @@
 # comparison with the paper. Resumable: run it again after an interruption.
 #   scripts/main.sh                 the quick study
 #   scripts/main.sh --full          the paper's ranges (prints the CPU-hour estimate first)
+#   scripts/main.sh --transition    the transition study (docs/transition.md; estimate first)
 #   scripts/main.sh --config FILE   any sweep config
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -13,9 +14,10 @@ output=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --full) configs=("$root"/inputs/sweeps/paper_*.toml); shift ;;
+    --transition) configs=("$root/inputs/sweeps/transition.toml"); shift ;;
     --config) configs=("$2"); shift 2 ;;
     --output) output="$2"; shift 2 ;;
-    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
     *) echo "main.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -36,7 +38,10 @@ for config in "${configs[@]}"; do
   echo "== sweep $name"
   /usr/bin/python3 "$root/scripts/sweep.py" "$config" --output "$out" || status=1
   echo "== post-processing $name"
-  (cd "$root" && /usr/bin/python3 -m postprocess report "$out") || status=1
-  (cd "$root" && /usr/bin/python3 -m postprocess compare "$out") || status=1
+  case "$name" in
+    transition*) (cd "$root" && /usr/bin/python3 -m postprocess transition "$out") || status=1 ;;
+    *) (cd "$root" && /usr/bin/python3 -m postprocess report "$out") || status=1
+       (cd "$root" && /usr/bin/python3 -m postprocess compare "$out") || status=1 ;;
+  esac
 done
 exit $status

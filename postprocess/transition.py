@@ -1,0 +1,166 @@
+"""The collisional-frictional transition (docs/transition.md): how each run ended, the
+distribution of contact durations, and per base and inclination what tells the paper's two
+flows apart (the stiffness exponents of N_c and N_w, the multiple-contact fraction, the
+contacts per disk, the tail of P(tau))."""
+from pathlib import Path
+
+import numpy as np
+
+from .io import DataError, read_energy, read_params, read_rows, read_stopped
+from .observables import point_observables, rest_time
+from .scenes import SCENES, transition_scene
+from .signals import block_means
+from .study import combine_seeds, fit_power, ratio_with_error, read_variables
+
+# The flow-state rule, the one place it is stated (docs/transition.md):
+#   stopped       the run ended early because its pile stopped (stopped.txt), or its kinetic
+#                 energy per disk stayed below REST_ENERGY for its last REST_TIME
+#                 (observables.rest_time): there is no flow to average;
+#   accelerating  E per disk, averaged over the last fifth of the averaging span, is more than
+#                 GROWTH_LIMIT times its average over the first fifth: no steady state within
+#                 the run (E of a flow gaining speed freely grows like t^2);
+#   flowing       otherwise: averaged.
+# Why 2: the steady frictional flows at sin theta = 0.20 wander within the selection's width
+# 0.45 at E ~ 0.6 (a factor below 2 between any two stretches of a steady part), while a flow
+# that accelerates from rest over the span grows by far more than 2 (flat base, sin theta 0.45,
+# k_n 5e4: a factor ~3.4 between t = 100 and 300, measured).
+GROWTH_LIMIT = 2.0
+STATE_BLOCKS = 5
+STATES = ("flowing", "stopped", "accelerating")
+# P(tau): log bins of tau/tau_c (tau/tau_w for boundary contacts), ten per decade; the tail
+# beyond TAIL_CUT binary durations holds the lasting contacts (a binary collision lasts 1).
+DURATION_EDGES = np.logspace(-1, 4, 51)
+TAIL_CUT = 2.0
+KINDS = {"disk": 1, "boundary": 2}
+
+
+def flow_state(t, energy, average_start, stopped_at=None):
+    """(state, growth) of a run from its E(t) per disk: state one of STATES by the rule above,
+    growth the ratio of E over the last to the first fifth of the averaging span (nan where
+    the run stopped)."""
+    t, energy = np.asarray(t, dtype=float), np.asarray(energy, dtype=float)
+    if stopped_at is not None or rest_time(t, energy) is not None:
+        return "stopped", np.nan
+    inside = t >= average_start
+    if np.count_nonzero(inside) < STATE_BLOCKS:
+        raise DataError(f"fewer than {STATE_BLOCKS} samples after average_start "
+                        f"{average_start:g}: no state")
+    span_t = t[inside]
+    end = span_t[-1] + 0.5 * (span_t[-1] - span_t[-2])
+    _, means = block_means(span_t, energy[inside], span_t[0], end, STATE_BLOCKS)
+    growth = means[-1] / means[0] if means[0] > 0 else np.inf
+    return ("accelerating" if growth > GROWTH_LIMIT else "flowing"), growth
+
+
+def contact_durations(rows, tau_c, tau_w, since):
+    """{'disk': tau/tau_c, 'boundary': tau/tau_w} of the contacts that ended at or after
+    `since`. Contacts counted by when they end have the steady state's distribution of
+    durations: no long contact is cut off at the start or the end of the stretch."""
+    ended = rows["start"] + rows["duration"] >= since
+    unit = {"disk": tau_c, "boundary": tau_w}
+    return {kind: rows["duration"][ended & (rows["kind"] == code)] / unit[kind]
+            for kind, code in KINDS.items()}
+
+
+def duration_density(scaled, edges=DURATION_EDGES):
+    """P(tau/tau_c) on the bins `edges`: counts / (all contacts x bin width), so that it
+    integrates to the fraction of contacts inside the bins."""
+    scaled = np.asarray(scaled, dtype=float)
+    counts, _ = np.histogram(scaled, edges)
+    if len(scaled) == 0:
+        return np.full(len(edges) - 1, np.nan)
+    return counts / (len(scaled) * np.diff(edges))
+
+
+def tail_fraction(scaled, cut=TAIL_CUT):
+    """The fraction of contacts lasting longer than `cut` binary durations."""
+    scaled = np.asarray(scaled, dtype=float)
+    return float(np.mean(scaled > cut)) if len(scaled) else np.nan
+
+
+def run_record(point):
+    """One run: its variables, state and growth, and (flowing runs) its observables averaged
+    as the transition study does and its contact durations (if it wrote rows)."""
+    params = read_params(point)
+    energy = read_energy(point, params)
+    state, growth = flow_state(energy["time"], energy["e_total"], params["average_start"],
+                               read_stopped(point))
+    record = {"point": point, "scene": params["scene"], "sin_theta": params["sin_theta"],
+              "kn": params["kn"], "seed": params["seed"], "state": state, "growth": growth,
+              "variables": read_variables(point)}
+    if state == "flowing":
+        o = point_observables(point, what=transition_scene(params["scene"]))
+        o.update(point=point, variables=record["variables"])
+        record["observables"] = o
+        if (Path(point) / "contacts.txt").exists():
+            record["durations"] = contact_durations(read_rows(point), params["tau_c"],
+                                                    params["tau_w"], params["average_start"])
+    return record
+
+
+def analyse_transition(sweep_dir):
+    """[run records], {(scene, sin_theta): [observables per kn, seeds combined]}, [(point,
+    reason) left out] of a transition sweep."""
+    sweep_dir = Path(sweep_dir)
+    points = sorted(p for p in sweep_dir.glob("*/*") if (p / "point.json").exists())
+    if not points:
+        raise DataError(f"{sweep_dir}: no sweep points here (no <scene>/<point>/point.json)")
+    runs, left_out = [], []
+    for point in points:
+        if point.parent.name not in SCENES or not SCENES[point.parent.name].base:
+            left_out.append((point, f"scene '{point.parent.name}' is not a base of the "
+                                    "transition study"))
+        elif not (point / "done.txt").exists():
+            left_out.append((point, "did not complete (no done.txt)"))
+        else:
+            try:
+                runs.append(run_record(point))
+            except DataError as error:
+                left_out.append((point, str(error).replace(f"{point}: ", "")))
+    groups = {}
+    for r in runs:
+        if "observables" in r:
+            groups.setdefault((r["scene"], r["sin_theta"]), []).append(r["observables"])
+    return runs, {key: combine_seeds(rows) for key, rows in sorted(groups.items())}, left_out
+
+
+def pooled_durations(runs, scene, sin_theta, kn):
+    """{kind: the scaled durations of every flowing run of one point, seeds pooled}."""
+    chosen = [r["durations"] for r in runs if "durations" in r and r["scene"] == scene and
+              r["sin_theta"] == sin_theta and r["kn"] == kn]
+    return {kind: np.concatenate([d[kind] for d in chosen]) if chosen else np.array([])
+            for kind in KINDS}
+
+
+def transition_table(runs, groups):
+    """One row per (scene, sin_theta): how the runs ended, the stiffness exponents of N_c and
+    N_w over the k_n with flowing runs, and at the stiffest of them the multiple-contact
+    fraction (t_c - N_c tau_c)/t_c, the time with two or more contacts, the contacts per disk,
+    E and the tail of P(tau)."""
+    table = []
+    for scene, sin_theta in sorted({(r["scene"], r["sin_theta"]) for r in runs}):
+        mine = [r for r in runs if r["scene"] == scene and r["sin_theta"] == sin_theta]
+        row = {"scene": scene, "sin_theta": sin_theta, "runs": len(mine)}
+        for state in STATES:
+            row[state] = sum(r["state"] == state for r in mine)
+        # the region: the state of most runs (ties: the first of STATES)
+        row["state"] = max(STATES, key=lambda s: row[s])
+        points = groups.get((scene, sin_theta), [])
+        row["kn_flowing"] = [o["kn"] for o in points]
+        kn = np.array(row["kn_flowing"])
+        for q in ("N_c", "N_w"):
+            values = np.array([o[q] for o in points])
+            row[f"exponent_{q}"], row[f"exponent_{q}_err"] = (
+                fit_power(kn, values) if len(points) >= 2 else (np.nan, np.nan))
+        if points:
+            top = points[-1]
+            row["kn_stiffest"] = top["kn"]
+            row["mc_fraction"], row["mc_fraction_err"] = ratio_with_error(top, "mc_c", "t_c")
+            for q in ("t_multiple", "z", "E_total", "t_c"):
+                row[q], row[q + "_err"] = top[q], top[q + "_err"]
+            durations = pooled_durations(runs, scene, sin_theta, top["kn"])
+            for kind in KINDS:
+                row[f"tail_{kind}"] = tail_fraction(durations[kind])
+                row[f"contacts_{kind}"] = len(durations[kind])
+        table.append(row)
+    return table
