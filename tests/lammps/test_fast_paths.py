@@ -8,7 +8,7 @@ import shutil
 import numpy as np
 import pytest
 
-from granmn_run import INPUTS, PLUGIN, run_lammps
+from granmn_run import INPUTS, PLUGIN, run_lammps, run_scene
 
 # Long enough for the disks to land: the flows have disk-disk and boundary contacts by then.
 RUN = dict(run_time=6, average_start=3, stop_energy=0)
@@ -46,3 +46,12 @@ def test_counters_and_enforce2d_leave_the_trajectory_bitwise_alone(tmp_path, sce
     assert with_enforce2d == reference
     positions = np.loadtxt(reference)[:, 1:3]
     assert np.all(np.isfinite(positions))
+
+
+@pytest.mark.parametrize("variables,message", [
+    (dict(counters="maybe"), "deck variable counters = maybe must be yes or no"),
+    (dict(counters="no", rows="yes"), "rows = yes needs counters = yes"),
+])
+def test_bad_counters_variable_stops_with_a_message(tmp_path, variables, message):
+    run = run_scene("frictional_flow", tmp_path, check=False, **variables)
+    assert run.returncode != 0 and message in run.output, run.output[-1500:]
