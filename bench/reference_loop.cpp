@@ -17,6 +17,7 @@
 #include <cstring>
 #include <ctime>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace {
