@@ -1,6 +1,10 @@
 #!/usr/bin/python3
 """The benchmarks of the contact law, side by side in one run (after ./scripts/build.sh):
 
+- the per-step cost of the paper's flowing scenes (inputs/frictional_flow.lmp and
+  inputs/collisional_flow.lmp) as the study runs them (counters and outputs on), with the
+  counters off, and in the hand-written reference loop of the same law (bench/reference_loop.cpp),
+  with LAMMPS's timer breakdown; --baseline compares with another checkout's decks and plugin;
 - per-step cost of pair_style gran/mn against LAMMPS's gran/hooke/history on the same dense
   monodisperse flow, parameters matched so that both laws agree while contacts stick,
   with fix contacts/mn off and on;
@@ -8,7 +12,8 @@
 - 1 against 2 MPI ranks on that scene, and a 2-partition sweep against two serial runs;
 - memory per particle (LAMMPS's own accounting).
 
-    bench/run_benchmarks.py [--steps 4000] [--repeat 3] [--side 40]
+    bench/run_benchmarks.py [--steps 4000] [--repeat 3] [--side 40] [--scenes-only]
+                            [--warmup 10] [--span 10] [--baseline SOURCE_TREE]
 
 Each figure is the best of --repeat runs, the variants interleaved so that drifts in the
 machine's load hit all of them."""
@@ -30,6 +35,9 @@ BUILD = ROOT / "build"
 LMP = BUILD / "lammps" / "lmp"
 PLUGIN = BUILD / "plugin" / "granmnplugin.so"
 MN_LAW = BUILD / "plugin" / "mn-law"
+REFERENCE_LOOP = BUILD / "bench" / "reference-loop"
+SCENES = {"frictional_flow": "frictional", "collisional_flow": "collisional"}
+TIMER_SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
 KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
@@ -122,6 +130,83 @@ def run(command, deck, work):
     return loop, (float(memory.group(1)) if memory else float("nan")), wall
 
 
+def scene_run(source, scene, counters, dt_fraction, warmup, span, work):
+    """One scene deck of `source` (a checkout with build/plugin): CPU us/step over the span after
+    the warm-up (the deck's second run), its timer breakdown (% of the loop), mean E per disk
+    over the span."""
+    out = work / f"{scene}-{counters}"
+    out.mkdir(exist_ok=True)
+    command = [str(LMP), "-in", str(source / "inputs" / f"{scene}.lmp"), "-log", "none",
+               "-var", "plugin", str(source / "build" / "plugin" / "granmnplugin.so"),
+               "-var", "lib", str(source / "inputs" / "lib"), "-var", "out", str(out),
+               "-var", "kn", repr(KN), "-var", "run_time", repr(warmup + span),
+               "-var", "average_start", repr(warmup), "-var", "stop_energy", "0",
+               "-var", "dt_fraction", repr(dt_fraction)]
+    if counters is not None:
+        command += ["-var", "counters", counters]
+    proc = subprocess.run(command, cwd=work, capture_output=True, text=True, errors="replace",
+                          env=ENV)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{scene} failed:\n{proc.stdout[-2000:]}{proc.stderr[-2000:]}")
+    loops = re.findall(r"Loop time of (\S+) on \d+ procs for (\d+) steps", proc.stdout)
+    span_log = proc.stdout[proc.stdout.rfind("Loop time of"):]
+    # CPU time, not wall time: LAMMPS's loop time times its share of a core ("CPU use"), so
+    # that other processes on the machine weigh less
+    cpu_share = float(re.search(r"([\d.]+)% CPU use", span_log).group(1)) / 100
+    seconds, steps = float(loops[-1][0]) * cpu_share, int(loops[-1][1])
+    breakdown = {name: float(re.search(rf"^{name}\s*\|.*\|\s*(\S+)\s*$", span_log, re.M).group(1))
+                 for name in TIMER_SECTIONS}
+    energy = [float(line.split()[3]) for line in (out / "energy.txt").read_text().splitlines()
+              if not line.startswith("#")]
+    in_span = energy[int(len(energy) * warmup / (warmup + span)):]
+    return 1e6 * seconds / steps, breakdown, sum(in_span) / len(in_span)
+
+
+def reference_run(scene, dt_fraction, warmup, span):
+    """The reference loop on the same scene, time step and span: CPU us/step, E per disk,
+    contacts per step."""
+    dt = min(dt_fraction * law()["tau_c"], 1e-4)    # as the decks (dt_cap 1e-4)
+    proc = subprocess.run([str(REFERENCE_LOOP), SCENES[scene], repr(KN), repr(dt_fraction),
+                           repr(warmup), str(int(span / dt))],
+                          capture_output=True, text=True, check=True)
+    fields = proc.stdout.split()
+    values = dict(zip(fields[::2], fields[1::2]))
+    return float(values["us_per_step"]), float(values["energy_per_disk"]), \
+        float(values["contacts_per_step"])
+
+
+def scene_comparison(args, work):
+    """Each scene in LAMMPS (counters on, off; the baseline's) against the reference loop,
+    the variants interleaved, best of --repeat."""
+    variants = {"LAMMPS, counters + outputs": (ROOT, "yes"), "LAMMPS, counters off": (ROOT, "no")}
+    if args.baseline:
+        variants["baseline, counters + outputs"] = (Path(args.baseline).resolve(), None)
+    print(f"Scenes at kn = {KN:g}, dt = tau_c x {args.dt_fraction:g}, {args.span:g} time units "
+          f"after a {args.warmup:g} warm-up, best of {args.repeat}; CPU us per step:")
+    print(f"{'scene':<17} {'variant':<30} {'us/step':>8} {'vs reference':>13} {'E/disk':>7}  "
+          + " ".join(f"{name:>6}" for name in TIMER_SECTIONS) + "  (% of the loop)")
+    for scene in SCENES:
+        best = {}
+        for _ in range(args.repeat):
+            for name, (source, counters) in variants.items():
+                result = scene_run(source, scene, counters, args.dt_fraction, args.warmup,
+                                   args.span, work)
+                if name not in best or result[0] < best[name][0]:
+                    best[name] = result
+            reference = reference_run(scene, args.dt_fraction, args.warmup, args.span)
+            if "reference" not in best or reference[0] < best["reference"][0]:
+                best["reference"] = reference
+        base, ref_energy, ref_contacts = best.pop("reference")
+        for name, (us, breakdown, energy) in best.items():
+            print(f"{scene:<17} {name:<30} {us:8.3f} {us / base:13.2f} {energy:7.3f}  "
+                  + " ".join(f"{breakdown[s]:6.1f}" for s in TIMER_SECTIONS))
+        print(f"{scene:<17} {'reference loop (no counters)':<30} {base:8.3f} {1:13.2f} "
+              f"{ref_energy:7.3f}  ({ref_contacts:.1f} contacts per step)")
+        if args.baseline:
+            print(f"{scene:<17} baseline / this tree: "
+                  f"{best['baseline, counters + outputs'][0] / best['LAMMPS, counters + outputs'][0]:.2f}")
+
+
 def sweep_comparison(work):
     """Two short single-disk points: one 2-partition run against two serial runs."""
     config = work / "sweep.toml"
@@ -142,10 +227,23 @@ def main():
     parser.add_argument("--steps", type=int, default=4000)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--side", type=int, default=40, help="disks per side of the pile")
+    parser.add_argument("--scenes-only", action="store_true",
+                        help="only the scenes against the reference loop")
+    parser.add_argument("--warmup", type=float, default=30.0,
+                        help="time before the scenes' measured span (the deck's transient)")
+    parser.add_argument("--span", type=float, default=10.0, help="the scenes' measured time")
+    parser.add_argument("--dt-fraction", type=float, default=0.01,
+                        help="the scenes' dt in units of tau_c (the decks' default; the paper "
+                             "presets use 0.05 and 0.1)")
+    parser.add_argument("--baseline", help="another checkout, built, to run the scenes of too")
     args = parser.parse_args()
-    for path in (LMP, PLUGIN, MN_LAW):
+    for path in (LMP, PLUGIN, MN_LAW, REFERENCE_LOOP):
         if not path.exists():
             sys.exit(f"{path} is missing: run ./scripts/build.sh first")
+    with tempfile.TemporaryDirectory() as tmp:
+        scene_comparison(args, Path(tmp))
+    if args.scenes_only:
+        return
     dt = law()["tau_c"] / 50
     mpirun = shutil.which("mpirun") or "mpirun"
     liggghts = shutil.which("liggghts")

@@ -26,6 +26,7 @@ static constexpr int ROW_COLS = 8;          // tag_i tag_j kind start duration v
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), step_particle(nullptr),
     step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
+    fold_ghosts(false),
     now(0.0), clock_step(0), window_start(0.0), rows_every(0), row_array(nullptr), nmax_rows(0), rows_cleared(-1),
     vector_step(-1)
 {
@@ -88,6 +89,7 @@ void FixContactsMN::init()
   if (!force->pair_match("gran/mn", 1) && !granmn::first_fix(modify, "^wall/gran/mn"))
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");
+  fold_ghosts = comm->nprocs == 1 && atom->map_style != Atom::MAP_NONE;
 }
 
 // Called once per step before any contact is reported: the clock moves on by the step just
@@ -124,7 +126,7 @@ void FixContactsMN::pre_force(int)
 {
   advance_clock();
   grow_step_arrays();
-  const int n = atom->nlocal + atom->nghost;
+  const int n = fold_ghosts ? atom->nlocal : atom->nlocal + atom->nghost;
   for (int i = 0; i < n; i++)
     step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
   // rows published at the previous step have been written by then
@@ -162,7 +164,7 @@ void FixContactsMN::ended(const double *record, double tag_i, double tag_j, doub
 // Bring ghost tallies home, then add this step to each atom's counts and times.
 void FixContactsMN::collect(bool accumulate_time)
 {
-  if (force->newton_pair) granmn::reverse_comm(comm, this);
+  if (force->newton_pair && !fold_ghosts) granmn::reverse_comm(comm, this);
   const int *mask = atom->mask;
   const double dt = update->dt;
   for (int i = 0; i < atom->nlocal; i++) {

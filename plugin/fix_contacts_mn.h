@@ -63,6 +63,9 @@ class FixContactsMN : public FixPerAtomState {
   double *step_particle, *step_boundary;    // contacts at this step, owned + ghost
   double *begun_particle, *begun_boundary;  // contacts begun at this step, owned + ghost
   int nmax_step;
+  // One process: a ghost's tallies go straight to the disk it images (atom->map), so nothing
+  // is exchanged and only owned disks are cleared; else they travel by reverse communication.
+  bool fold_ghosts;
   // The fix's own clock: the time of the current step, the sum of the time steps actually
   // taken (a timestep changed between runs counts from then on; LAMMPS's time restarts at
   // zero after read_restart in this version, this clock does not).
@@ -105,6 +108,7 @@ inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool 
   (j_is_boundary ? step_boundary : step_particle)[i] += 1.0;
   if (began) (j_is_boundary ? begun_boundary : begun_particle)[i] += 1.0;
   if (tally_j) {
+    if (fold_ghosts && j >= atom->nlocal) j = atom->map(atom->tag[j]);
     (i_is_boundary ? step_boundary : step_particle)[j] += 1.0;
     if (began) (i_is_boundary ? begun_boundary : begun_particle)[j] += 1.0;
   }

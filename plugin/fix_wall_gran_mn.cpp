@@ -138,22 +138,26 @@ void FixWallGranMN::post_force(int)
   const double *rmass = atom->rmass;
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  wall_force[0] = wall_force[1] = 0.0;
-  force_reduced = false;
+  // locals, not members: the force stores below could alias them
+  const mn::Law contact = law;
+  FixContactsMN *const tally = counters;
+  double **history = state;
+  const double to_force = force_per_mass_acceleration;
+  const int first_side = has_lo ? 0 : 1, last_side = has_hi ? 1 : 0;
+  double wall_fx = 0.0, wall_fy = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    for (int side = 0; side < 2; side++) {
-      if (side == 0 ? !has_lo : !has_hi) continue;
+    for (int side = first_side; side <= last_side; side++) {
       // distance from the wall to the centre, along the wall's inward normal
       const double dist = side == 0 ? x[i][axis] - lo : hi - x[i][axis];
       const double normal = side == 0 ? 1.0 : -1.0;
       const bool touching = dist < radius[i];
-      if (counters)
-        counters->wall_state(i, &state[i][UT_COLUMNS + FixContactsMN::WALL_SLOTS * side],
-                             touching, radius[i] - dist, normal * v[i][axis]);
+      if (tally)
+        tally->wall_state(i, &history[i][UT_COLUMNS + FixContactsMN::WALL_SLOTS * side],
+                          touching, radius[i] - dist, normal * v[i][axis]);
       if (!touching) {
-        if (use_history) state[i][side] = 0.0;
+        if (use_history) history[i][side] = 0.0;
         continue;
       }
       if (dist <= 0.0)
@@ -164,18 +168,21 @@ void FixWallGranMN::post_force(int)
       const double dy = axis == 1 ? normal * dist : 0.0;
       const mn::Kinematics kin =
           mn::kinematics(dx, dy, dist, radius[i], v[i][0], v[i][1], radius[i] * omega[i][2]);
-      const double scale = mn::boundary_mass_scale(rmass[i]) * force_per_mass_acceleration;
-      const mn::Force fc = mn::contact_force(law, scale, kin,
-                                             use_history ? &state[i][side] : nullptr, dt_history);
+      const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
+      const mn::Force fc = mn::contact_force(contact, scale, kin,
+                                             use_history ? &history[i][side] : nullptr, dt_history);
       const mn::Cartesian fxy = mn::cartesian(kin, fc);
       const double fx = fxy.fx, fy = fxy.fy;
       f[i][0] += fx;
       f[i][1] += fy;
       torque[i][2] += mn::torque(fc, radius[i]);
-      wall_force[0] -= fx;
-      wall_force[1] -= fy;
+      wall_fx -= fx;
+      wall_fy -= fy;
     }
   }
+  wall_force[0] = wall_fx;
+  wall_force[1] = wall_fy;
+  force_reduced = false;
 }
 
 double FixWallGranMN::compute_vector(int n)

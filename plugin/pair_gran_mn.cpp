@@ -75,16 +75,12 @@ PairGranMN::~PairGranMN()
 
 /* ---------------------------------------------------------------------- */
 
-// The law's mass scale in force units: the law gives mass x acceleration, which LAMMPS turns
-// back into an acceleration with force->ftm2v (1 in lj units).
-double PairGranMN::mass_scale(int i, int j) const
+// The law's mass scale of a contact (before conversion to force units): a bump is boundary.
+static inline double contact_mass_scale(bool i_wall, bool j_wall, double mi, double mj)
 {
-  const double *rmass = atom->rmass;
-  const int *type = atom->type;
-  const double scale = is_wall_type[type[j]] ? mn::boundary_mass_scale(rmass[i])
-      : is_wall_type[type[i]]                  ? mn::boundary_mass_scale(rmass[j])
-                                               : mn::pair_mass_scale(rmass[i], rmass[j]);
-  return scale * force_per_mass_acceleration;
+  return j_wall ? mn::boundary_mass_scale(mi)
+      : i_wall  ? mn::boundary_mass_scale(mj)
+                : mn::pair_mass_scale(mi, mj);
 }
 
 // A contact just ended: its row goes to the counters, once even if both processes hold the pair.
@@ -114,6 +110,7 @@ void PairGranMN::compute(int eflag, int vflag)
   double **omega = atom->omega;
   double **torque = atom->torque;
   const double *radius = atom->radius;
+  const double *rmass = atom->rmass;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
 
@@ -126,9 +123,18 @@ void PairGranMN::compute(int eflag, int vflag)
   const int *type = atom->type;
   const tagint *tag = atom->tag;
 
+  // Locals, not members: the force stores below could alias them, and the compiler would
+  // reload them for every neighbour.
+  const mn::Law contact = law;
+  const char *is_wall = is_wall_type.data();
+  const double to_force = force_per_mass_acceleration;
+  FixContactsMN *const tally = counters;
+  const int stride = size_history, ut_slot = layout.ut, record_slot = layout.record;
+
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const double radi = radius[i];
+    const bool i_wall = is_wall[type[i]];
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     int *touch = history ? firsttouch[i] : nullptr;
@@ -140,13 +146,15 @@ void PairGranMN::compute(int eflag, int vflag)
       const double dy = x[i][1] - x[j][1];
       const double rsq = dx * dx + dy * dy;
       const double radsum = radi + radius[j];
-      double *slots = history ? &slots_all[size_history * jj] : nullptr;
+      double *slots = history ? &slots_all[stride * jj] : nullptr;
 
       if (rsq >= radsum * radsum) {
-        if (history) {
-          if (counters && touch[jj]) report_end(i, j, dx, dy, rsq, slots + layout.record, tag);
+        // a pair that is not touching already has zero history (FixNeighHistory hands new
+        // pairs zeros): only a contact that just ended has any to clear
+        if (history && touch[jj]) {
+          if (tally) report_end(i, j, dx, dy, rsq, slots + record_slot, tag);
           touch[jj] = 0;
-          for (int k = 0; k < size_history; k++) slots[k] = 0.0;
+          for (int k = 0; k < stride; k++) slots[k] = 0.0;
         }
         continue;
       }
@@ -158,13 +166,15 @@ void PairGranMN::compute(int eflag, int vflag)
       const mn::Kinematics kin =
           mn::kinematics(dx, dy, r, radsum, v[i][0] - v[j][0], v[i][1] - v[j][1],
                          radi * omega[i][2] + radius[j] * omega[j][2]);
-      if (counters)
-        counters->pair_touching(i, j, is_wall_type[type[j]], is_wall_type[type[i]],
-                                slots + layout.record, !touch[jj], kin.delta, kin.vn,
-                                newton_pair || j < nlocal);
+      const bool j_wall = is_wall[type[j]];
+      if (tally)
+        tally->pair_touching(i, j, j_wall, i_wall, slots + record_slot, !touch[jj], kin.delta,
+                             kin.vn, newton_pair || j < nlocal);
       if (history) touch[jj] = 1;
-      double *ut = layout.ut >= 0 ? slots + layout.ut : nullptr;
-      const mn::Force fc = mn::contact_force(law, mass_scale(i, j), kin, ut, dt_history);
+      double *ut = ut_slot >= 0 ? slots + ut_slot : nullptr;
+      // the law gives mass x acceleration; LAMMPS turns force back into it with ftm2v
+      const double scale = contact_mass_scale(i_wall, j_wall, rmass[i], rmass[j]) * to_force;
+      const mn::Force fc = mn::contact_force(contact, scale, kin, ut, dt_history);
 
       const mn::Cartesian fxy = mn::cartesian(kin, fc);
       const double fx = fxy.fx, fy = fxy.fy;
@@ -502,7 +512,11 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
   }
   double ut_copy = ut;    // single() must not alter the stored history
   const mn::Force fc =
-      mn::contact_force(law, mass_scale(i, j), kin, law.mu > 0.0 ? &ut_copy : nullptr, 0.0);
+      mn::contact_force(law,
+                        contact_mass_scale(is_wall_type[atom->type[i]], is_wall_type[atom->type[j]],
+                                           atom->rmass[i], atom->rmass[j]) *
+                            force_per_mass_acceleration,
+                        kin, law.mu > 0.0 ? &ut_copy : nullptr, 0.0);
   fforce = fc.fn / r;
   svector[0] = fc.ft;
   svector[1] = kin.delta;

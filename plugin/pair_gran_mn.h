@@ -64,7 +64,6 @@ class PairGranMN : public Pair {
   void allocate();
   void derive_law();
   void check_wall_types();
-  double mass_scale(int, int) const;
   void update_exclusions();
   void remove_exclusions();
   void report_end(int, int, double, double, double, const double *, const tagint *);
