@@ -56,6 +56,7 @@ trap 'rm -rf "$work"' EXIT
  if ls ./*.dsc >/dev/null 2>&1; then
    dpkg-source -x ./*.dsc src >&2
  elif ls ./*.orig.tar.* >/dev/null 2>&1; then
+   echo "get-lammps-source.sh: no .dsc from the archive (apt-get's error above): unpacking the upstream tarball" >&2
    mkdir src && tar -xf ./*.orig.tar.* -C src --strip-components=1
  else
    echo "get-lammps-source.sh: apt-get source fetched no LAMMPS source" >&2; exit 1
