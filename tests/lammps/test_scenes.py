@@ -130,6 +130,7 @@ BAD_VARIABLES = {
     "averaging after the end": (dict(run_time=10, average_start=20),
                                 "average_start = 20 must lie in [0, run_time = 10)"),
     "seed not an integer": (dict(seed=1.5), "seed = 1.5 must be a positive integer"),
+    "unknown timer": (dict(timer="fast"), "deck variable timer = fast must be off, loop, normal or full"),
     "unknown tangential law": (dict(tangential="sticky"),
                                "deck variable tangential = sticky must be literal or cutback"),
     "snapshots too far apart": (dict(snapshot_interval=1e9),
