@@ -10,7 +10,8 @@ import pytest
 from collision_decks import two_disks
 from granmn_run import PLUGIN, law, run_lammps
 from postprocess.io import read_rows
-from postprocess.transition import contact_durations, duration_density, tail_fraction
+from postprocess.transition import (DURATION_EDGES, contact_durations, duration_density,
+                                   tail_fraction)
 
 ROOT = Path(__file__).resolve().parents[2]
 ROWS = """fix c mobile contacts/mn local 1
@@ -38,7 +39,6 @@ def test_binary_collisions_give_a_spike_at_tau_c(tmp_path, kn):
     assert np.all(np.abs(np.array(scaled) - 1.0) <= 1.5 * dt / ref["tau_c"]), scaled
     assert tail_fraction(scaled) == 0.0
     density = duration_density(scaled)
-    from postprocess.transition import DURATION_EDGES
     occupied = np.flatnonzero(density)
     assert np.all((DURATION_EDGES[occupied + 1] > 1 - 1.5 * dt / ref["tau_c"]) &
                   (DURATION_EDGES[occupied] < 1 + 1.5 * dt / ref["tau_c"]))
