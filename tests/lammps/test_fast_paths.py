@@ -38,12 +38,16 @@ def test_counters_and_enforce2d_leave_the_trajectory_bitwise_alone(tmp_path, sce
     run, reference = final_state(tmp_path / "default", scene)
     begun = run.table("energy.txt")[:, 4:6].sum(axis=1)    # with disks and the boundary
     assert begun.max() > 10, "few contacts: the comparison would show little"
-    _, without_counters = final_state(tmp_path / "no_counters", scene, counters="no")
+    off, without_counters = final_state(tmp_path / "no_counters", scene, counters="no")
     _, with_enforce2d = final_state(tmp_path / "enforce2d", scene,
                                     lib=lib_with_enforce2d(tmp_path))
     assert len(reference) == 100
     assert without_counters == reference
     assert with_enforce2d == reference
+    # energy.txt's header names the columns it has (the post-processing reads them by name)
+    for r in (run, off):
+        lines = (r.workdir / "energy.txt").read_text().splitlines()
+        assert len(lines[1].split()) - 1 == len(lines[2].split()), lines[1:3]
     positions = np.loadtxt(reference)[:, 1:3]
     assert np.all(np.isfinite(positions))
 
