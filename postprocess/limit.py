@@ -1,0 +1,237 @@
+"""The hard-sphere-limit decision rule of docs/hard_sphere_limit.md: does a multiple-contact
+time tend to a finite value or vanish as k_n grows? From per-run values (one seed at one k_n),
+never from numbers combined elsewhere, so that the bootstrap can resample the runs."""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+# The quantities the rule decides on: the paper's two multiple-contact times and the directly
+# measured fraction of time with two or more contacts.
+QUANTITIES = ("mc_c", "mc_w", "t_multiple")
+# Energy levels of the frictional flow (per disk): the flows sit near ~0.4, ~0.65, ~0.95.
+LEVELS = {"low": (0.3, 0.5), "middle": (0.5, 0.8), "high": (0.8, 1.2)}
+MIN_RUNS = 3               # selected runs a k_n needs to enter the fits
+MIN_RUNS_IN_LEVEL = 2      # ... within one energy level
+MIN_KN_IN_LEVEL = 4        # k_n a level needs for the rule to be applied within it
+MIN_KN, MIN_DECADES = 5, 2.0   # a series the rule is applied to at all
+AIC_MARGIN = 4.0           # dAIC = AIC_P - AIC_F the floor must win by
+POWER_SIGMAS = 3.0         # the pure power law's decay must be this many errors from zero
+FLOOR_FRACTION = 0.5       # "vanishing": the floor's upper bound below this x m(k_max)
+BOOTSTRAP = 2000
+EXPONENTS = np.geomspace(0.01, 3.0, 600)   # the decay exponents b the fits scan
+
+
+@dataclass
+class Series:
+    """Per k_n: the span-weighted mean over the selected runs and its standard error."""
+    kn: np.ndarray
+    value: np.ndarray
+    error: np.ndarray
+    runs: np.ndarray
+
+
+def per_kn(runs, quantity, min_runs=MIN_RUNS):
+    """Series of one quantity from runs (dicts with kn, span and the quantity); k_n with fewer
+    than min_runs runs are left out and returned as the second value."""
+    groups = {}
+    for r in runs:
+        groups.setdefault(float(r["kn"]), []).append(r)
+    kn, value, error, count, lacking = [], [], [], [], []
+    for k in sorted(groups):
+        members = groups[k]
+        if len(members) < min_runs:
+            lacking.append((k, len(members)))
+            continue
+        mean, sem = weighted_mean([m[quantity] for m in members], [m["span"] for m in members])
+        kn.append(k)
+        value.append(mean)
+        error.append(sem)
+        count.append(len(members))
+    series = Series(*(np.array(a, dtype=float) for a in (kn, value, error, count)))
+    return pooled(series), lacking
+
+
+def pooled(series):
+    """The errors from one relative seed-to-seed scatter pooled over the k_n: the scatter
+    comes from the flow's energy levels, alike at every k_n, and an error estimated from a
+    handful of runs is itself uncertain by ~30 %, which would give some k_n weights that are
+    too large and the floor fit spurious wins."""
+    if len(series.kn) == 0:
+        return series
+    relative = series.error * np.sqrt(series.runs) / np.abs(series.value)
+    scatter = np.sqrt(np.mean(relative ** 2))
+    return Series(series.kn, series.value, np.abs(series.value) * scatter / np.sqrt(series.runs),
+                  series.runs)
+
+
+def weighted_mean(values, weights):
+    """The span-weighted mean and its standard error from the spread across runs (the same
+    estimate as study.combine_seeds)."""
+    values, w = np.asarray(values, dtype=float), np.asarray(weights, dtype=float)
+    w = w / w.sum()
+    mean = float(w @ values)
+    n = len(values)
+    return mean, float(np.sqrt(n / (n - 1) * np.sum(w ** 2 * (values - mean) ** 2)))
+
+
+def running_exponents(series):
+    """[(kn_low, kn_high, s, error)] between neighbouring k_n: s = dln m / dln k_n (nan where a
+    value is not positive)."""
+    out = []
+    for i in range(len(series.kn) - 1):
+        m0, m1 = series.value[i], series.value[i + 1]
+        span = np.log(series.kn[i + 1] / series.kn[i])
+        if m0 > 0 and m1 > 0:
+            s = np.log(m1 / m0) / span
+            err = np.hypot(series.error[i] / m0, series.error[i + 1] / m1) / span
+        else:
+            s = err = np.nan
+        out.append((series.kn[i], series.kn[i + 1], s, err))
+    return out
+
+
+def _sums(kn, value, weight, exponents):
+    """Weighted sums for the linear parts of the fits, one row per exponent b."""
+    x = (kn[None, :] / kn[0]) ** -exponents[:, None]    # k_n scaled: A stays of order m
+    w = weight[None, :]
+    return x, {"S": w.sum(axis=1), "Sx": (w * x).sum(axis=1), "Sxx": (w * x * x).sum(axis=1),
+               "Sy": (w * value).sum(axis=1), "Sxy": (w * x * value).sum(axis=1)}
+
+
+def _chi2(value, weight, x, c, a):
+    return (weight[None, :] * (value[None, :] - c[:, None] - a[:, None] * x) ** 2).sum(axis=1)
+
+
+def profile_power(kn, value, error, exponents=EXPONENTS):
+    """chi^2 of the pure power law m = A k^-b minimised over A, for each b."""
+    weight = 1.0 / error ** 2
+    x, s = _sums(kn, value, weight, exponents)
+    a = s["Sxy"] / s["Sxx"]
+    return _chi2(value, weight, x, np.zeros_like(a), a), a
+
+
+def profile_floor(kn, value, error, exponents=EXPONENTS):
+    """chi^2 of m = c + A k^-b with c >= 0, minimised over (c, A), for each b; and c, A."""
+    weight = 1.0 / error ** 2
+    x, s = _sums(kn, value, weight, exponents)
+    det = s["S"] * s["Sxx"] - s["Sx"] ** 2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = (s["Sxx"] * s["Sy"] - s["Sx"] * s["Sxy"]) / det
+        a = (s["S"] * s["Sxy"] - s["Sx"] * s["Sy"]) / det
+    bound = ~(c > 0)    # the constraint c >= 0 is active (or the system is degenerate)
+    c = np.where(bound, 0.0, c)
+    a = np.where(bound, s["Sxy"] / s["Sxx"], a)
+    return _chi2(value, weight, x, c, a), c, a
+
+
+@dataclass
+class Fits:
+    b_power: float          # the pure power law's decay exponent (m ~ k_n^-b)
+    b_power_error: float    # from the chi^2 profile (delta chi^2 = 1)
+    chi2_power: float
+    floor: float            # c of the floor fit
+    b_floor: float
+    chi2_floor: float
+    d_aic: float            # AIC_P - AIC_F
+
+
+def fit_both(series):
+    """The two fits of the rule (step 2) on a Series."""
+    kn, value, error = series.kn, series.value, series.error
+    chi2_p, _ = profile_power(kn, value, error)
+    best = int(np.argmin(chi2_p))
+    inside = chi2_p <= chi2_p[best] + 1.0
+    b_err = 0.5 * (EXPONENTS[inside].max() - EXPONENTS[inside].min())
+    if inside[0] or inside[-1]:    # the interval reaches the scanned range's edge
+        b_err = np.inf
+    chi2_f, c, _ = profile_floor(kn, value, error)
+    best_f = int(np.argmin(chi2_f))
+    return Fits(float(EXPONENTS[best]), float(b_err), float(chi2_p[best]), float(c[best_f]),
+                float(EXPONENTS[best_f]), float(chi2_f[best_f]),
+                float(chi2_p[best] - chi2_f[best_f] - 2.0))
+
+
+def bootstrap_floor(runs, quantity, kn, samples=BOOTSTRAP, seed=0):
+    """The floor c of the fit F over resamples of the runs within each k_n (the per-k_n means
+    and the pooled errors recomputed each time)."""
+    rng = np.random.default_rng(seed)
+    groups = [[r for r in runs if float(r["kn"]) == k] for k in kn]
+    values = [np.array([r[quantity] for r in g], dtype=float) for g in groups]
+    spans = [np.array([r["span"] for r in g], dtype=float) for g in groups]
+    counts = np.array([len(v) for v in values], dtype=float)
+    floors = np.empty(samples)
+    for b in range(samples):
+        means, errors = np.empty(len(kn)), np.empty(len(kn))
+        for i, (v, s) in enumerate(zip(values, spans)):
+            pick = rng.integers(0, len(v), len(v))
+            means[i], errors[i] = weighted_mean(v[pick], s[pick])
+        resampled = pooled(Series(np.asarray(kn), means, errors, counts))
+        if not np.all(resampled.error > 0):    # every resample of every k_n alike
+            floors[b] = np.nan
+            continue
+        chi2_f, c, _ = profile_floor(resampled.kn, resampled.value, resampled.error)
+        floors[b] = c[int(np.argmin(chi2_f))]
+    return floors
+
+
+@dataclass
+class Decision:
+    quantity: str
+    verdict: str                 # finite, vanishing, undecided, or 'not applied: why'
+    series: Series = None
+    running: list = field(default_factory=list)
+    fits: Fits = None
+    floor_interval: tuple = (np.nan, np.nan)
+    lacking: list = field(default_factory=list)
+    why: str = ""
+
+
+def decide(runs, quantity, min_runs=MIN_RUNS, min_kn=MIN_KN, samples=BOOTSTRAP):
+    """Steps 1-3 of the rule on one quantity over runs (dicts with kn, span, quantity)."""
+    series, lacking = per_kn(runs, quantity, min_runs)
+    if len(series.kn) < min_kn or (len(series.kn) and
+                                   np.log10(series.kn[-1] / series.kn[0]) < MIN_DECADES):
+        span = np.log10(series.kn[-1] / series.kn[0]) if len(series.kn) else 0.0
+        return Decision(quantity, f"not applied: needs {min_kn} k_n with >= {min_runs} runs "
+                                  f"over >= {MIN_DECADES:g} decades, has {len(series.kn)} over "
+                                  f"{span:.2g}", series, lacking=lacking)
+    if not np.all(series.error > 0):
+        return Decision(quantity, "not applied: a k_n whose runs all agree exactly (no error "
+                                  "to weigh it by)", series, lacking=lacking)
+    fits = fit_both(series)
+    floors = bootstrap_floor(runs, quantity, series.kn, samples)
+    low, high = np.nanpercentile(floors, [2.5, 97.5])
+    stiffest = series.value[-1]
+    if fits.d_aic >= AIC_MARGIN and low > 0:
+        verdict = "finite"
+        why = (f"the floor improves the fit (dAIC {fits.d_aic:.1f} >= {AIC_MARGIN:g}) and its "
+               f"95 % interval [{low:.3g}, {high:.3g}] excludes zero")
+    elif (fits.d_aic < AIC_MARGIN and fits.b_power > POWER_SIGMAS * fits.b_power_error and
+          high < FLOOR_FRACTION * stiffest):
+        verdict = "vanishing"
+        why = (f"no floor is needed (dAIC {fits.d_aic:.1f} < {AIC_MARGIN:g}), m ~ k_n^-"
+               f"{fits.b_power:.3g} +- {fits.b_power_error:.2g}, and any floor is below "
+               f"{high:.3g} < {FLOOR_FRACTION:g} x {stiffest:.3g} (the stiffest value)")
+    else:
+        verdict = "undecided"
+        why = (f"dAIC {fits.d_aic:.1f}, floor interval [{low:.3g}, {high:.3g}], power "
+               f"exponent {fits.b_power:.3g} +- {fits.b_power_error:.2g}, stiffest value "
+               f"{stiffest:.3g}: neither branch's conditions all hold")
+    return Decision(quantity, verdict, series, running_exponents(series), fits, (low, high),
+                    lacking, why)
+
+
+def level_of(energy):
+    for name, (low, high) in LEVELS.items():
+        if low <= energy < high:
+            return name
+    return None
+
+
+def decide_within_levels(runs, quantity, samples=BOOTSTRAP):
+    """Step 4: {level: Decision} for the runs of each energy level (by their mean E_total)."""
+    out = {}
+    for name in LEVELS:
+        members = [r for r in runs if level_of(r["E_total"]) == name]
+        out[name] = decide(members, quantity, MIN_RUNS_IN_LEVEL, MIN_KN_IN_LEVEL, samples)
+    return out

@@ -1,0 +1,90 @@
+"""The hard-sphere-limit decision rule (postprocess/limit.py, docs/hard_sphere_limit.md) on
+synthetic runs whose answer is known: each branch must be reachable and must not be reached by
+the other physics."""
+import numpy as np
+import pytest
+
+from postprocess import limit
+
+# The stiff preset's k_n (2^p x 10^5, p = 4, 6, ..., 14) and eight runs at each.
+KN = 1e5 * 2.0 ** np.arange(4, 16, 2)
+RUNS = 8
+
+
+def synthetic_runs(truth, noise, runs=RUNS, kn=KN, seed=1):
+    """Runs whose quantity is truth(kn) with a relative seed-to-seed scatter `noise` (the
+    frictional flow's energy levels give ~10-20 %)."""
+    rng = np.random.default_rng(seed)
+    return [{"kn": k, "span": 300.0, "E_total": 0.6,
+             "mc_c": truth(k) * (1 + noise * rng.standard_normal())}
+            for k in kn for _ in range(runs)]
+
+
+def power(k):
+    return 3.0 * k ** -0.2       # m_c keeps falling as the paper preset's fit: ~k_n^-0.2
+
+
+def floor(k):
+    # a decay onto a floor: 0.02 of the stiffest value 0.022
+    return 0.02 + 0.07 * (k / 1.6e6) ** -0.5
+
+
+def slow_floor(k):
+    # a slow decay onto a floor that is half the stiffest value: beyond this preset's reach
+    return 0.02 + 0.07 * (k / 1.6e6) ** -0.2
+
+
+def test_pure_power_law_vanishes():
+    # 5 % scatter: the rule's power is ~97 % here (scripts/limit_rule_power.py)
+    d = limit.decide(synthetic_runs(power, 0.05), "mc_c", samples=400)
+    assert d.verdict == "vanishing", d.why
+    # the fit recovers the exponent it was made with
+    assert abs(d.fits.b_power - 0.2) < 3 * d.fits.b_power_error + 0.02
+
+
+def test_floor_is_finite():
+    # 15 % scatter: the rule's power is ~100 % here
+    d = limit.decide(synthetic_runs(floor, 0.15), "mc_c", samples=400)
+    assert d.verdict == "finite", d.why
+    # the interval sits at the floor it was made with
+    low, high = d.floor_interval
+    assert 0.02 / 1.5 < high and low < 0.02 * 1.5
+
+
+def test_too_noisy_is_undecided():
+    # a slow decay onto a floor, in 25 % scatter: the rule must not pick a side
+    d = limit.decide(synthetic_runs(slow_floor, 0.25, runs=3), "mc_c", samples=400)
+    assert d.verdict == "undecided", d.why
+
+
+def test_too_short_a_series_is_not_decided():
+    # the quick study's range: four k_n over less than two decades
+    runs = synthetic_runs(power, 0.1, kn=1.25e4 * 4.0 ** np.arange(4))
+    d = limit.decide(runs, "mc_c", samples=50)
+    assert d.verdict.startswith("not applied")
+
+
+def test_kn_with_too_few_runs_is_left_out_and_listed():
+    runs = synthetic_runs(power, 0.1) + [{"kn": 1e10, "span": 300.0, "E_total": 0.6,
+                                           "mc_c": 0.01}]
+    series, lacking = limit.per_kn(runs, "mc_c")
+    assert 1e10 not in series.kn and lacking == [(1e10, 1)]
+
+
+def test_running_exponents_of_a_power_law():
+    runs = synthetic_runs(power, 0.0)
+    for r in runs:    # a little scatter, so that the errors are not zero
+        r["mc_c"] *= 1 + 1e-3 * (r is runs[0])
+    series, _ = limit.per_kn(runs, "mc_c")
+    s = np.array([e[2] for e in limit.running_exponents(series)])
+    assert np.allclose(s, -0.2, atol=1e-3)
+
+
+def test_levels_split_the_runs_by_energy():
+    runs = synthetic_runs(power, 0.1)
+    for i, r in enumerate(runs):
+        r["E_total"] = (0.4, 0.65, 0.95)[i % 3]
+    decisions = limit.decide_within_levels(runs, "mc_c", samples=50)
+    assert set(decisions) == {"low", "middle", "high"}
+    # two or three runs per level at each of six k_n: the rule applies in each level
+    assert all(not d.verdict.startswith("not applied") for d in decisions.values())
