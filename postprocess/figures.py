@@ -259,3 +259,37 @@ def duration_figure(densities, edges, path):
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
+
+
+def limit_figure(decisions, path):
+    """The hard-sphere-limit rule's data and fits (docs/hard_sphere_limit.md): per quantity, the
+    per-k_n means with their errors, the pure power law and the power law onto a floor, the
+    floor's bootstrap interval; and the running exponents."""
+    fig, axes = plt.subplots(1, len(decisions) + 1, figsize=(4.2 * (len(decisions) + 1), 4))
+    names = {"mc_c": "t_c - N_c tau_c", "mc_w": "t_w - N_w tau_w",
+             "t_multiple": "time with >= 2 contacts"}
+    for ax, d in zip(axes, decisions):
+        s = d.series
+        ax.errorbar(s.kn, s.value, yerr=s.error, fmt="o", ms=4, capsize=2, label="runs' mean")
+        if d.fits is not None:
+            k = np.geomspace(s.kn[0], s.kn[-1], 100)
+            ax.plot(k, d.fits.power_amplitude * (k / s.kn[0]) ** -d.fits.b_power, "--",
+                    label=f"k_n^-{d.fits.b_power:.2f}")
+            ax.plot(k, d.fits.floor + d.fits.floor_amplitude * (k / s.kn[0]) ** -d.fits.b_floor,
+                    "-", label=f"floor {d.fits.floor:.3g}")
+            low, high = d.floor_interval
+            ax.axhspan(low, high, color="0.85", zorder=0, label="floor 95 % (bootstrap)")
+        ax.set(xscale="log", yscale="log", xlabel="k_n", title=f"{names[d.quantity]}: {d.verdict}")
+        ax.legend(fontsize=7)
+        running = [r for r in d.running if np.isfinite(r[2])]
+        if running:
+            centre = [np.sqrt(a * b) for a, b, *_ in running]
+            axes[-1].errorbar(centre, [r[2] for r in running], yerr=[r[3] for r in running],
+                              fmt="o-", ms=4, capsize=2, label=names[d.quantity])
+    axes[-1].axhline(0.0, color="k", lw=0.5)
+    axes[-1].set(xscale="log", xlabel="k_n", ylabel="d ln m / d ln k_n",
+                 title="running exponents")
+    axes[-1].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

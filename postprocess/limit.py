@@ -128,8 +128,10 @@ def profile_floor(kn, value, error, exponents=EXPONENTS):
 class Fits:
     b_power: float          # the pure power law's decay exponent (m ~ k_n^-b)
     b_power_error: float    # from the chi^2 profile (delta chi^2 = 1)
+    power_amplitude: float  # A of the pure power law, at k_n scaled by the softest k_n
     chi2_power: float
     floor: float            # c of the floor fit
+    floor_amplitude: float  # its A, likewise
     b_floor: float
     chi2_floor: float
     d_aic: float            # AIC_P - AIC_F
@@ -138,17 +140,22 @@ class Fits:
 def fit_both(series):
     """The two fits of the rule (step 2) on a Series."""
     kn, value, error = series.kn, series.value, series.error
-    chi2_p, _ = profile_power(kn, value, error)
+    chi2_p, a_p = profile_power(kn, value, error)
     best = int(np.argmin(chi2_p))
     inside = chi2_p <= chi2_p[best] + 1.0
-    b_err = 0.5 * (EXPONENTS[inside].max() - EXPONENTS[inside].min())
     if inside[0] or inside[-1]:    # the interval reaches the scanned range's edge
         b_err = np.inf
-    chi2_f, c, _ = profile_floor(kn, value, error)
+    elif inside.sum() >= 5:
+        b_err = 0.5 * (EXPONENTS[inside].max() - EXPONENTS[inside].min())
+    else:    # narrower than the scan's steps: the parabola through the three nearest
+        b3, c3 = EXPONENTS[best - 1:best + 2], chi2_p[best - 1:best + 2]
+        curvature = np.polyfit(b3, c3, 2)[0]
+        b_err = 1.0 / np.sqrt(curvature) if curvature > 0 else np.inf
+    chi2_f, c, a_f = profile_floor(kn, value, error)
     best_f = int(np.argmin(chi2_f))
-    return Fits(float(EXPONENTS[best]), float(b_err), float(chi2_p[best]), float(c[best_f]),
-                float(EXPONENTS[best_f]), float(chi2_f[best_f]),
-                float(chi2_p[best] - chi2_f[best_f] - 2.0))
+    return Fits(float(EXPONENTS[best]), float(b_err), float(a_p[best]), float(chi2_p[best]),
+                float(c[best_f]), float(a_f[best_f]), float(EXPONENTS[best_f]),
+                float(chi2_f[best_f]), float(chi2_p[best] - chi2_f[best_f] - 2.0))
 
 
 def bootstrap_floor(runs, quantity, kn, samples=BOOTSTRAP, seed=0):
@@ -235,3 +242,45 @@ def decide_within_levels(runs, quantity, samples=BOOTSTRAP):
         members = [r for r in runs if level_of(r["E_total"]) == name]
         out[name] = decide(members, quantity, MIN_RUNS_IN_LEVEL, MIN_KN_IN_LEVEL, samples)
     return out
+
+
+NAMES = {"mc_c": "t_c - N_c tau_c", "mc_w": "t_w - N_w tau_w",
+         "t_multiple": "time with two or more contacts"}
+
+
+def report_lines(decisions, levels):
+    """Markdown: per quantity the per-k_n values, running exponents, fits and verdict; then
+    the verdicts within each energy level. decisions: [Decision]; levels: {quantity: {level:
+    Decision}}."""
+    lines = []
+    for d in decisions:
+        lines += [f"### {NAMES[d.quantity]}: **{d.verdict}**", ""]
+        if d.why:
+            lines += [d.why, ""]
+        s = d.series
+        lines += ["| k_n | runs | value | error | running exponent to the next k_n |",
+                  "|---|---|---|---|---|"]
+        running = {r[0]: r for r in d.running}
+        for k, v, e, n in zip(s.kn, s.value, s.error, s.runs):
+            r = running.get(k)
+            exponent = f"{r[2]:.3f} +- {r[3]:.3f}" if r and np.isfinite(r[2]) else ""
+            lines.append(f"| {k:.4g} | {int(n)} | {v:.4g} | {e:.2g} | {exponent} |")
+        for k, n in d.lacking:
+            lines.append(f"| {k:.4g} | {n} | (too few runs) | | |")
+        if d.fits:
+            f = d.fits
+            lines += ["", f"- pure power law: b = {f.b_power:.3f} +- {f.b_power_error:.3f}, "
+                          f"chi2 = {f.chi2_power:.2f} ({len(s.kn) - 2} dof)",
+                      f"- power law onto a floor: c = {f.floor:.4g}, b = {f.b_floor:.3f}, "
+                      f"chi2 = {f.chi2_floor:.2f} ({len(s.kn) - 3} dof); dAIC = {f.d_aic:.2f}",
+                      f"- floor's bootstrap 95 % interval: [{d.floor_interval[0]:.3g}, "
+                      f"{d.floor_interval[1]:.3g}]"]
+        lines.append("")
+    lines += ["### Within one energy level", "",
+              "| quantity | " + " | ".join(f"{n} E in [{lo:g}, {hi:g})" for n, (lo, hi)
+                                           in LEVELS.items()) + " |",
+              "|---|" + "---|" * len(LEVELS)]
+    for quantity, by_level in levels.items():
+        lines.append(f"| {NAMES[quantity]} | " + " | ".join(
+            by_level[n].verdict for n in LEVELS) + " |")
+    return lines + [""]

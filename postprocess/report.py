@@ -7,7 +7,7 @@ import numpy as np
 
 from . import figures, transition
 from .io import DataError, read_trajectory
-from .reference import evaluate
+from .reference import accepted, evaluate
 from .scenes import scene as scene_of
 from .selection import Selection
 from .study import (QUANTITIES, VARIANT_QUANTITIES, main_series, read_variables, run_summary,
@@ -130,7 +130,7 @@ def comparison_lines(results):
     for claim, value, error, status in results:
         lines.append(f"| {claim['id']} | {claim['quantity']} ({claim['measure']}) | "
                      f"[{claim['kn_min']:g}, {claim['kn_max']:g}] | {fmt(value, error)} | "
-                     f"[{claim['low']:g}, {claim['high']:g}] | {status} | {claim['source']} |")
+                     f"{accepted(claim)} | {status} | {claim['source']} |")
     return lines
 
 

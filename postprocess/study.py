@@ -131,6 +131,7 @@ def combine_seeds(rows):
                 f"; {note}" + (f" (x{said.count(note)})" if said.count(note) > 1 else "")
                 for note in sorted(set(said), key=said.index))
         o["label"] = label(members[0]["variables"], varying)
+        o["runs"] = members    # the runs behind the row, for rules that resample them
         combined.append(o)
     combined.sort(key=lambda o: (o["kn"], o["label"]))
     return combined

@@ -88,3 +88,42 @@ def test_levels_split_the_runs_by_energy():
     assert set(decisions) == {"low", "middle", "high"}
     # two or three runs per level at each of six k_n: the rule applies in each level
     assert all(not d.verdict.startswith("not applied") for d in decisions.values())
+
+
+def claim_status(runs):
+    """The status of the claim frictional-mc-limit on a frictional series built from runs."""
+    from postprocess.reference import evaluate, load_claims
+    rows = []
+    for k in sorted({r["kn"] for r in runs}):
+        members = [r for r in runs if r["kn"] == k]
+        rows.append({"kn": k, "label": "", "runs": members, "mc_c": members[0]["mc_c"],
+                     "mc_c_err": 0.0})
+    claim = [c for c in load_claims() if c["id"] == "frictional-mc-limit"]
+    (_, _, _, status), = evaluate({"frictional_flow": rows}, claim)
+    return status
+
+
+def test_the_papers_claim_passes_on_a_floor_and_fails_on_a_power_law():
+    assert claim_status(synthetic_runs(floor, 0.15)) == "pass (finite)"
+    assert claim_status(synthetic_runs(power, 0.05)) == "FAIL (vanishing)"
+    assert claim_status(synthetic_runs(slow_floor, 0.25, runs=3)) == "FAIL (undecided)"
+    # the quick study's short series: not evaluated, neither pass nor fail
+    short = synthetic_runs(power, 0.1, kn=1.25e4 * 4.0 ** np.arange(4))
+    assert claim_status(short).startswith("not evaluated")
+
+
+def test_limit_command_writes_the_verdicts_and_the_figure(tmp_path, capsys):
+    from postprocess.__main__ import write_limit
+    from postprocess.selection import Selection
+    runs = synthetic_runs(floor, 0.15)
+    for i, r in enumerate(runs):
+        r.update(mc_w=2 * r["mc_c"], t_multiple=0.1 * (r["kn"] / 1.6e6) ** -0.3 *
+                 (1 + 0.05 * np.sin(i)), E_total=(0.4, 0.65, 0.95)[i % 3])
+    rows = [{"kn": k, "label": "", "runs": [r for r in runs if r["kn"] == k]}
+            for k in sorted({r["kn"] for r in runs})]
+    assert write_limit(tmp_path, {"frictional_flow": rows}, tmp_path / "limit", Selection()) == 0
+    text = (tmp_path / "limit" / "limit.md").read_text()
+    assert "t_c - N_c tau_c: **finite**" in text
+    assert "time with two or more contacts: **vanishing**" in text
+    assert (tmp_path / "limit" / "limit.png").stat().st_size > 10000
+    assert "limit report:" in capsys.readouterr().out
