@@ -14,7 +14,9 @@ Config (TOML):
     seed = [1, 2]
     integrator = ["verlet", "ab2"]
 
-Any other key is passed to the deck as -var KEY VALUE (see inputs/lib/defaults.lmp).
+Any other key is passed to the deck as -var KEY VALUE (see inputs/lib/defaults.lmp); a
+variable the scene's deck takes but never uses (seed in single_disk: no random start) is
+refused. A number is one value whatever its spelling: kn 5e4, 50000 and "5e4" are one point.
 
 Layout: <output>/<scene>/<point>/ holds the deck's outputs (energy.txt, counts.txt, ...),
 point.json (the point's variables), command.txt (the exact command), log.lammps, run.out (what
@@ -45,6 +47,7 @@ from pathlib import Path
 from postprocess.law import LawError, derived    # scripts/postprocess links the package
 
 ROOT = Path(__file__).resolve().parent.parent
+LIB = ROOT / "inputs" / "lib"
 # The scenes are the decks that name themselves (`variable scene index NAME`).
 SCENES = tuple(sorted(deck.stem for deck in (ROOT / "inputs").glob("*.lmp")
                       if re.search(r"^variable scene index (\w+)", deck.read_text(), re.M)))
@@ -120,22 +123,42 @@ def expand(config, path):
                                  f"of inputs/{point['scene']}.lmp (docs/scenes.md lists them)")
             # a deck takes a word where it expects a number without complaint (as 0)
             for name, value in point.items():
-                if name in defaults and is_number(defaults[name]) and not is_number(value):
-                    raise SweepError(f"{point['scene']} point: {name} = {value!r} is not a number")
+                if name in defaults and is_number(defaults[name]):
+                    if not is_number(value):
+                        raise SweepError(f"{point['scene']} point: {name} = {value!r} is not a "
+                                         "number")
+                    point[name] = canonical_number(value)
+            ignored = sorted(set(point) - {"scene"} - deck_uses(point["scene"]))
+            if ignored:
+                raise SweepError(f"{path}: grid {number}: {', '.join(ignored)}: "
+                                 f"inputs/{point['scene']}.lmp does not use it (every value "
+                                 "would give the same run)")
             points.append(point)
-    names = [(p["scene"], point_name(p)) for p in points]
-    if len(set(names)) != len(names):
-        raise SweepError(f"{path}: the grids repeat a point")
+    seen = set()
+    for p in points:
+        name = f"{p['scene']}/{point_name(p)}"
+        if name in seen:
+            raise SweepError(f"{path}: the grids repeat the point {name} (equal numbers are one "
+                             "value, however spelt)")
+        seen.add(name)
     return points
+
+
+def canonical_number(value):
+    """One value, one spelling: seed 1 and "01" are 1; kn 5e4, 50000 and "5e4" are 50000."""
+    number = float(value)
+    return int(number) if number.is_integer() and abs(number) < 2 ** 53 else number
 
 
 def format_value(value):
     """A value as the deck and the point's name get it: %g where that is exact, else every
-    digit (1234567.8 is not 1.23457e+06)."""
-    if not isinstance(value, float):
+    digit (1234567.8 is not 1.23457e+06); an integer and its float alike (1e6 is 1000000)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
         return str(value)
-    short = f"{value:g}"
-    return short if float(short) == value else repr(value)
+    short = f"{float(value):g}"
+    if float(short) == value:
+        return short
+    return str(int(value)) if float(value).is_integer() and abs(value) < 2 ** 53 else repr(value)
 
 
 def point_name(point):
@@ -147,10 +170,38 @@ def deck_defaults(scene):
     """{name: default} of the variables a scene deck declares (`variable NAME index VALUE`, its
     own first, then the shared defaults), i.e. what -var can set."""
     defaults = {}
-    for deck in (ROOT / "inputs" / f"{scene}.lmp", ROOT / "inputs" / "lib" / "defaults.lmp"):
+    for deck in (ROOT / "inputs" / f"{scene}.lmp", LIB / "defaults.lmp"):
         for name, value in re.findall(r"^variable (\w+) index (\S+)", deck.read_text(), re.M):
             defaults.setdefault(name, value)
     return {name: value for name, value in defaults.items() if name not in RESERVED}
+
+
+def deck_commands(path):
+    """The commands of a LAMMPS input file and of the files it includes from ${lib}: comments
+    dropped, continuation lines and triple-quoted strings joined into their command."""
+    text = re.sub(r'""".*?"""', lambda m: m.group(0).replace("\n", " "), path.read_text(),
+                  flags=re.S)
+    text = "\n".join(re.match(r"""((?:[^#"']|"[^"]*"|'[^']*')*)""", line).group(1)
+                     for line in text.splitlines())
+    commands = []
+    for command in re.sub(r"&[ \t]*\n", " ", text).splitlines():
+        included = re.match(r"include \$\{lib\}/(\S+)", command.strip())
+        commands += deck_commands(LIB / included.group(1)) if included else [command.strip()]
+    return commands
+
+
+@functools.lru_cache(maxsize=None)
+def deck_uses(scene):
+    """Names of the variables a scene deck's commands read, its checks (if ... quit), its
+    declarations and its print-outs (params.txt) apart: a variable it takes but not among
+    these changes nothing in the run."""
+    uses = set()
+    for command in deck_commands(ROOT / "inputs" / f"{scene}.lmp"):
+        if re.match(r"(print\b|variable \w+ index\b)", command) or \
+                (command.startswith("if ") and re.search(r"\bquit\b", command)):
+            continue
+        uses.update(a or b for a, b in re.findall(r"\$\{(\w+)\}|\bv_(\w+)", command))
+    return uses
 
 
 def is_number(value):
@@ -209,7 +260,7 @@ def format_seconds(seconds):
 
 def point_variables(point, directory, paths):
     variables = {k: v for k, v in point.items() if k != "scene"}
-    variables.update(plugin=paths["plugin"], lib=ROOT / "inputs" / "lib", out=directory)
+    variables.update(plugin=paths["plugin"], lib=LIB, out=directory)
     return variables
 
 

@@ -1,5 +1,6 @@
 """scripts/sweep.py: resuming a killed sweep, the multi-partition mode, bad configs."""
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -116,6 +117,15 @@ BAD_CONFIGS = {
                                         "give no finite number of steps"),
     "a word for a number": ('[[grid]]\nscene = "frictional_flow"\nrow_spacing = "wide"\n',
                             "row_spacing = 'wide' is not a number"),
+    # single_disk has no random start: three seeds would be three copies of one run, averaged
+    # as if independent (an error bar of exactly 0)
+    "a variable the scene's deck does not use": (
+        '[[grid]]\nscene = "single_disk"\nrun_time = 1\naverage_start = 0.5\nseed = [1, 2, 3]\n',
+        "seed: inputs/single_disk.lmp does not use it"),
+    "one value in two spellings": (
+        '[[grid]]\nscene = "collisional_flow"\nrun_time = 1\naverage_start = 0.5\n'
+        'seed = [1, "01"]\n', 
+        "the grids repeat the point collisional_flow/average_start0.5_run_time1_seed1"),
 }
 
 
@@ -143,3 +153,15 @@ def test_values_reach_the_deck_with_every_digit(tmp_path):
     kns = sorted(float(next(p.glob("params.txt")).read_text().split("kn ")[1].split()[0])
                  for p in (tmp_path / "out" / "single_disk").iterdir())
     assert kns == [1234567.8, 1234568.1]
+
+
+def test_one_value_is_one_point_whatever_its_spelling(tmp_path):
+    """kn 5e4, 50000 and "5e4" (or 1e6 and 1000000) are one stiffness: one point, one name, and
+    the deck gets one spelling of it."""
+    names = []
+    for spelling in ('5e4', '50000', '"5e4"', '"50000.0"', '1e6', '1000000', '"1e6"'):
+        config = tmp_path / "spelling.toml"
+        config.write_text(f'[[grid]]\nscene = "collisional_flow"\nseed = "01"\nkn = {spelling}\n')
+        listing = sweep(config, tmp_path / "out", "--dry-run").stdout
+        names += re.findall(r"collisional_flow/(\S+)", listing)
+    assert names == ["kn50000_seed1"] * 4 + ["kn1e+06_seed1"] * 3
