@@ -320,7 +320,8 @@ def test_killed_runner_takes_its_lmp_with_it(tmp_path):
         assert wait_for(lambda: running_point(output) and processes_mentioning(output), 60)
         os.kill(runner.pid, signal.SIGKILL)
         runner.communicate()
-        assert wait_for(lambda: not processes_mentioning(output), 5), live_processes()
+        assert wait_for(lambda: not processes_mentioning(output), 5), \
+            processes_mentioning(output)
     finally:
         kill_session(runner.pid)
         kill_processes_mentioning(output)
@@ -339,7 +340,8 @@ def test_second_sweep_on_one_output_is_refused_and_sigterm_stops_the_first(tmp_p
         first.send_signal(signal.SIGTERM)
         _, stderr = first.communicate(timeout=30)
         assert first.returncode == 128 + signal.SIGTERM, stderr
-        assert wait_for(lambda: not processes_mentioning(output), 10), live_processes()
+        assert wait_for(lambda: not processes_mentioning(output), 10), \
+            processes_mentioning(output)
         # the interrupted point is not a failure: it is run again on resume
         assert not (point / "failed.txt").exists() and not (point / "done.txt").exists()
     finally:
