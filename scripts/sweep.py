@@ -14,29 +14,45 @@ Config (TOML):
     seed = [1, 2]
     integrator = ["verlet", "ab2"]
 
-Any other key is passed to the deck as -var KEY VALUE (see inputs/lib/defaults.lmp).
+Any other key is passed to the deck as -var KEY VALUE (see inputs/lib/defaults.lmp); a
+variable the scene's deck takes but never uses (seed in single_disk: no random start) is
+refused. A number is one value whatever its spelling: kn 5e4, 50000 and "5e4" are one point.
 
 Layout: <output>/<scene>/<point>/ holds the deck's outputs (energy.txt, counts.txt, ...),
 point.json (the point's variables), command.txt (the exact command), log.lammps, run.out (what
-lmp printed), timing.json (wall and CPU seconds),
-and done.txt, written by the deck last. A point with done.txt is never run again, so a killed
-sweep resumes where it stopped; a point without it is run again from scratch.
+lmp printed), timing.json (wall and CPU seconds), running.json while its lmp runs, failed.txt
+(the ERROR lines and the output) if it failed, and done.txt, written by the deck last.
+A point is done when done.txt and timing.json carry the token of one run (the runner gives
+each run its own and writes timing.json once that run has ended): such a point is never run
+again, so a killed sweep resumes where it stopped; any other point is run again from scratch.
 
+The runner owns its lmp processes: they die with it (kill -9 included), SIGTERM or SIGINT
+stops them and the sweep (exit status 128 + the signal); it refuses to start while a point's
+running.json names a process still alive, or while another sweep holds <output>/sweep.lock.
 By default the points run as separate serial lmp processes, as many at once as the machine
 has cores (--jobs). --partitions P runs P points at a time in one `mpirun -np P lmp -partition
-Px1`, LAMMPS's own multi-partition mode, as on a cluster.
+Px1`, LAMMPS's own multi-partition mode, as on a cluster; mpirun is asked first whether it
+has P slots. A point that fails in a partition is recorded as failed; the siblings its
+LAMMPS ERROR took down (MPI_Abort) are run again.
+
+Exit status: 0 all done, 1 some points failed, 2 refused (a bad config or path, a busy output).
 """
 import argparse
 import concurrent.futures
+import ctypes
+import fcntl
 import functools
 import json
 import math
 import os
 import re
+import secrets
 import shlex
 import shutil
+import signal
 import subprocess
 import sys
+import threading
 import time
 import tomllib
 from itertools import product
@@ -45,12 +61,17 @@ from pathlib import Path
 from postprocess.law import LawError, derived    # scripts/postprocess links the package
 
 ROOT = Path(__file__).resolve().parent.parent
+LIB = ROOT / "inputs" / "lib"
 # The scenes are the decks that name themselves (`variable scene index NAME`).
 SCENES = tuple(sorted(deck.stem for deck in (ROOT / "inputs").glob("*.lmp")
                       if re.search(r"^variable scene index (\w+)", deck.read_text(), re.M)))
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 # Deck variables the runner sets itself for every point.
-RESERVED = {"plugin", "lib", "out"}
+RESERVED = {"plugin", "lib", "out", "run_token"}
+# What LAMMPS's input syntax does not carry in a file name: a word ends at whitespace;
+# quotes, $ (a variable) and # (a comment) are syntax.
+PATH_SYNTAX = {" ": "a space", "\t": "a tab", "\n": "a newline", '"': "a quote (\")",
+               "'": "a quote (')", "$": "a $", "#": "a #"}
 # Atoms each scene integrates or pairs with: the cost model's size (bumps included).
 SCENE_ATOMS = {"single_disk": 11, "collisional_flow": 100, "frictional_flow": 100}
 # Seconds per step: a fixed part and a part per atom; refined as points finish.
@@ -120,22 +141,42 @@ def expand(config, path):
                                  f"of inputs/{point['scene']}.lmp (docs/scenes.md lists them)")
             # a deck takes a word where it expects a number without complaint (as 0)
             for name, value in point.items():
-                if name in defaults and is_number(defaults[name]) and not is_number(value):
-                    raise SweepError(f"{point['scene']} point: {name} = {value!r} is not a number")
+                if name in defaults and is_number(defaults[name]):
+                    if not is_number(value):
+                        raise SweepError(f"{point['scene']} point: {name} = {value!r} is not a "
+                                         "number")
+                    point[name] = canonical_number(value)
+            ignored = sorted(set(point) - {"scene"} - deck_uses(point["scene"]))
+            if ignored:
+                raise SweepError(f"{path}: grid {number}: {', '.join(ignored)}: "
+                                 f"inputs/{point['scene']}.lmp does not use it (every value "
+                                 "would give the same run)")
             points.append(point)
-    names = [(p["scene"], point_name(p)) for p in points]
-    if len(set(names)) != len(names):
-        raise SweepError(f"{path}: the grids repeat a point")
+    seen = set()
+    for p in points:
+        name = f"{p['scene']}/{point_name(p)}"
+        if name in seen:
+            raise SweepError(f"{path}: the grids repeat the point {name} (equal numbers are one "
+                             "value, however spelt)")
+        seen.add(name)
     return points
+
+
+def canonical_number(value):
+    """One value, one spelling: seed 1 and "01" are 1; kn 5e4, 50000 and "5e4" are 50000."""
+    number = float(value)
+    return int(number) if number.is_integer() and abs(number) < 2 ** 53 else number
 
 
 def format_value(value):
     """A value as the deck and the point's name get it: %g where that is exact, else every
-    digit (1234567.8 is not 1.23457e+06)."""
-    if not isinstance(value, float):
+    digit (1234567.8 is not 1.23457e+06); an integer and its float alike (1e6 is 1000000)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
         return str(value)
-    short = f"{value:g}"
-    return short if float(short) == value else repr(value)
+    short = f"{float(value):g}"
+    if float(short) == value:
+        return short
+    return str(int(value)) if float(value).is_integer() and abs(value) < 2 ** 53 else repr(value)
 
 
 def point_name(point):
@@ -147,10 +188,38 @@ def deck_defaults(scene):
     """{name: default} of the variables a scene deck declares (`variable NAME index VALUE`, its
     own first, then the shared defaults), i.e. what -var can set."""
     defaults = {}
-    for deck in (ROOT / "inputs" / f"{scene}.lmp", ROOT / "inputs" / "lib" / "defaults.lmp"):
+    for deck in (ROOT / "inputs" / f"{scene}.lmp", LIB / "defaults.lmp"):
         for name, value in re.findall(r"^variable (\w+) index (\S+)", deck.read_text(), re.M):
             defaults.setdefault(name, value)
     return {name: value for name, value in defaults.items() if name not in RESERVED}
+
+
+def deck_commands(path):
+    """The commands of a LAMMPS input file and of the files it includes from ${lib}: comments
+    dropped, continuation lines and triple-quoted strings joined into their command."""
+    text = re.sub(r'""".*?"""', lambda m: m.group(0).replace("\n", " "), path.read_text(),
+                  flags=re.S)
+    text = "\n".join(re.match(r"""((?:[^#"']|"[^"]*"|'[^']*')*)""", line).group(1)
+                     for line in text.splitlines())
+    commands = []
+    for command in re.sub(r"&[ \t]*\n", " ", text).splitlines():
+        included = re.match(r"include \$\{lib\}/(\S+)", command.strip())
+        commands += deck_commands(LIB / included.group(1)) if included else [command.strip()]
+    return commands
+
+
+@functools.lru_cache(maxsize=None)
+def deck_uses(scene):
+    """Names of the variables a scene deck's commands read, its checks (if ... quit), its
+    declarations and its print-outs (params.txt) apart: a variable it takes but not among
+    these changes nothing in the run."""
+    uses = set()
+    for command in deck_commands(ROOT / "inputs" / f"{scene}.lmp"):
+        if re.match(r"(print\b|variable \w+ index\b)", command) or \
+                (command.startswith("if ") and re.search(r"\bquit\b", command)):
+            continue
+        uses.update(a or b for a, b in re.findall(r"\$\{(\w+)\}|\bv_(\w+)", command))
+    return uses
 
 
 def is_number(value):
@@ -207,10 +276,20 @@ def format_seconds(seconds):
         f"{seconds // 60}m{seconds % 60:02d}s"
 
 
-def point_variables(point, directory, paths):
+def point_variables(point, directory, paths, token):
     variables = {k: v for k, v in point.items() if k != "scene"}
-    variables.update(plugin=paths["plugin"], lib=ROOT / "inputs" / "lib", out=directory)
+    variables.update(plugin=paths["plugin"], lib=LIB, out=directory, run_token=token)
     return variables
+
+
+def check_path(what, path):
+    """The decks write ${out}/params.txt and the like: LAMMPS would end the name at a space
+    (and write into an unrelated file) or read a quote, $ or # as syntax."""
+    for character, name in PATH_SYNTAX.items():
+        if character in str(path):
+            raise SweepError(f"{what} {str(path)!r} contains {name}: LAMMPS's input syntax "
+                             "cannot carry it in the file names the decks write; choose a path "
+                             "without it")
 
 
 def prepare(directory, point):
@@ -221,61 +300,292 @@ def prepare(directory, point):
     (directory / "point.json").write_text(json.dumps(point, indent=1, sort_keys=True) + "\n")
 
 
+def completed(directory):
+    """Whether a point's outputs are those of a run that ended: done.txt (the deck's last
+    output) and timing.json (the runner's, once it saw the run end) carry the same run token,
+    or, from a runner before tokens, neither has one."""
+    try:
+        done = (directory / "done.txt").read_text()
+        timing = json.loads((directory / "timing.json").read_text())
+    except (OSError, ValueError):
+        return False
+    token = re.search(r"\brun (\w+)", done)
+    return isinstance(timing, dict) and timing.get("run") == (token and token.group(1))
+
+
+def wrote_done(directory, token):
+    try:
+        return re.search(rf"\brun {token}\b", (directory / "done.txt").read_text()) is not None
+    except OSError:
+        return False
+
+
+def error_lines(*paths):
+    """The ERROR lines (and LAMMPS's `Last command:`) of logs and outputs."""
+    lines = []
+    for path in paths:
+        try:
+            text = path.read_text(errors="replace")
+        except OSError:
+            continue
+        lines += [line for line in text.splitlines()
+                  if line.startswith(("ERROR", "Last command:"))]
+    return lines
+
+
+# The runs under way, {pid: Popen}. Each run (lmp, or mpirun and the ranks it starts, each of
+# those in a process group of its own) is a session of its own: a signal reaches all of it.
+_runs = {}
+_runs_lock = threading.RLock()   # the signal handler takes it too, in the main thread
+_stopped_by = []                 # the signal that stopped the sweep
+_libc = ctypes.CDLL(None, use_errno=True)
+PR_SET_PDEATHSIG = 1
+SIGTERM = int(signal.SIGTERM)
+RUNNING = "running.json"
+POLL, GRACE = 0.5, 5.0           # seconds
+
+
+def die_with(runner):
+    """preexec_fn of a run: SIGTERM when the runner's thread that started it ends, the runner
+    killed with -9 included (PR_SET_PDEATHSIG; mpirun passes it on to its ranks); if the runner
+    is gone already, an exit. The pool threads that start runs live as long as the sweep."""
+    def setup():
+        _libc.prctl(PR_SET_PDEATHSIG, SIGTERM)
+        if os.getppid() != runner:
+            os._exit(1)
+    return setup
+
+
+def process_fields(pid):
+    """/proc/PID/stat from the state on (field 3): state, ppid, pgrp, session, ...; None if
+    there is no such process."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (OSError, IndexError):
+        return None
+
+
+def process_start(pid):
+    """When a process started (clock ticks after boot): with its pid it names one process."""
+    fields = process_fields(pid)
+    return int(fields[19]) if fields else None
+
+
+def session_processes(session):
+    pids = []
+    for entry in os.scandir("/proc"):
+        if entry.name.isdigit():
+            fields = process_fields(entry.name)
+            if fields and fields[0] != "Z" and int(fields[3]) == session:
+                pids.append(int(entry.name))
+    return pids
+
+
+def signal_session(session, signum):
+    for pid in session_processes(session):
+        try:
+            os.kill(pid, signum)
+        except ProcessLookupError:
+            pass
+
+
+def run_alive(record):
+    """Whether the run a running.json names has a process left (its leader, or ranks that
+    outlived mpirun), its leader's pid not being another process's now."""
+    leader = record.get("pid")
+    if not isinstance(leader, int) or leader <= 0:
+        return False
+    start = process_start(leader)
+    return (start is None or start == record.get("start")) and bool(session_processes(leader))
+
+
+def stop(signum, frame):
+    """SIGTERM, SIGINT: no run is started any more and the runs under way are stopped; their
+    points are run again when the sweep is."""
+    with _runs_lock:
+        _stopped_by.append(signum)
+        for pid in _runs:
+            signal_session(pid, SIGTERM)
+
+
+def start(command, output, env, directories):
+    """Starts a run with what it prints in `output`, unless the sweep is stopping; the
+    directories' running.json names it."""
+    with _runs_lock:
+        if _stopped_by:
+            return None
+        with open(output, "w") as out:
+            proc = subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT, env=env,
+                                    start_new_session=True, preexec_fn=die_with(os.getpid()))
+        _runs[proc.pid] = proc
+    record = json.dumps({"pid": proc.pid, "start": process_start(proc.pid)}) + "\n"
+    for directory in directories:
+        (directory / RUNNING).write_text(record)
+    return proc
+
+
+def wait(proc, directories, ended=None):
+    """(exit status, wall seconds, CPU seconds of the run and the children it waited for,
+    whether the runner had to stop it). With ended(), a run still there GRACE seconds after
+    ended() became true, or after the sweep was stopped, is stopped (mpirun never returns once
+    one partition has quit): SIGTERM, then SIGKILL. No process of the run is left afterwards."""
+    begun, deadline, stuck = time.time(), None, False
+    while True:
+        pid, status, usage = os.wait4(proc.pid, 0 if ended is None else os.WNOHANG)
+        if pid:
+            break
+        if deadline is None and (_stopped_by or ended()):
+            deadline = time.time() + GRACE
+        elif deadline is not None and time.time() > deadline:
+            signal_session(proc.pid, signal.SIGKILL if stuck else SIGTERM)
+            stuck, deadline = True, time.time() + GRACE
+        time.sleep(POLL)
+    elapsed = time.time() - begun
+    signal_session(proc.pid, signal.SIGKILL)
+    with _runs_lock:
+        del _runs[proc.pid]
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    for directory in directories:
+        (directory / RUNNING).unlink(missing_ok=True)
+    return proc.returncode, elapsed, usage.ru_utime + usage.ru_stime, stuck
+
+
 def run_serial(point, directory, paths, env):
+    """(outcome, wall seconds, note) of a point run as one lmp process."""
+    if _stopped_by:
+        return "stopped", 0.0, ""
+    token = secrets.token_hex(8)
     prepare(directory, point)
     command = [str(paths["lmp"]), "-in", str(ROOT / "inputs" / f"{point['scene']}.lmp"),
                "-log", str(directory / "log.lammps"), "-screen", "none", "-nocite"]
-    for name, value in point_variables(point, directory, paths).items():
+    for name, value in point_variables(point, directory, paths, token).items():
         command += ["-var", name, format_value(value)]
     (directory / "command.txt").write_text(shlex.join(command) + "\n")
-    return finish(directory, *timed_run(command, directory, env))
-
-
-def timed_run(command, directory, env):
-    """Runs command with its output in directory/run.out: (exit status, output, wall seconds,
-    CPU seconds of the process and the children it waited for)."""
-    start = time.time()
-    with open(directory / "run.out", "w") as out:
-        proc = subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT, env=env)
-        _, status, usage = os.wait4(proc.pid, 0)
-    proc.returncode = os.waitstatus_to_exitcode(status)
-    output = (directory / "run.out").read_text(errors="replace")
-    return proc.returncode, output, time.time() - start, usage.ru_utime + usage.ru_stime
+    proc = start(command, directory / "run.out", env, [directory])
+    if proc is None:
+        return "stopped", 0.0, ""
+    status, elapsed, cpu, _ = wait(proc, [directory])
+    outcome = finish(directory, token, status, elapsed, cpu,
+                     [directory / "log.lammps", directory / "run.out"], directory / "run.out")
+    return outcome, elapsed, ""
 
 
 def run_partitions(batch, batch_dir, paths, env):
-    """Points of one batch as the partitions of one lmp run."""
+    """Points of one batch as the partitions of one lmp run: [(outcome, wall seconds, note)].
+    A LAMMPS ERROR in one partition aborts them all (MPI_Abort): a sibling without an ERROR of
+    its own did not fail, its outcome is "rerun"."""
     batch_dir.mkdir(parents=True, exist_ok=True)
-    for point, directory in batch:
+    directories = [directory for _, directory in batch]
+    tokens = [secrets.token_hex(8) for _ in batch]
+    for (point, directory), token in zip(batch, tokens):
         prepare(directory, point)
         lines = [f"log {directory / 'log.lammps'}"]
         lines += [f"variable {name} index {format_value(value)}"
-                  for name, value in point_variables(point, directory, paths).items()]
+                  for name, value in point_variables(point, directory, paths, token).items()]
         lines.append(f"include {ROOT / 'inputs' / (point['scene'] + '.lmp')}")
         (directory / "settings.lmp").write_text("\n".join(lines) + "\n")
     driver = batch_dir / "driver.lmp"
-    driver.write_text("variable point world " + " ".join(str(d) for _, d in batch) +
+    driver.write_text("variable point world " + " ".join(str(d) for d in directories) +
                       "\ninclude ${point}/settings.lmp\n")
     n = len(batch)
     command = [paths["mpiexec"], "-np", str(n), str(paths["lmp"]), "-partition", f"{n}x1",
                "-in", str(driver), "-log", str(batch_dir / "log.lammps"), "-plog", "none",
                "-pscreen", "none", "-screen", "none", "-nocite"]
-    for _, directory in batch:
+    for directory in directories:
         (directory / "command.txt").write_text(shlex.join(command) + "\n")
-    status, output, elapsed, cpu = timed_run(command, batch_dir, env)
-    # one process for the batch: its time is shared out equally
-    return [finish(directory, status, output, elapsed, cpu / len(batch)) for _, directory in batch]
+
+    def ended():    # every partition has written done.txt or an ERROR
+        return all(wrote_done(d, t) or error_lines(d / "log.lammps")
+                   for d, t in zip(directories, tokens))
+
+    proc = start(command, batch_dir / "run.out", env, directories)
+    if proc is None:
+        return [("stopped", 0.0, "")] * n
+    status, elapsed, cpu, stuck = wait(proc, directories, ended)
+    note = (f" (mpirun stopped by the runner {GRACE:g} s after every partition had ended: it "
+            "does not return once a partition has quit)") if stuck else ""
+    culprits = [d for d in directories if error_lines(d / "log.lammps")]
+    results = []
+    for directory, token in zip(directories, tokens):
+        if culprits and directory not in culprits and not wrote_done(directory, token) \
+                and not _stopped_by:
+            results.append(("rerun", elapsed, "its batch ended with the ERROR of " +
+                            ", ".join(d.name for d in culprits)))
+            continue
+        # one process for the batch: its time is shared out equally
+        outcome = finish(directory, token, status, elapsed, cpu / n,
+                         [directory / "log.lammps", batch_dir / "log.lammps",
+                          batch_dir / "run.out"], batch_dir / "run.out", note)
+        results.append((outcome, elapsed, ""))
+    return results
 
 
-def finish(directory, status, output, elapsed, cpu):
-    ok = (directory / "done.txt").exists()
-    if ok:
+def finish(directory, token, status, elapsed, cpu, logs, output, note=""):
+    """A point's outcome: "done" (done.txt carries the run's token; timing.json is written with
+    it), "stopped" (by a signal to the sweep), else "failed" (failed.txt: the exit status, the
+    ERROR lines of logs, the end of output)."""
+    if wrote_done(directory, token):
         (directory / "timing.json").write_text(
-            json.dumps({"seconds": elapsed, "cpu_seconds": cpu}) + "\n")
-    else:
-        (directory / "failed.txt").write_text(f"exit status {status}\n--- output\n"
-                                              f"{output[-40000:]}\n")
-    return ok, elapsed
+            json.dumps({"seconds": elapsed, "cpu_seconds": cpu, "run": token}) + "\n")
+        return "done"
+    if _stopped_by:
+        return "stopped"
+    errors = error_lines(*logs) or [f"(no ERROR line in {', '.join(str(p) for p in logs)})"]
+    printed = output.read_text(errors="replace") if output.exists() else ""
+    (directory / "failed.txt").write_text(f"exit status {status}{note}\n" + "\n".join(errors) +
+                                          f"\n--- the end of {output}\n{printed[-40000:]}\n")
+    return "failed"
+
+
+def check_slots(mpiexec, partitions, env):
+    """OpenMPI starts no more processes than it has slots (one per physical core, unless an
+    allocation or a hostfile says otherwise): asked before any point runs."""
+    try:
+        proc = subprocess.run([mpiexec, "-np", str(partitions), "true"], capture_output=True,
+                              text=True, env=env, timeout=120)
+    except (OSError, subprocess.TimeoutExpired) as error:
+        raise SweepError(f"--partitions {partitions}: {mpiexec} does not run ({error})")
+    if proc.returncode != 0:
+        said = " ".join((proc.stdout + proc.stderr).split())
+        raise SweepError(
+            f"--partitions {partitions}: `{mpiexec} -np {partitions} true` fails here: "
+            f"{'not enough slots' if 'not enough slots' in said else said[:400]} (this machine "
+            f"has {os.cpu_count()} logical cores; OpenMPI counts the physical ones): use fewer "
+            "partitions, or run under an allocation or a hostfile with that many slots")
+
+
+def lock_output(output):
+    """Holds <output>/sweep.lock while the sweep runs (an flock: the kernel lets go when the
+    runner dies, kill -9 included); two sweeps on one output would run its points twice at
+    once."""
+    output.mkdir(parents=True, exist_ok=True)
+    handle = open(output / "sweep.lock", "a+")
+    try:
+        fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        handle.seek(0)
+        holder = handle.read().strip() or "unknown"
+        handle.close()
+        raise SweepError(f"{output} is in use by another sweep (pid {holder}, "
+                         f"{output / 'sweep.lock'}): let it end or stop it")
+    handle.truncate(0)
+    handle.write(f"{os.getpid()}\n")
+    handle.flush()
+    return handle
+
+
+def live_runs(directories):
+    """[(directory, pid)] of the points whose running.json names a run still alive: left by a
+    sweep that was killed before its lmp could be, or started by hand."""
+    live = []
+    for directory in directories:
+        try:
+            record = json.loads((directory / RUNNING).read_text())
+        except (OSError, ValueError):
+            continue
+        if isinstance(record, dict) and run_alive(record):
+            live.append((directory, record["pid"]))
+    return live
 
 
 def cpu_seconds(directories):
@@ -317,6 +627,8 @@ def main(argv=None):
         config = load_config(args.config)
         points = expand(config, args.config)
         output = args.output or ROOT / "results" / config.get("name", Path(args.config).stem)
+        for what, path in (("--output", output), ("--build", args.build), ("the checkout", ROOT)):
+            check_path(what, path)
         steps = [predicted_steps(p, paths["mn_law"]) for p in points]
     except SweepError as error:
         print(f"sweep: {error}", file=sys.stderr)
@@ -324,7 +636,7 @@ def main(argv=None):
 
     model = CostModel()
     plan = [(p, output / p["scene"] / point_name(p), s) for p, s in zip(points, steps)]
-    todo = [(p, d, s) for p, d, s in plan if not (d / "done.txt").exists()]
+    todo = [(p, d, s) for p, d, s in plan if not completed(d)]
     # most expensive first, so that the last points to finish are short ones
     todo.sort(key=lambda item: -model.predict(item[0], item[2]))
     total = sum(model.predict(p, s) for p, _, s in plan)
@@ -333,44 +645,77 @@ def main(argv=None):
           f"({total / 3600:.3g} CPU-hours); output {output}", flush=True)
     if args.dry_run:
         for p, d, s in plan:
-            print(f"  {'done' if (d / 'done.txt').exists() else 'todo'} {d.relative_to(output)} "
+            print(f"  {'done' if completed(d) else 'todo'} {d.relative_to(output)} "
                   f"{s} steps ~{format_seconds(model.predict(p, s))}")
         return 0
 
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    lanes = args.partitions if args.partitions else args.jobs
-    failures, finished = [], 0
+    try:
+        if args.partitions and todo:
+            check_slots(paths["mpiexec"], min(args.partitions, len(todo)), env)
+        lock = lock_output(output)
+        live = live_runs(d for _, d, _ in todo)
+        if live:
+            raise SweepError(
+                f"{len(live)} points are still being run by processes an earlier sweep left "
+                "(stop them, e.g. `kill PID`, or let them end; then run the sweep again): " +
+                "; ".join(f"pid {pid} in {d}" for d, pid in live[:5]))
+    except SweepError as error:
+        print(f"sweep: {error}", file=sys.stderr)
+        return 2
+    signal.signal(signal.SIGTERM, stop)
+    signal.signal(signal.SIGINT, stop)
 
-    def report(point, directory, predicted, ok, elapsed):
-        nonlocal finished
-        finished += 1
+    lanes = args.partitions if args.partitions else args.jobs
+    unfinished = {d: (p, s) for p, d, s in todo}
+    failures = []
+
+    def report(point, directory, predicted, outcome, elapsed, note):
+        if outcome == "stopped":
+            return
+        if outcome == "rerun":
+            print(f"[{len(todo) - len(unfinished)}/{len(todo)}] rerun "
+                  f"{directory.relative_to(output)}: {note}", flush=True)
+            return
+        del unfinished[directory]
         stopped = directory / "stopped.txt"
-        if not ok:
+        if outcome == "failed":
             failures.append(directory)
         elif not stopped.exists():      # a run that ended early says nothing about the cost
             model.learn(predicted, elapsed)
-        how = "FAILED" if not ok else "done" if not stopped.exists() else \
+        how = "FAILED" if outcome == "failed" else "done" if not stopped.exists() else \
             f"done (pile stopped: {stopped.read_text().strip()})"
-        remaining = sum(model.predict(p, s) for p, d, s in todo[finished:]) / lanes
-        print(f"[{finished}/{len(todo)}] {how} {directory.relative_to(output)} in "
-              f"{elapsed:.1f} s; ETA {format_seconds(remaining)}", flush=True)
+        remaining = sum(model.predict(p, s) for p, s in unfinished.values()) / lanes
+        print(f"[{len(todo) - len(unfinished)}/{len(todo)}] {how} "
+              f"{directory.relative_to(output)} in {elapsed:.1f} s; "
+              f"ETA {format_seconds(remaining)}", flush=True)
 
-    if args.partitions:
-        for start in range(0, len(todo), args.partitions):
-            batch = todo[start:start + args.partitions]
-            results = run_partitions([(p, d) for p, d, _ in batch],
-                                     output / "batches" / f"batch{start // args.partitions}",
-                                     paths, env)
-            for (p, d, s), (ok, elapsed) in zip(batch, results):
-                report(p, d, model.predict(p, s) * len(batch), ok, elapsed * len(batch))
-    else:
-        with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+    # runs start in pool threads only: the main thread takes the signals
+    with concurrent.futures.ThreadPoolExecutor(max_workers=1 if args.partitions else
+                                               args.jobs) as pool:
+        if args.partitions:
+            queue, number = list(todo), 0
+            while queue and not _stopped_by:
+                batch, queue = queue[:args.partitions], queue[args.partitions:]
+                results = pool.submit(run_partitions, [(p, d) for p, d, _ in batch],
+                                      output / "batches" / f"batch{number}", paths, env).result()
+                number += 1
+                for (p, d, s), (outcome, elapsed, note) in zip(batch, results):
+                    if outcome == "rerun":
+                        queue.append((p, d, s))
+                    report(p, d, model.predict(p, s) * len(batch), outcome,
+                           elapsed * len(batch), note)
+        else:
             futures = {pool.submit(run_serial, p, d, paths, env): (p, d, s) for p, d, s in todo}
             for future in concurrent.futures.as_completed(futures):
                 p, d, s = futures[future]
-                ok, elapsed = future.result()
-                report(p, d, model.predict(p, s), ok, elapsed)
+                report(p, d, model.predict(p, s), *future.result())
+    lock.close()
 
+    if _stopped_by:
+        print(f"sweep: stopped by {signal.Signals(_stopped_by[0]).name}; {len(unfinished)} "
+              "points not done: the same command runs them", file=sys.stderr)
+        return 128 + _stopped_by[0]
     if failures:
         print(f"sweep: {len(failures)} points failed; see failed.txt in:", file=sys.stderr)
         for d in failures:

@@ -1,5 +1,8 @@
-"""scripts/sweep.py: resuming a killed sweep, the multi-partition mode, bad configs."""
+"""scripts/sweep.py: resuming a killed sweep, the multi-partition mode, bad configs, the
+runner's ownership of its lmp processes and of its output directory."""
+import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -25,16 +28,78 @@ kn = [5e4, 1e5, 2e5]
 """
 
 
-def sweep(config_path, output, *args, check=True):
-    proc = subprocess.run(SWEEP + [str(config_path), "--output", str(output), "--build",
-                                   str(BUILD), *args], capture_output=True, text=True)
+def start_sweep(config_path, output, *args):
+    """The runner in a session of its own: kill_session() then reaches whatever it left."""
+    return subprocess.Popen(SWEEP + [str(config_path), "--output", str(output), "--build",
+                                     str(BUILD), *args], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+
+
+def sweep(config_path, output, *args, check=True, timeout=300):
+    runner = start_sweep(config_path, output, *args)
+    try:
+        stdout, stderr = runner.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        kill_session(runner.pid)
+        kill_processes_mentioning(output)
+        runner.communicate()
+        raise AssertionError(f"the sweep did not end within {timeout} s")
+    proc = subprocess.CompletedProcess(runner.args, runner.returncode, stdout, stderr)
     if check and proc.returncode != 0:
         raise AssertionError(proc.stdout + proc.stderr)
     return proc
 
 
+def live_processes():
+    """{pid: (session id, command line)} of the processes that have not exited."""
+    processes = {}
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+            command = (entry / "cmdline").read_bytes().replace(b"\0", b" ").decode()
+        except (OSError, ValueError, IndexError):
+            continue
+        if fields[0] != "Z":
+            processes[int(entry.name)] = (int(fields[3]), command)
+    return processes
+
+
+def processes_mentioning(path):
+    return [pid for pid, (_, command) in live_processes().items() if str(path) in command]
+
+
+def kill_processes_mentioning(path):
+    for pid in processes_mentioning(path):
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+
+
+def kill_session(session):
+    for pid, (sid, _) in live_processes().items():
+        if sid == session:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+
+
+def wait_for(condition, seconds):
+    deadline = time.time() + seconds
+    while not condition():
+        if time.time() > deadline:
+            return False
+        time.sleep(0.05)
+    return True
+
+
 def done_points(output):
-    return sorted(p.parent.name for p in output.glob("*/*/done.txt"))
+    """The points whose run the runner saw end with done.txt: it wrote their timing.json."""
+    return sorted(p.parent.name for p in output.glob("*/*/timing.json")
+                  if (p.parent / "done.txt").exists())
 
 
 def test_killed_sweep_resumes_without_redoing_finished_points(tmp_path):
@@ -54,7 +119,7 @@ def test_killed_sweep_resumes_without_redoing_finished_points(tmp_path):
     assert len(finished) == 1, "the first point should have finished before the kill"
     first = next(output.glob(f"*/{finished[0]}"))
     stamp = (first / "energy.txt").stat().st_mtime_ns
-    unfinished = [p for p in output.glob("*/*") if not (p / "done.txt").exists()]
+    unfinished = [p for p in output.glob("*/*") if p.name not in finished]
 
     resumed = sweep(config, output, "--jobs", "1")
     assert "1 already done, 2 to run" in resumed.stdout
@@ -116,6 +181,15 @@ BAD_CONFIGS = {
                                         "give no finite number of steps"),
     "a word for a number": ('[[grid]]\nscene = "frictional_flow"\nrow_spacing = "wide"\n',
                             "row_spacing = 'wide' is not a number"),
+    # single_disk has no random start: three seeds would be three copies of one run, averaged
+    # as if independent (an error bar of exactly 0)
+    "a variable the scene's deck does not use": (
+        '[[grid]]\nscene = "single_disk"\nrun_time = 1\naverage_start = 0.5\nseed = [1, 2, 3]\n',
+        "seed: inputs/single_disk.lmp does not use it"),
+    "one value in two spellings": (
+        '[[grid]]\nscene = "collisional_flow"\nrun_time = 1\naverage_start = 0.5\n'
+        'seed = [1, "01"]\n', 
+        "the grids repeat the point collisional_flow/average_start0.5_run_time1_seed1"),
 }
 
 
@@ -143,3 +217,176 @@ def test_values_reach_the_deck_with_every_digit(tmp_path):
     kns = sorted(float(next(p.glob("params.txt")).read_text().split("kn ")[1].split()[0])
                  for p in (tmp_path / "out" / "single_disk").iterdir())
     assert kns == [1234567.8, 1234568.1]
+
+
+def test_one_value_is_one_point_whatever_its_spelling(tmp_path):
+    """kn 5e4, 50000 and "5e4" (or 1e6 and 1000000) are one stiffness: one point, one name, and
+    the deck gets one spelling of it."""
+    names = []
+    for spelling in ('5e4', '50000', '"5e4"', '"50000.0"', '1e6', '1000000', '"1e6"'):
+        config = tmp_path / "spelling.toml"
+        config.write_text(f'[[grid]]\nscene = "collisional_flow"\nseed = "01"\nkn = {spelling}\n')
+        listing = sweep(config, tmp_path / "out", "--dry-run").stdout
+        names += re.findall(r"collisional_flow/(\S+)", listing)
+    assert names == ["kn50000_seed1"] * 4 + ["kn1e+06_seed1"] * 3
+
+
+def single_disk_config(tmp_path, text):
+    config = tmp_path / "sweep.toml"
+    config.write_text('[[grid]]\nscene = "single_disk"\n' + text)
+    return config
+
+
+def test_failed_point_records_its_error_and_the_sweep_goes_on(tmp_path):
+    """The deck's checks print their ERROR into log.lammps (lmp runs with -screen none):
+    failed.txt must carry it, not an empty output."""
+    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = [0.5, 5]\n")
+    proc = sweep(config, tmp_path / "out", check=False)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    points = tmp_path / "out" / "single_disk"
+    failed = (points / "average_start5_run_time1" / "failed.txt").read_text()
+    assert "ERROR: deck variable average_start = 5 must lie in [0, run_time = 1)" in failed
+    assert (points / "average_start0.5_run_time1" / "done.txt").exists()
+
+
+def test_partition_that_quits_is_a_failed_point_and_its_sibling_is_done(tmp_path):
+    """A deck check's `quit 1` in one partition leaves mpirun waiting for ever (that partition
+    is in MPI_Finalize, its sibling in MPI_Barrier): the runner must end the batch, record the
+    failure, keep the sibling's result and leave no process behind."""
+    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = [0.5, 5]\n")
+    output = tmp_path / "out"
+    proc = sweep(config, output, "--partitions", "2", check=False, timeout=120)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    points = output / "single_disk"
+    failed = (points / "average_start5_run_time1" / "failed.txt").read_text()
+    assert "ERROR: deck variable average_start = 5 must lie in [0, run_time = 1)" in failed
+    assert (points / "average_start0.5_run_time1" / "done.txt").exists()
+    assert not processes_mentioning(output)
+
+
+def test_partition_error_reruns_its_healthy_sibling(tmp_path):
+    """A LAMMPS ERROR in one partition aborts the whole mpirun (MPI_Abort): the sibling it took
+    down did not fail, and is run again, with a word."""
+    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\nmu = [0.5, -1]\n")
+    output = tmp_path / "out"
+    proc = sweep(config, output, "--partitions", "2", check=False, timeout=120)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    points = output / "single_disk"
+    failed = (points / "average_start0.5_mu-1_run_time1" / "failed.txt").read_text()
+    assert "mu must be a finite number >= 0" in failed
+    healthy = points / "average_start0.5_mu0.5_run_time1"
+    assert (healthy / "done.txt").exists() and not (healthy / "failed.txt").exists()
+    assert re.search(r"rerun single_disk/average_start0.5_mu0.5_run_time1: .*mu-1", proc.stdout)
+    assert not processes_mentioning(output)
+
+
+def test_more_partitions_than_slots_is_refused_before_any_point_runs(tmp_path):
+    if any(k.startswith("OMPI_MCA_rmaps_base_oversubscribe") for k in os.environ):
+        pytest.skip("oversubscription is allowed here")
+    too_many = len(os.sched_getaffinity(0)) + 1
+    kns = ", ".join(str(5e4 * (k + 1)) for k in range(too_many))
+    config = single_disk_config(tmp_path, f"run_time = 1\naverage_start = 0.5\nkn = [{kns}]\n")
+    proc = sweep(config, tmp_path / "out", "--partitions", str(too_many), check=False)
+    assert proc.returncode == 2 and "not enough slots" in proc.stderr, proc.stdout + proc.stderr
+    assert not list((tmp_path / "out").glob("*/*/point.json"))
+
+
+def test_output_path_with_a_space_is_refused(tmp_path):
+    """The decks write ${out}/params.txt: LAMMPS would end the file name at the space and
+    write into <dir>/a, an unrelated file."""
+    unrelated = tmp_path / "a"
+    unrelated.write_text("keep me\n")
+    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\n")
+    proc = sweep(config, tmp_path / "a b", check=False)
+    assert proc.returncode == 2 and "contains a space" in proc.stderr, proc.stdout + proc.stderr
+    assert unrelated.read_text() == "keep me\n" and not (tmp_path / "a b").exists()
+
+
+LONG = "run_time = 3000\naverage_start = 1\nkn = [5e4, 1e5]\n"    # a minute a point
+
+
+def running_point(output):
+    """The directory of a point whose lmp has started (its log is there)."""
+    logs = list(output.glob("*/*/log.lammps"))
+    return logs[0].parent if logs else None
+
+
+def test_killed_runner_takes_its_lmp_with_it(tmp_path):
+    """kill -9 of the runner must not leave its lmp running on (it would write into the point
+    directory that a resumed sweep has started afresh)."""
+    output = tmp_path / "out"
+    runner = start_sweep(single_disk_config(tmp_path, LONG), output, "--jobs", "1")
+    try:
+        assert wait_for(lambda: running_point(output) and processes_mentioning(output), 60)
+        os.kill(runner.pid, signal.SIGKILL)
+        runner.communicate()
+        assert wait_for(lambda: not processes_mentioning(output), 5), \
+            processes_mentioning(output)
+    finally:
+        kill_session(runner.pid)
+        kill_processes_mentioning(output)
+
+
+def test_second_sweep_on_one_output_is_refused_and_sigterm_stops_the_first(tmp_path):
+    config = single_disk_config(tmp_path, LONG)
+    output = tmp_path / "out"
+    first = start_sweep(config, output, "--jobs", "1")
+    try:
+        assert wait_for(lambda: running_point(output), 60)
+        point = running_point(output)
+        second = sweep(config, output, "--jobs", "1", check=False, timeout=60)
+        assert second.returncode == 2 and f"pid {first.pid}" in second.stderr, \
+            second.stdout + second.stderr
+        first.send_signal(signal.SIGTERM)
+        _, stderr = first.communicate(timeout=30)
+        assert first.returncode == 128 + signal.SIGTERM, stderr
+        assert wait_for(lambda: not processes_mentioning(output), 10), \
+            processes_mentioning(output)
+        # the interrupted point is not a failure: it is run again on resume
+        assert not (point / "failed.txt").exists() and not (point / "done.txt").exists()
+    finally:
+        kill_session(first.pid)
+        kill_processes_mentioning(output)
+
+
+def test_resume_is_refused_while_a_run_of_a_killed_sweep_lives(tmp_path):
+    """A point's directory names the process running it (running.json); a sweep that finds it
+    alive (an lmp a killed sweep left behind, or started by hand) must not wipe the point
+    under it."""
+    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\n")
+    output = tmp_path / "out"
+    sweep(config, output)
+    point = next(output.glob("*/*"))
+    (point / "done.txt").unlink()
+    orphan = subprocess.Popen(["sleep", "60"], start_new_session=True)
+    try:
+        # /proc/PID/stat field 22: the start time, which tells the process from a later one
+        start = (Path("/proc") / str(orphan.pid) / "stat").read_text().rsplit(")", 1)[1].split()
+        (point / "running.json").write_text(json.dumps({"pid": orphan.pid,
+                                                        "start": int(start[19])}))
+        proc = sweep(config, output, check=False)
+        assert proc.returncode == 2 and f"pid {orphan.pid}" in proc.stderr, \
+            proc.stdout + proc.stderr
+        assert (point / "running.json").exists()    # not wiped
+    finally:
+        orphan.kill()
+        orphan.wait()
+    assert "0 already done, 1 to run" in sweep(config, output).stdout   # once it is gone
+
+
+def test_done_txt_of_another_run_is_not_taken(tmp_path):
+    """done.txt counts only with the run token the runner gave the run that wrote the outputs
+    (timing.json has it): a done.txt from a left-over process, or one whose run the runner
+    never saw end, is rerun."""
+    config = tmp_path / "sweep.toml"
+    config.write_text(CONFIG.format(run_time=2))
+    output = tmp_path / "out"
+    sweep(config, output)
+    first, second, third = sorted(output.glob("*/*"))
+    token = json.loads((first / "timing.json").read_text())["run"]
+    assert f"run {token}" in (first / "done.txt").read_text()
+    (first / "done.txt").write_text("kn 50000 steps 1 dt 0.001 run 0123456789abcdef\n")
+    (second / "timing.json").unlink()
+    resumed = sweep(config, output)
+    assert "1 already done, 2 to run" in resumed.stdout, resumed.stdout
+    assert "3 already done, 0 to run" in sweep(config, output).stdout
