@@ -2,7 +2,8 @@
                                                       [--energy-range LOW HIGH]
 
 report      tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
-compare     the comparison table on the terminal; exit status 1 if a claim fails
+compare     the comparison table on the terminal; exit status 1 if a claim fails or none
+            could be evaluated
 transition  a transition sweep (inputs/sweeps/transition.toml, docs/transition.md): per base
             and inclination, how the runs ended, the stiffness exponents, the multiple
             contacts and P(tau), with figures, in DIR (default SWEEP_DIR/transition)
@@ -70,8 +71,9 @@ def main(argv=None):
               f"[{claim['low']:g}, {claim['high']:g}]  {status}")
     failed = sum(status == "FAIL" for *_, status in results)
     passed = sum(status == "pass" for *_, status in results)
-    print(f"comparison: {passed} pass, {failed} FAIL, {len(results) - passed - failed} not evaluated")
-    return 1 if failed else 0
+    print(f"comparison: {passed} pass, {failed} FAIL, {len(results) - passed - failed} not "
+          f"evaluated{'' if passed + failed else ': nothing could be evaluated'}")
+    return 1 if failed or not passed + failed else 0
 
 
 if __name__ == "__main__":
