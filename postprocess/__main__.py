@@ -1,5 +1,6 @@
 """python3 -m postprocess {report,compare,transition} SWEEP_DIR [--output DIR] [--resolution T]
                                                       [--energy-range LOW HIGH]
+python3 -m postprocess summarize RESULTS_DIR [--to DIR]
 
 report      tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
 compare     the comparison table on the terminal; exit status 1 if a claim fails or none
@@ -7,6 +8,9 @@ compare     the comparison table on the terminal; exit status 1 if a claim fails
 transition  a transition sweep (inputs/sweeps/transition.toml, docs/transition.md): per base
             and inclination, how the runs ended, the stiffness exponents, the multiple
             contacts and P(tau), with figures, in DIR (default SWEEP_DIR/transition)
+summarize   one compact summary per run of RESULTS_DIR, DIR/<scene>/<point>.json (default
+            DIR: data/<name of RESULTS_DIR> in the repository); report and compare take a
+            directory of summaries as SWEEP_DIR as well as a results directory (docs/sweeps.md)
 
 --resolution T: the frictional steady-part selection works on E(t) averaged over windows of
 T time units (default 1).
@@ -21,15 +25,19 @@ from .reference import evaluate
 from .report import fmt, write_report, write_transition_report
 from .selection import Selection
 from .study import analyse
+from .summary import write_summaries
 from .transition import analyse_transition
+
+DATA = Path(__file__).resolve().parents[1] / "data"
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m postprocess", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("command", choices=("report", "compare", "transition"))
+    parser.add_argument("command", choices=("report", "compare", "transition", "summarize"))
     parser.add_argument("sweep", type=Path)
     parser.add_argument("--output", type=Path)
+    parser.add_argument("--to", type=Path)
     parser.add_argument("--resolution", type=float, default=1.0)
     parser.add_argument("--energy-range", type=float, nargs=2, default=(0.4, 0.8),
                         metavar=("LOW", "HIGH"))
@@ -40,6 +48,18 @@ def main(argv=None):
     if not 0 <= low < high:
         parser.error(f"--energy-range {low:g} {high:g} must satisfy 0 <= LOW < HIGH")
     selection = Selection(resolution=args.resolution, energy_range=(low, high))
+    if args.to is not None and args.command != "summarize":
+        parser.error("--to is for summarize")
+    if args.command == "summarize":
+        to = args.to or DATA / args.sweep.resolve().name
+        try:
+            written = write_summaries(args.sweep, to)
+        except DataError as error:
+            print(f"postprocess: {error}", file=sys.stderr)
+            return 2
+        size = sum(p.stat().st_size for p in written)
+        print(f"summaries: {len(written)} runs in {to} ({size / 1024:.0f} kB)")
+        return 0
     if args.command == "transition":
         try:
             runs, groups, left_out = analyse_transition(args.sweep)

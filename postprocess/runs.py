@@ -150,10 +150,12 @@ def load_runs(source, selection=Selection()):
     if not source.is_dir():
         raise DataError(f"{source}: no such sweep directory")
     points = sorted(p for p in source.glob("*/*") if (p / "point.json").exists())
-    if not points:
-        raise DataError(f"{source}: no sweep points here (no <scene>/<point>/point.json)")
-    resolutions = sorted(set(RESOLUTIONS) | {selection.resolution})
-    records = [read_run(p, resolutions, selection) for p in points]
+    if points:
+        resolutions = sorted(set(RESOLUTIONS) | {selection.resolution})
+        records = [read_run(p, resolutions, selection) for p in points]
+    else:
+        from .summary import read_summaries     # here: summary builds on this module
+        records = read_summaries(source, selection)
     for record in records:
         if record.reason is None:
             try:
