@@ -1,20 +1,26 @@
-"""python3 -m postprocess {report,compare,transition,limit} SWEEP_DIR [--output DIR] [--resolution T]
-                                                      [--energy-range LOW HIGH] [--min-span T]
+"""python3 -m postprocess {report,compare,transition,limit} SWEEP_DIR [--output DIR]
+        [--resolution T] [--energy-range LOW HIGH] [--min-span T]
+python3 -m postprocess summarize RESULTS_DIR [--to DIR]
 
 report      tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
-compare     the comparison table on the terminal; exit status 1 if a claim fails
+compare     the comparison table on the terminal; exit status 1 if a claim fails or none
+            could be evaluated
 transition  a transition sweep (inputs/sweeps/transition.toml, docs/transition.md): per base
             and inclination, how the runs ended, the stiffness exponents, the multiple
             contacts and P(tau), with figures, in DIR (default SWEEP_DIR/transition)
 limit       the hard-sphere-limit rule (docs/hard_sphere_limit.md) on the frictional main series:
             running exponents, the two fits, the verdicts, in DIR (default SWEEP_DIR/limit)
+summarize   one compact summary per run of RESULTS_DIR, DIR/<scene>/<point>.json (default
+            DIR: data/<name of RESULTS_DIR> in the repository); report and compare take a
+            directory of summaries as SWEEP_DIR as well as a results directory (docs/sweeps.md)
 
 --resolution T: the frictional steady-part selection works on E(t) averaged over windows of
 T time units (default 1).
 --energy-range LOW HIGH: the mean energy per disk a steady part must have (default: the
 paper's 0.4 0.8); other values show whether a conclusion depends on the window.
 --min-span T: the shortest steady part kept, in time units (default: the paper's 500; the
-stiff preset's runs average over 300 and use 250, docs/hard_sphere_limit.md)."""
+stiff preset's runs average over 300 and use 250, docs/hard_sphere_limit.md). Summaries hold
+the steady parts found with one min-span: summarize and read them with the same."""
 import argparse
 import sys
 from pathlib import Path
@@ -25,15 +31,20 @@ from .reference import accepted, evaluate
 from .report import fmt, write_report, write_transition_report
 from .selection import Selection
 from .study import analyse, main_series
+from .summary import write_summaries
 from .transition import analyse_transition
+
+DATA = Path(__file__).resolve().parents[1] / "data"
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m postprocess", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("command", choices=("report", "compare", "transition", "limit"))
+    parser.add_argument("command", choices=("report", "compare", "transition", "limit",
+                                            "summarize"))
     parser.add_argument("sweep", type=Path)
     parser.add_argument("--output", type=Path)
+    parser.add_argument("--to", type=Path)
     parser.add_argument("--resolution", type=float, default=1.0)
     parser.add_argument("--energy-range", type=float, nargs=2, default=(0.4, 0.8),
                         metavar=("LOW", "HIGH"))
@@ -48,6 +59,18 @@ def main(argv=None):
         parser.error(f"--min-span {args.min_span:g} must be > 0")
     selection = Selection(resolution=args.resolution, energy_range=(low, high),
                           min_length=args.min_span)
+    if args.to is not None and args.command != "summarize":
+        parser.error("--to is for summarize")
+    if args.command == "summarize":
+        to = args.to or DATA / args.sweep.resolve().name
+        try:
+            written = write_summaries(args.sweep, to, selection)
+        except DataError as error:
+            print(f"postprocess: {error}", file=sys.stderr)
+            return 2
+        size = sum(p.stat().st_size for p in written)
+        print(f"summaries: {len(written)} runs in {to} ({size / 1024:.0f} kB)")
+        return 0
     if args.command == "transition":
         try:
             runs, groups, left_out = analyse_transition(args.sweep)
@@ -81,8 +104,9 @@ def main(argv=None):
               f"{accepted(claim)}  {status}")
     failed = sum(status.startswith("FAIL") for *_, status in results)
     passed = sum(status.startswith("pass") for *_, status in results)
-    print(f"comparison: {passed} pass, {failed} FAIL, {len(results) - passed - failed} not evaluated")
-    return 1 if failed else 0
+    print(f"comparison: {passed} pass, {failed} FAIL, {len(results) - passed - failed} not "
+          f"evaluated{'' if passed + failed else ': nothing could be evaluated'}")
+    return 1 if failed or not passed + failed else 0
 
 
 def write_limit(sweep, scenes, out, selection):

@@ -8,7 +8,7 @@ import numpy as np  # noqa: E402
 from .io import DataError  # noqa: E402
 from .scenes import scene as scene_of  # noqa: E402
 from .selection import Selection, select_steady, window_means  # noqa: E402
-from .study import energy_series, profiles, series  # noqa: E402
+from .study import profiles, series  # noqa: E402
 
 
 
@@ -105,13 +105,13 @@ def vy_figure(rows, trajectories, path):
     plt.close(fig)
 
 
-def energy_figure(scene, points, path, selection=Selection()):
-    """E(t) of each completed point. The frictional flow: one panel per k_n with every seed's
-    E(t) averaged over windows of `resolution` (the series the selection sees), the selected
-    steady parts drawn thick, the accepted energy range shaded."""
+def energy_figure(scene, curves, path, selection=Selection()):
+    """E(t) of completed runs, `curves` [(kn, t, E)]. The frictional flow: one panel per k_n
+    with every seed's E(t) averaged over windows of `resolution` (the series the selection
+    sees), the selected steady parts drawn thick, the accepted energy range shaded."""
     series_by_kn = {}
-    for kn, energy in energy_series(points):
-        series_by_kn.setdefault(kn, []).append(energy)
+    for kn, t, e in sorted(curves, key=lambda curve: curve[0]):
+        series_by_kn.setdefault(kn, []).append({"time": t, "e_total": e})
     if not scene_of(scene).selects_steady_parts:
         fig, ax = plt.subplots(figsize=(9, 4))
         for kn, runs in series_by_kn.items():
@@ -153,7 +153,10 @@ def energy_figure(scene, points, path, selection=Selection()):
 
 def snapshot_figure(scene, point, path):
     """The last frame of a point's snapshots: disks as circles (bumps grey)."""
-    text = (point / "snapshots.lammpstrj").read_text().split("ITEM: TIMESTEP")
+    snapshots = point / "snapshots.lammpstrj"
+    if not snapshots.exists():
+        raise DataError(f"{snapshots}: missing")
+    text = snapshots.read_text().split("ITEM: TIMESTEP")
     if len(text) < 2:
         raise DataError(f"{point}/snapshots.lammpstrj: no frame")
     lines = text[-1].splitlines()

@@ -1,5 +1,6 @@
 """Reading a point's output files (docs/scenes.md). Every problem raises DataError naming the
 file and what is wrong: nothing broken is averaged silently."""
+import json
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +34,12 @@ def read_params(point):
             params[name] = float(value)
         except ValueError:
             params[name] = value
+    return checked_params(params, path)
+
+
+def checked_params(params, path):
+    """params (name: number or word) if it has every value the analysis needs, each a number
+    in its range; else a DataError naming `path`, where they came from."""
     for name in ("scene", "kn", "dt", "tau_c", "tau_w", "average_start", "run_time", "n_mobile"):
         if name not in params:
             raise DataError(f"{path}: no {name}")
@@ -102,6 +109,8 @@ def read_energy(point, params):
     path = Path(point) / "energy.txt"
     table = numeric_table(path, header_columns(path, "step", ENERGY_COLUMNS))
     table["time"] = table["step"] * params["dt"]
+    if len(table["time"]) < 2:
+        raise DataError(f"{path}: 1 data row, the analysis needs at least 2: truncated?")
     if np.any(np.diff(table["step"]) <= 0):
         raise DataError(f"{Path(point) / 'energy.txt'}: steps do not increase")
     return table
@@ -205,3 +214,36 @@ def read_stopped(point):
     if len(words) != 2 or words[0] != "stopped_at":
         raise DataError(f"{path}: expected 'stopped_at TIME', got {' '.join(words)!r}")
     return numbers(path, 1, words[1:])[0]
+
+
+def read_variables(point):
+    """point.json: the point's deck variables, as the sweep runner wrote them."""
+    path = Path(point) / "point.json"
+    try:
+        variables = json.loads(path.read_text())
+    except ValueError as error:
+        raise DataError(f"{path}: not valid JSON ({error})")
+    if not isinstance(variables, dict):
+        raise DataError(f"{path}: expected an object of deck variables")
+    return variables
+
+
+def read_ending(point):
+    """How a sweep point's run ended, before its outputs are read: ('completed', None) if the
+    deck wrote done.txt, ('failed', the exit status failed.txt gives and lmp's last ERROR line)
+    if the sweep runner recorded a failure, else ('incomplete', None): still running, or
+    killed."""
+    point = Path(point)
+    if (point / "done.txt").exists():
+        return "completed", None
+    path = point / "failed.txt"
+    if not path.exists():
+        return "incomplete", None
+    lines = path.read_text(errors="replace").splitlines()
+    # lmp run with -screen none prints its errors only to its log
+    for said in (lines, (point / "log.lammps").read_text(errors="replace").splitlines()
+                 if (point / "log.lammps").exists() else []):
+        errors = [l.strip() for l in said if l.startswith("ERROR")]
+        if errors:
+            break
+    return "failed", "; ".join(([lines[0].strip()] if lines else []) + errors[-1:])

@@ -3,9 +3,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from .io import DataError, read_counts, read_energy, read_params, read_stopped
-from .scenes import scene
-from .selection import Selection, select_at_resolution
+from .io import DataError, read_counts, read_energy, read_params, read_stopped, read_trajectory
+from .scenes import SCENES, scene
+from .selection import Selection, in_energy_range, steady_parts
+from .signals import dominant_period
 
 # The time resolutions (time units) at which the report counts the steady parts kept, so that
 # the reader sees what the choice of resolution does (docs/model.md section 5).
@@ -39,10 +40,11 @@ def span_rates(energy, spans, n_particles, n_boundary):
 
 
 def with_errors(blocks):
-    """Mean over blocks and its standard error, per observable."""
+    """Mean over blocks and its standard error, per observable ({quantity: [value per
+    block]})."""
     result = {}
-    for key in blocks[0]:
-        values = np.array([b[key] for b in blocks])
+    for key, values in blocks.items():
+        values = np.array(values)
         result[key] = values.mean()
         result[key + "_err"] = values.std(ddof=1) / np.sqrt(len(values)) if len(values) > 1 else np.nan
     return result
@@ -54,17 +56,6 @@ def averaging_rows(energy, params):
     slack = 1e-9 * params["run_time"]
     return ((energy["time"] >= params["average_start"] - slack) &
             (energy["window"] <= energy["time"] - params["average_start"] + slack))
-
-
-def kept_spans(point, selection, resolutions=RESOLUTIONS):
-    """{resolution: number of steady parts the selection, at that time resolution, keeps} over
-    a run's averaging span."""
-    params = read_params(point)
-    energy = read_energy(point, params)
-    inside = averaging_rows(energy, params)
-    return {r: len(select_at_resolution(energy["time"][inside], energy["e_total"][inside],
-                                        replace(selection, resolution=r))[0])
-            for r in resolutions}
 
 
 def rest_time(t, energy):
@@ -91,82 +82,194 @@ def contacts_per_disk(contacts_now, n_disks):
     return float(np.mean(contacts_now)) / n_disks
 
 
-def point_observables(point, n_blocks=5, selection=Selection(), what=None):
-    """E, N_c, N_w, t_c, t_w, the multiple-contact estimates, the direct fraction of time
-    with two or more contacts and the contacts per disk, averaged over the point's averaging
-    window (or, where the scene selects steady parts, over the parts the selection keeps), each
-    with a block-average error. `what`: the Scene to average as (default: the point's own)."""
-    params = read_params(point)
-    energy = read_energy(point, params)
-    counts = read_counts(point)
-    state, stopped_at = run_state(point)
-    end = params["run_time"] if stopped_at is None else stopped_at
+def relative(error, point):
+    """A DataError's text without the point's directory: the file inside it and the problem."""
+    return str(error).replace(f"{point}/", "").replace(f"{point}: ", "")
+
+
+# the observables of one block, in the order the tables list them
+BLOCK_QUANTITIES = ("E_trans", "E_rot", "E_total", "N_c", "N_w", "t_c", "t_w", "t_multiple",
+                    "mc_c", "mc_w", "z")
+
+
+def span_blocks(energy, a, b, params, n_boundary, n_blocks):
+    """The span [a, b) of energy.txt's rows cut into n_blocks pieces: the piece's time span
+    and {quantity: [its value in each piece]} (pieces of fewer than 2 rows left out)."""
     n = params["n_mobile"]
-    if len(counts["id"]) != n:
-        raise DataError(f"{point}/counts.txt: {len(counts['id'])} disks, params.txt says {n:g}")
+    blocks = {q: [] for q in BLOCK_QUANTITIES}
+    edges = np.linspace(a, b, n_blocks + 1).astype(int)
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        if hi - lo < 2:
+            continue
+        block = span_rates(energy, [(lo, hi)], n, n_boundary)
+        for key in ("e_trans", "e_rot", "e_total"):
+            block[key.replace("e_", "E_")] = energy[key][lo:hi].mean()
+        block["mc_c"] = block["t_c"] - block["N_c"] * params["tau_c"]
+        block["mc_w"] = block["t_w"] - block["N_w"] * params["tau_w"]
+        block["z"] = contacts_per_disk(energy["contacts_now"][lo:hi], n)
+        for q in BLOCK_QUANTITIES:
+            blocks[q].append(float(block[q]))
+    return {"span": float(energy["time"][b - 1] - energy["time"][a]), "blocks": blocks}
+
+
+def single_disk_period(point, params, what):
+    """The single disk's v_y period and the time to pass one bump, from trajectory.txt after
+    average_start."""
+    trajectory = read_trajectory(point)
+    late = trajectory["time"] > params["average_start"]
+    if np.count_nonzero(late) < 4:
+        raise DataError(f"{point}/trajectory.txt: {np.count_nonzero(late)} samples after "
+                        f"average_start {params['average_start']:g}, the v_y period needs at "
+                        "least 4")
+    try:
+        period, _ = dominant_period(trajectory["time"][late], trajectory["vy"][late],
+                                    max_period=20.0)
+    except ValueError as error:
+        raise DataError(f"{point}/trajectory.txt: {error}")
+    return float(period), float(what.bump_spacing / trajectory["vx"][late].mean())
+
+
+def measure(point, params, energy, stopped_at, resolutions=(), selection=Selection(),
+            n_blocks=5):
+    """What the averages of a completed run are made of, before any choice of what to average
+    (docs/model.md sections 5-6). A dict:
+      problem       why the run cannot be averaged at all (None if it can); then the parts
+                    in `steady` have only start, stop and mean, and nothing else follows
+      steady        {resolution: [steady part]} for each of `resolutions`: the parts the
+                    frictional selection finds in E(t) at that resolution (selection's
+                    min_length and max_width), energy range not yet applied; a part is
+                    {start, stop, span, mean (of the window means: what the energy range is
+                    tested on), mean_samples, blocks}
+      window        the whole averaging window as one part {start, stop, span, blocks}
+      rest_at       rest_time of the whole run (None: never at rest for REST_TIME)
+      n_boundary    the disks the boundary rates are per (all, or the bottom layer)
+      period, bump_time, period_problem   (scenes with has_period) the v_y period and the
+                    time to pass a bump, or why there are none
+    where blocks is {quantity: [value in each of n_blocks pieces]} (BLOCK_QUANTITIES)."""
     inside = averaging_rows(energy, params)
     first = int(np.argmax(inside))
-    if stopped_at is not None and stopped_at <= params["average_start"]:
-        raise DataError(f"{point}: the pile stopped at t = {stopped_at:g}, before the "
-                        f"averaging span (average_start {params['average_start']:g})")
-    if not inside.any():
-        raise DataError(f"{point}/energy.txt: no samples after average_start "
-                        f"{params['average_start']:g}: the run did not reach its averaging span")
-    if energy["time"][-1] < end - 1.5 * (energy["time"][1] - energy["time"][0]):
-        raise DataError(f"{point}/energy.txt: ends at t = {energy['time'][-1]:g}, before "
-                        f"{'its stop' if stopped_at is not None else 'run_time'} {end:g}: "
-                        "truncated?")
-
-    n_boundary = n
-    notes = [f"stopped at t = {stopped_at:g}"] if stopped_at is not None else []
+    # inside is the rows after the counters' restart: all rows from `first` on
+    found = {r: steady_parts(energy["time"][first:], energy["e_total"][first:],
+                             replace(selection, resolution=r)) if inside.any() else []
+             for r in resolutions}
+    measured = {"problem": None, "steady": {}}
     try:
-        what = what or scene(params["scene"])
-    except KeyError as error:
-        raise DataError(f"{point}/params.txt: {error.args[0]}")
-    if what.boundary_per_bottom_layer:
-        n_boundary = bottom_layer(counts)
+        counts = read_counts(point)
+        n = params["n_mobile"]
+        end = params["run_time"] if stopped_at is None else stopped_at
+        if len(counts["id"]) != n:
+            raise DataError(f"{point}/counts.txt: {len(counts['id'])} disks, params.txt says "
+                            f"{n:g}")
+        if stopped_at is not None and stopped_at <= params["average_start"]:
+            raise DataError(f"{point}: the pile stopped at t = {stopped_at:g}, before the "
+                            f"averaging span (average_start {params['average_start']:g})")
+        if not inside.any():
+            raise DataError(f"{point}/energy.txt: no samples after average_start "
+                            f"{params['average_start']:g}: the run did not reach its averaging "
+                            "span")
+        if energy["time"][-1] < end - 1.5 * (energy["time"][1] - energy["time"][0]):
+            raise DataError(f"{point}/energy.txt: ends at t = {energy['time'][-1]:g}, before "
+                            f"{'its stop' if stopped_at is not None else 'run_time'} {end:g}: "
+                            "truncated?")
+        try:
+            what = scene(params["scene"])
+        except KeyError as error:
+            raise DataError(f"{point}/params.txt: {error.args[0]}")
+    except DataError as error:
+        measured["problem"] = relative(error, point)
+        measured["steady"] = {r: [dict(start=float(energy["time"][a + first]),
+                                       stop=float(energy["time"][b + first - 1]), mean=mean)
+                                  for a, b, mean in parts] for r, parts in found.items()}
+        return measured
+
+    n_boundary = bottom_layer(counts) if what.boundary_per_bottom_layer else int(n)
+
+    def part(a, b):
+        if n_boundary == 0:     # no rates per boundary disk: observables() says so
+            return {"span": float(energy["time"][b - 1] - energy["time"][a]),
+                    "blocks": {q: [] for q in BLOCK_QUANTITIES}}
+        return span_blocks(energy, a, b, params, n_boundary, n_blocks)
+
+    def located(a, b):
+        return {"start": float(energy["time"][a]), "stop": float(energy["time"][b - 1]),
+                **part(a, b)}
+
+    for r, parts in found.items():
+        measured["steady"][r] = [
+            {**located(a + first, b + first), "mean": mean,
+             "mean_samples": float(energy["e_total"][a + first:b + first].mean())}
+            for a, b, mean in parts]
+    measured.update(window=located(first, len(energy["time"])), n_boundary=n_boundary,
+                    rest_at=rest_time(energy["time"], energy["e_total"]))
+    if measured["rest_at"] is not None:
+        measured["rest_at"] = float(measured["rest_at"])
+    if what.has_period:
+        try:
+            measured["period"], measured["bump_time"] = single_disk_period(point, params, what)
+            measured["period_problem"] = None
+        except DataError as error:
+            measured.update(period=None, bump_time=None, period_problem=relative(error, point))
+    return measured
+
+
+def observables(params, measured, stopped_at, selection=Selection(), what=None):
+    """E, N_c, N_w, t_c, t_w, the multiple-contact estimates, the direct fraction of time with
+    two or more contacts and the contacts per disk of one run (measure's result), averaged
+    over its averaging window or, where the scene selects steady parts, over the parts the
+    selection keeps, each with a block-average error; period and bump_time where the scene
+    has them. stopped_at: when the run's pile stopped (None: it ran to run_time). `what`: the
+    Scene to average as (default: the run's own). A DataError says why the run has no such
+    averages."""
+    if measured["problem"]:
+        raise DataError(measured["problem"])
+    what = what or scene(params["scene"])
+    notes = [f"stopped at t = {stopped_at:g}"] if stopped_at is not None else []
     if what.selects_steady_parts:
-        kept, found = select_at_resolution(energy["time"][first:], energy["e_total"][first:],
-                                           selection)
-        spans = [(a + first, b + first) for a, b in kept]
-        if not spans:
-            means = ", ".join(f"{energy['e_total'][a + first:b + first].mean():.3g}"
-                              for a, b in found)
+        if selection.resolution not in measured["steady"]:
+            raise DataError(f"no steady parts at resolution {selection.resolution:g} here "
+                            f"(only at {', '.join(f'{r:g}' for r in measured['steady'])})")
+        found = measured["steady"][selection.resolution]
+        parts = [p for p in found if in_energy_range(p["mean"], selection)]
+        if not parts:
+            means = ", ".join(f"{p['mean_samples']:.3g}" for p in found)
             low, high = selection.energy_range
-            raise DataError(f"{point}: no steady part with mean energy in [{low:g}, {high:g}] "
+            raise DataError(f"no steady part with mean energy in [{low:g}, {high:g}] "
                             f"at resolution {selection.resolution:g} ({len(found)} steady parts "
                             f"found"
                             f"{', mean E ' + means if found else ''}; "
                             f"{notes[0] if notes else 'flowing to the end'})")
-        notes.append(f"{len(spans)} of {len(found)} steady parts selected")
+        notes.append(f"{len(parts)} of {len(found)} steady parts selected")
     else:
-        spans = [(first, len(energy["time"]))]
-        resting = rest_time(energy["time"], energy["e_total"])
-        if resting is not None:
-            raise DataError(f"{point}: came to rest at t = {resting:.4g} (E per disk below "
+        parts = [measured["window"]]
+        if measured["rest_at"] is not None:
+            raise DataError(f"came to rest at t = {measured['rest_at']:.4g} (E per disk below "
                             f"{REST_ENERGY:g} from then on): no steady motion to average")
-    if n_boundary == 0:
-        raise DataError(f"{point}: no disk touched the boundary in the averaging window")
-
-    # blocks: each span cut into pieces, observables per piece
-    blocks = []
-    for a, b in spans:
-        edges = np.linspace(a, b, n_blocks + 1).astype(int)
-        for lo, hi in zip(edges[:-1], edges[1:]):
-            if hi - lo < 2:
-                continue
-            block = span_rates(energy, [(lo, hi)], n, n_boundary)
-            for key in ("e_trans", "e_rot", "e_total"):
-                block[key.replace("e_", "E_")] = energy[key][lo:hi].mean()
-            block["mc_c"] = block["t_c"] - block["N_c"] * params["tau_c"]
-            block["mc_w"] = block["t_w"] - block["N_w"] * params["tau_w"]
-            block["z"] = contacts_per_disk(energy["contacts_now"][lo:hi], n)
-            blocks.append(block)
-    if len(blocks) < 2:
-        raise DataError(f"{point}: the averaging span is too short for error bars")
+    if measured["n_boundary"] == 0:
+        raise DataError("no disk touched the boundary in the averaging window")
+    blocks = {q: [v for p in parts for v in p["blocks"][q]] for q in BLOCK_QUANTITIES}
+    if len(blocks["E_total"]) < 2:
+        raise DataError("the averaging span is too short for error bars")
     result = with_errors(blocks)
     result.update(kn=params["kn"], tau_c=params["tau_c"], tau_w=params["tau_w"],
-                  scene=params["scene"], n_boundary=n_boundary,
-                  span=sum(energy["time"][b - 1] - energy["time"][a] for a, b in spans),
-                  notes="; ".join(notes))
+                  scene=params["scene"], n_boundary=measured["n_boundary"],
+                  span=sum(p["span"] for p in parts), notes="; ".join(notes))
+    if what.has_period:
+        if measured["period_problem"]:
+            raise DataError(measured["period_problem"])
+        result.update(period=measured["period"], bump_time=measured["bump_time"])
     return result
+
+
+def point_observables(point, n_blocks=5, selection=Selection(), what=None):
+    """observables() of a point directory's outputs; a DataError names the point."""
+    params = read_params(point)
+    energy = read_energy(point, params)
+    stopped_at = read_stopped(point)
+    averaged_as = what or SCENES.get(params["scene"])
+    resolutions = ((selection.resolution,) if averaged_as and averaged_as.selects_steady_parts
+                   else ())
+    measured = measure(point, params, energy, stopped_at, resolutions, selection, n_blocks)
+    try:
+        return observables(params, measured, stopped_at, selection, what)
+    except DataError as error:
+        raise DataError(f"{point}: {error}") from None

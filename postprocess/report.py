@@ -8,10 +8,11 @@ import numpy as np
 from . import figures, transition
 from .io import DataError, read_trajectory
 from .reference import accepted, evaluate
+from .runs import energy_curve
 from .scenes import scene as scene_of
 from .selection import Selection
-from .study import (QUANTITIES, VARIANT_QUANTITIES, main_series, read_variables, run_summary,
-                    same_series, variant_differences)
+from .study import (QUANTITIES, VARIANT_QUANTITIES, main_series, run_summary, same_series,
+                    variant_differences)
 
 
 def fmt(value, error=None):
@@ -37,27 +38,32 @@ def write_tables(scenes, out):
 
 def make_figures(scenes, completed, out, selection):
     """{scene: [(caption, file name)]}, and problems met. Time series and snapshots of every
-    completed point; the stiffness dependences and profiles of the usable ones."""
+    completed run (completed: {scene: [RunRecord]}); the stiffness dependences and profiles of
+    the usable ones. From summaries: no snapshots, profiles or v_y(t) (only the raw outputs
+    hold them)."""
     made, problems = {}, []
     for scene, points in completed.items():
+        raw = all(r.source == "raw" for r in points)
         items = made.setdefault(scene, [])
         rows = main_series(scenes.get(scene, []))
         others = [o for o in scenes.get(scene, []) if rows and o["label"] != rows[0]["label"]]
         variants = [(label, [o for o in others if o["label"] == label])
                     for label in sorted({o["label"] for o in others})]
         # the time series of the main series' runs (all runs if none is usable)
-        series_points = [p for p in points if not rows or
-                         same_series(read_variables(p), rows[0]["variables"])]
+        curves = [(r.params["kn"], *energy_curve(r)) for r in points
+                  if not rows or same_series(r.variables, rows[0]["variables"])]
         jobs = [("kinetic energy against time (main series)", f"energy_{scene}.png",
-                 lambda p, s=scene, c=series_points: figures.energy_figure(s, c, p, selection)),
-                ("snapshot (stiffest point)", f"snapshot_{scene}.png",
-                 lambda p, s=scene, c=points: figures.snapshot_figure(s, c[-1], p))]
+                 lambda p, s=scene, c=curves: figures.energy_figure(s, c, p, selection))]
+        if raw:
+            jobs.append(("snapshot (stiffest point)", f"snapshot_{scene}.png",
+                         lambda p, s=scene, c=points: figures.snapshot_figure(s, c[-1].point, p)))
         if rows:
-            jobs += [("stiffness dependence", f"stiffness_{scene}.png",
-                      lambda p, s=scene, r=rows, v=variants: figures.stiffness(s, r, p, v)),
-                     ("profiles", f"profiles_{scene}.png",
-                      lambda p, s=scene, r=rows: figures.profile_figure(s, r, p))]
-        if scene_of(scene).has_period and rows:
+            jobs.append(("stiffness dependence", f"stiffness_{scene}.png",
+                         lambda p, s=scene, r=rows, v=variants: figures.stiffness(s, r, p, v)))
+        if rows and raw:
+            jobs.append(("profiles", f"profiles_{scene}.png",
+                         lambda p, s=scene, r=rows: figures.profile_figure(s, r, p)))
+        if scene_of(scene).has_period and rows and raw:
             def vy(p, r=rows):
                 trajectories = {}
                 for o in (r[0], r[-1]):
@@ -155,6 +161,9 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
              f"report`. Errors are standard errors of block averages within each run "
              f"(5 blocks per averaging span), or across seeds where a point has several. "
              f"Frictional steady parts: {selection.describe()}.", ""]
+    if any(r.source == "summary" for points in completed.values() for r in points):
+        lines += ["From the runs' summaries (docs/sweeps.md): E(t) is drawn from its means over "
+                  "windows of 1; snapshots, profiles and v_y(t) need the raw outputs.", ""]
     for scene in completed:
         rows = scenes.get(scene, [])
         what = scene_of(scene)

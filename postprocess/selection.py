@@ -82,13 +82,24 @@ def window_means(t, energy, resolution):
     return t[starts], means, edges
 
 
+def steady_parts(t, energy, selection=Selection()):
+    """The steady parts found in the energy series averaged over windows of
+    selection.resolution, before the energy range is applied: [(start, stop, mean)] with
+    start, stop a sample-index span of the original series and mean the mean of the window
+    means over it (what the energy range is tested on)."""
+    tw, ew, edges = window_means(t, energy, selection.resolution)
+    return [(int(edges[a]), int(edges[b]), float(ew[a:b].mean()))
+            for a, b in steady_spans(tw, ew, selection.min_length, selection.max_width)]
+
+
+def in_energy_range(mean, selection):
+    """Whether a steady part of this mean energy is kept."""
+    return selection.energy_range[0] <= mean <= selection.energy_range[1]
+
+
 def select_at_resolution(t, energy, selection=Selection()):
     """The selection applied to the energy series averaged over windows of
     selection.resolution: (kept, found) as sample-index spans of the original series."""
-    tw, ew, edges = window_means(t, energy, selection.resolution)
-    kept, found = select_steady(tw, ew, selection.min_length, selection.max_width,
-                                selection.energy_range)
-
-    def samples(spans):
-        return [(int(edges[a]), int(edges[b])) for a, b in spans]
-    return samples(kept), samples(found)
+    found = steady_parts(t, energy, selection)
+    return ([(a, b) for a, b, mean in found if in_energy_range(mean, selection)],
+            [(a, b) for a, b, _ in found])

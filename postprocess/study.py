@@ -1,56 +1,34 @@
 """A sweep's points, analysed: per-scene tables of observables, and what was left out."""
-import json
-from pathlib import Path
-
 import numpy as np
 
-from .io import DataError, read_energy, read_params, read_profile, read_trajectory
+from .io import DataError, read_profile
+from .observables import RESOLUTIONS
+from .runs import load_runs
 from .scenes import SCENES
 from .selection import Selection
-from .observables import RESOLUTIONS, kept_spans, point_observables, run_state
-from .signals import dominant_period
 
 QUANTITIES = ("E_trans", "E_rot", "E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w",
               "t_multiple", "z")
 
 
-def analyse(sweep_dir, selection=Selection()):
-    """{scene: [observables of each usable point, sorted by kn]}, [(point, reason) left out],
-    {scene: [completed points]} (usable or not: their time series can still be shown), and
-    [run records] of the frictional runs (how each ended, what the selection kept: run_record).
-    `selection`: the frictional steady-part rule (docs/model.md section 5)."""
-    sweep_dir = Path(sweep_dir)
-    if not sweep_dir.is_dir():
-        raise DataError(f"{sweep_dir}: no such sweep directory")
+def analyse(source, selection=Selection()):
+    """A sweep from its raw outputs or its summaries (runs.load_runs): {scene: [observables of
+    each usable run, seeds combined, sorted by kn]}, [(point, reason) left out], {scene:
+    [RunRecord of each completed run]} (usable or not: their time series can still be shown),
+    and [run records] of the frictional runs (how each ended, what the selection kept:
+    run_record). `selection`: the frictional steady-part rule (docs/model.md section 5)."""
     scenes, left_out, completed, runs = {}, [], {}, []
-    points = sorted(p for p in sweep_dir.glob("*/*") if (p / "point.json").exists())
-    if not points:
-        raise DataError(f"{sweep_dir}: no sweep points here (no <scene>/<point>/point.json)")
-    for point in points:
-        if point.parent.name not in SCENES:
-            left_out.append((point, f"unknown scene '{point.parent.name}' (expected one of "
-                                    f"{', '.join(SCENES)})"))
-            continue
-        what = SCENES[point.parent.name]
-        if not (point / "done.txt").exists():
-            left_out.append((point, "did not complete (no done.txt)"))
-            continue
-        completed.setdefault(point.parent.name, []).append(point)
-        try:
-            if what.selects_steady_parts:
-                runs.append(run_record(point, selection))
-            o = point_observables(point, selection=selection)
-            o["point"] = point
-            o["variables"] = read_variables(point)
-            if what.has_period:
-                trajectory = read_trajectory(point)
-                late = trajectory["time"] > read_params(point)["average_start"]
-                o["period"], _ = dominant_period(trajectory["time"][late],
-                                                 trajectory["vy"][late], max_period=20.0)
-                o["bump_time"] = what.bump_spacing / trajectory["vx"][late].mean()
+    resolutions = sorted(set(RESOLUTIONS) | {selection.resolution})
+    for record in load_runs(source, selection):
+        if record.reason is not None:
+            left_out.append((record.point, record.reason))
+        if record.ended in ("flowing", "stopped") and record.energy is not None:
+            completed.setdefault(record.scene, []).append(record)
+        if record.measured is not None and SCENES[record.scene].selects_steady_parts:
+            runs.append(run_record(record, selection, resolutions))
+        if record.observables is not None:
+            o = dict(record.observables, point=record.point, variables=record.variables)
             scenes.setdefault(o["scene"], []).append(o)
-        except DataError as error:
-            left_out.append((point, str(error).replace(f"{point}: ", "")))
     scenes = {scene: combine_seeds(rows) for scene, rows in scenes.items()}
     varying = varying_variables([r["variables"] for r in runs])
     for r in runs:
@@ -58,29 +36,14 @@ def analyse(sweep_dir, selection=Selection()):
     return scenes, left_out, completed, runs
 
 
-def read_variables(point):
-    """point.json: the point's deck variables, as the sweep runner wrote them."""
-    path = point / "point.json"
-    try:
-        variables = json.loads(path.read_text())
-    except ValueError as error:
-        raise DataError(f"{path}: not valid JSON ({error})")
-    if not isinstance(variables, dict):
-        raise DataError(f"{path}: expected an object of deck variables")
-    return variables
-
-
-def run_record(point, selection):
+def run_record(record, selection, resolutions):
     """How one frictional run went: kn, seed, state ('flowing' to the end or 'stopped'), the
-    stop time, the steady parts kept at each of RESOLUTIONS, and whether any is kept at the
+    stop time, the steady parts kept at each of `resolutions`, and whether any is kept at the
     analysis resolution."""
-    params = read_params(point)
-    state, stopped_at = run_state(point)
-    kept = kept_spans(point, selection, sorted(set(RESOLUTIONS) | {selection.resolution}))
-    variables = read_variables(point)
-    return {"point": point, "kn": params["kn"], "seed": params["seed"], "state": state,
-            "stopped_at": stopped_at, "kept": kept, "selected": kept[selection.resolution] > 0,
-            "variables": variables}
+    kept = record.kept(selection, resolutions)
+    return {"point": record.point, "kn": record.params["kn"], "seed": record.params["seed"],
+            "state": record.ended, "stopped_at": record.stopped_at, "kept": kept,
+            "selected": kept[selection.resolution] > 0, "variables": record.variables}
 
 
 def run_summary(runs):
@@ -240,12 +203,3 @@ def profiles(rows):
         except DataError:
             pass
     return out
-
-
-def energy_series(points):
-    """(kn, energy.txt) of completed points, sorted by kn."""
-    out = []
-    for point in points:
-        params = read_params(point)
-        out.append((params["kn"], read_energy(point, params)))
-    return sorted(out, key=lambda item: item[0])

@@ -6,11 +6,13 @@ from pathlib import Path
 
 import numpy as np
 
-from .io import DataError, read_energy, read_params, read_rows, read_stopped
-from .observables import point_observables, rest_time
+from .io import (DataError, read_ending, read_energy, read_params, read_rows, read_stopped,
+                 read_variables)
+from .observables import point_observables, relative, rest_time
+from .runs import unfinished_reason
 from .scenes import SCENES, transition_scene
 from .signals import block_means
-from .study import combine_seeds, fit_power, ratio_with_error, read_variables
+from .study import combine_seeds, fit_power, ratio_with_error
 
 # The flow-state rule, the one place it is stated (docs/transition.md):
 #   stopped       the run ended early because its pile stopped (stopped.txt), or its kinetic
@@ -110,13 +112,13 @@ def analyse_transition(sweep_dir):
         if point.parent.name not in SCENES or not SCENES[point.parent.name].base:
             left_out.append((point, f"scene '{point.parent.name}' is not a base of the "
                                     "transition study"))
-        elif not (point / "done.txt").exists():
-            left_out.append((point, "did not complete (no done.txt)"))
+        elif read_ending(point)[0] != "completed":
+            left_out.append((point, unfinished_reason(*read_ending(point))))
         else:
             try:
                 runs.append(run_record(point))
             except DataError as error:
-                left_out.append((point, str(error).replace(f"{point}: ", "")))
+                left_out.append((point, relative(error, point)))
     groups = {}
     for r in runs:
         if "observables" in r:

@@ -451,3 +451,95 @@ def test_a_run_that_came_to_rest_has_no_steady_motion_to_average(tmp_path):
     (point / "energy.txt").write_text("\n".join(lines) + "\n")
     with pytest.raises(DataError, match="came to rest at t = 60"):
         point_observables(point)
+
+
+# ---- points the report cannot use are each a 'left out: why' line (issue 18)
+
+def sweep_of(tmp_path, points):
+    """A sweep directory of synthetic points: {(scene, name): writer(point directory)}; each
+    point gets point.json ({"kn": ..., "seed": 1}) and done.txt unless its writer removes them."""
+    for (scene, name), write in points.items():
+        point = tmp_path / scene / name
+        point.mkdir(parents=True)
+        (point / "point.json").write_text(f'{{"kn": {len(name)}, "seed": 1}}')
+        (point / "done.txt").write_text("done\n")
+        write(point)
+    return tmp_path
+
+
+def keep_data_rows(point, keep):
+    """energy.txt with only the data rows that keep(row index, number of rows) accepts."""
+    lines = (point / "energy.txt").read_text().splitlines()
+    data = [l for l in lines if not l.startswith("#")]
+    (point / "energy.txt").write_text("\n".join(
+        [l for l in lines if l.startswith("#")] +
+        [l for k, l in enumerate(data) if keep(k, len(data))]) + "\n")
+
+
+def single_disk_trajectory(point, end, spacing=0.5):
+    rows = [f"{t:g} {t:g} 0.5 1.0 {np.sin(t):g}" for t in np.arange(0, end + 1e-9, spacing)]
+    (point / "trajectory.txt").write_text("# time x y vx vy\n" + "\n".join(rows) + "\n")
+
+
+def test_an_energy_file_with_one_data_row_is_left_out_by_name(tmp_path):
+    """A run killed right after its first output line (it raised IndexError)."""
+    from postprocess.study import analyse
+    sweep = sweep_of(tmp_path, {("collisional_flow", "p1"): lambda p: keep_data_rows(
+        write_point(p), lambda k, n: k == n - 1)})
+    (point, reason), = analyse(sweep)[1]
+    assert reason == "energy.txt: 1 data row, the analysis needs at least 2: truncated?"
+
+
+def test_a_single_disk_run_ending_soon_after_average_start_is_left_out_by_name(tmp_path):
+    """Two v_y samples after average_start: no period can be found (it raised ValueError)."""
+    from postprocess.study import analyse
+
+    def short(point):
+        write_point(point, scene="single_disk", run_time=21.0)
+        single_disk_trajectory(point, 21.0)
+    (point, reason), = analyse(sweep_of(tmp_path, {("single_disk", "p1"): short}))[1]
+    assert reason == ("trajectory.txt: 2 samples after average_start 20, the v_y period needs "
+                      "at least 4")
+
+
+def test_a_broken_point_json_beside_a_usable_point_is_a_left_out_line(tmp_path, capsys):
+    """The report draws the usable point's series and lists the broken one (the DataError of
+    the broken point.json escaped the figures)."""
+    from postprocess.__main__ import main
+
+    def broken(point):
+        write_point(point)
+        (point / "point.json").write_text("{kn: 5")
+    sweep = sweep_of(tmp_path, {("collisional_flow", "p1"): write_point,
+                                ("collisional_flow", "p2"): broken})
+    assert main(["report", str(sweep)]) == 0
+    err = capsys.readouterr().err
+    assert f"left out {sweep / 'collisional_flow' / 'p2'}: point.json: not valid JSON" in err
+    assert "| 200000 |" in (sweep / "report" / "report.md").read_text()     # p1's row
+
+
+def crashed(point):
+    """A point whose lmp stopped with an error: the sweep runner's failed.txt, no done.txt."""
+    write_point(point)
+    (point / "done.txt").unlink()
+    (point / "failed.txt").write_text("exit status 1\n--- output\nLAMMPS (29 Sep 2021)\n"
+                                      "ERROR: Lost atoms: original 4 current 3 (x.cpp:1)\n")
+
+
+def test_a_crashed_point_is_reported_as_crashed(tmp_path):
+    from postprocess.study import analyse
+    sweep = sweep_of(tmp_path, {("collisional_flow", "p1"): crashed,
+                                ("collisional_flow", "p2"): lambda p: (p / "done.txt").unlink()})
+    left_out = dict(analyse(sweep)[1])
+    assert left_out[sweep / "collisional_flow" / "p1"] == (
+        "crashed (exit status 1; ERROR: Lost atoms: original 4 current 3 (x.cpp:1); "
+        "see failed.txt)")
+    assert left_out[sweep / "collisional_flow" / "p2"] == "did not complete (no done.txt)"
+
+
+def test_compare_fails_when_nothing_could_be_evaluated(tmp_path, capsys):
+    from postprocess.__main__ import main
+    sweep = sweep_of(tmp_path, {("collisional_flow", "p1"): crashed})
+    assert main(["compare", str(sweep)]) == 1
+    assert "comparison: 0 pass, 0 FAIL, 20 not evaluated: nothing could be evaluated" in \
+        capsys.readouterr().out

@@ -1,0 +1,166 @@
+"""A sweep's runs, one record each, from either source: the raw outputs of a results
+directory (<scene>/<point>/, docs/scenes.md) or the compact summaries that `python3 -m
+postprocess summarize` writes of them (<scene>/<point>.json, docs/sweeps.md). The report,
+compare and any later analysis start from load_runs; read_run is the one place that reads a
+point directory."""
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .io import (DataError, read_ending, read_energy, read_params, read_stopped,
+                 read_variables)
+from .observables import RESOLUTIONS, measure, observables, relative
+from .scenes import SCENES
+from .selection import Selection, in_energy_range, window_means
+
+# How a run ended: ran to run_time, its pile stopped and the run ended early (stopped.txt),
+# lmp failed (the sweep runner's failed.txt), no done.txt (still running, or killed), or (a
+# summary only) the summary itself could not be read.
+ENDINGS = ("flowing", "stopped", "failed", "incomplete", "unreadable")
+# The window (time units) over which a record's E(t) is averaged for drawing (energy), unless
+# energy.txt's lines are further apart.
+DRAWN_WINDOW = 1.0
+
+
+@dataclass
+class RunRecord:
+    """One run of a sweep.
+
+    point        its directory (raw) or its summary file
+    scene        the scene directory it is in
+    source       "raw" or "summary"
+    ended        one of ENDINGS
+    stopped_at   the time its pile stopped (ended "stopped"), else None
+    failure      (ended "failed") the exit status and lmp's last ERROR line
+    variables    point.json: the deck variables the sweep set (kn, seed, integrator, ...)
+    params       params.txt: every value the deck derived (tau_c, dt, n_mobile, ...)
+    measured     observables.measure's result: what its averages are made of
+    energy       {"window", "t0", "E"}: E(t) per disk averaged over consecutive windows from
+                 the first sample t0, window k starting at t0 + k window (window: DRAWN_WINDOW
+                 or, if larger, the largest time between two lines of energy.txt, so that no
+                 window is empty); E to 4 significant digits: for drawing
+    cpu_seconds  what the run cost (timing.json), if known
+    reason       why it has no observables (a DataError's text), else None
+    observables  (load_runs) observables.observables' result with load_runs' selection"""
+    point: Path
+    scene: str
+    source: str
+    ended: str = "incomplete"
+    stopped_at: float = None
+    failure: str = None
+    variables: dict = None
+    params: dict = None
+    measured: dict = None
+    energy: dict = None
+    cpu_seconds: float = None
+    reason: str = None
+    observables: dict = None
+
+    def kept(self, selection, resolutions):
+        """{resolution: steady parts the selection keeps at it} (frictional runs)."""
+        return {r: sum(in_energy_range(p["mean"], selection)
+                       for p in self.measured["steady"][r]) for r in resolutions}
+
+
+def drawn_energy(energy):
+    """energy.txt's E(t) per disk as RunRecord.energy keeps it."""
+    t = energy["time"]
+    window = max(DRAWN_WINDOW, float(np.max(np.diff(t))))
+    _, e, _ = window_means(t, energy["e_total"], window)
+    return {"window": window, "t0": float(t[0]), "E": [float(f"{v:.4g}") for v in e]}
+
+
+def energy_curve(record):
+    """(t, E per disk) of a completed run: every sample of energy.txt (raw), or the means over
+    the windows of RunRecord.energy at their start times (summary)."""
+    if record.source == "raw":
+        energy = read_energy(record.point, record.params)
+        return energy["time"], energy["e_total"]
+    drawn = record.energy
+    return drawn["t0"] + drawn["window"] * np.arange(len(drawn["E"])), np.array(drawn["E"])
+
+
+def unfinished_reason(ending, failure):
+    """The left-out reason of a run that did not complete (io.read_ending)."""
+    return (f"crashed ({failure}; see failed.txt)" if ending == "failed"
+            else "did not complete (no done.txt)")
+
+
+def read_cpu_seconds(point):
+    try:
+        return float(json.loads((Path(point) / "timing.json").read_text())["cpu_seconds"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def read_run(point, resolutions=RESOLUTIONS, selection=Selection()):
+    """The RunRecord of a point directory's outputs (observables not yet chosen): how it ended,
+    its variables and params, and (completed runs) what its averages are made of, with the
+    frictional selection's steady parts at each of `resolutions` (selection's min_length and
+    max_width). Never raises for broken outputs: `reason` says what is wrong."""
+    point = Path(point)
+    record = RunRecord(point=point, scene=point.parent.name, source="raw",
+                       cpu_seconds=read_cpu_seconds(point))
+    if record.scene not in SCENES:
+        record.reason = (f"unknown scene '{record.scene}' (expected one of "
+                         f"{', '.join(SCENES)})")
+        return record
+    ending, record.failure = read_ending(point)
+    if ending != "completed":
+        record.ended = ending
+        record.reason = unfinished_reason(ending, record.failure)
+        try:
+            record.variables = read_variables(point)
+        except DataError:
+            pass        # the reason is the crash
+        return record
+    record.ended = "stopped" if (point / "stopped.txt").exists() else "flowing"
+    try:
+        record.variables = read_variables(point)
+        record.params = read_params(point)
+        record.stopped_at = read_stopped(point)
+        energy = read_energy(point, record.params)
+    except DataError as error:
+        record.reason = relative(error, point)
+        return record
+    record.energy = drawn_energy(energy)
+    record.measured = measure(point, record.params, energy, record.stopped_at,
+                              resolutions if SCENES[record.scene].selects_steady_parts else (),
+                              selection)
+    return record
+
+
+def load_runs(source, selection=Selection()):
+    """Every run of a sweep, as a sorted list of RunRecord, from a results directory
+    (<scene>/<point>/ with point.json: the raw outputs) or from a directory of summaries
+    (<scene>/<point>.json, `python3 -m postprocess summarize`); both give the same records
+    but for `point`, `source` and the resolution of `energy`.
+
+    Each record has `observables` (E_total, N_c, N_w, t_c, t_w, mc_c = t_c - N_c tau_c,
+    mc_w = t_w - N_w tau_w, t_multiple, z, E_trans, E_rot, each with its block error
+    <name>_err; kn, tau_c, tau_w, span, n_boundary, notes; single disk: period, bump_time)
+    averaged as the report averages them, with `selection` for the frictional steady parts;
+    or `reason` says why it has none (did not complete, crashed, no steady part kept, ...).
+    `ended` says how it ended, `variables` and `params` what it was. From summaries the
+    selection's resolution must be one of observables.RESOLUTIONS and its min_length and
+    max_width those the summaries were written with (they hold the steady parts found so)."""
+    source = Path(source)
+    if not source.is_dir():
+        raise DataError(f"{source}: no such sweep directory")
+    points = sorted(p for p in source.glob("*/*") if (p / "point.json").exists())
+    if points:
+        resolutions = sorted(set(RESOLUTIONS) | {selection.resolution})
+        records = [read_run(p, resolutions, selection) for p in points]
+    else:
+        from .summary import read_summaries     # here: summary builds on this module
+        records = read_summaries(source, selection)
+    for record in records:
+        if record.reason is None:
+            try:
+                record.observables = observables(record.params, record.measured,
+                                                 record.stopped_at, selection)
+            except DataError as error:
+                record.reason = str(error)
+    return records

@@ -1,0 +1,242 @@
+"""Compact summaries of a sweep's runs (docs/sweeps.md, "Summaries"): one JSON file per run,
+<scene>/<point>.json, holding its RunRecord (postprocess/runs.py) but the observables, which
+are recomputed on reading with the reader's selection. A few kB where the raw outputs take
+MB: committed under data/, they let the report and compare be redone without rerunning.
+
+The file: an object with `schema` (SCHEMA), `version` (VERSION), `steady_rule` (the
+min_length and max_width the steady parts were found with), then the record's fields
+(point, scene, ended, stopped_at, failure, variables, params, measured, energy, cpu_seconds,
+reason); measured's steady parts are keyed by resolution written with %g. A file that is not
+this, or of another version, is refused by name (the run is left out, saying why)."""
+import json
+import math
+from pathlib import Path
+
+from .io import DataError, checked_params
+from .observables import BLOCK_QUANTITIES, RESOLUTIONS
+from .runs import DRAWN_WINDOW, ENDINGS, RunRecord, read_run
+from .selection import Selection
+
+SCHEMA = "granmn-run-summary"
+# Version 1: measured holds the steady parts at RESOLUTIONS found with the default
+# Selection's min_length and max_width.
+VERSION = 1
+FIELDS = ("point", "scene", "ended", "stopped_at", "failure", "variables", "params",
+          "measured", "energy", "cpu_seconds", "reason")
+
+
+def summary_text(record, selection):
+    """The summary of a raw RunRecord whose steady parts were found with `selection`: JSON, one
+    field per line."""
+    data = {"schema": SCHEMA, "version": VERSION,
+            "steady_rule": {"min_length": selection.min_length,
+                            "max_width": selection.max_width}}
+    for name in FIELDS:
+        data[name] = getattr(record, name)
+    data["point"] = f"{record.point.parent.name}/{record.point.name}"
+    if data["measured"] is not None:
+        measured = dict(data["measured"])
+        measured["steady"] = {f"{r:g}": parts for r, parts in measured["steady"].items()}
+        for name in ("period", "bump_time"):     # nan (no period found) is not JSON
+            if name in measured and measured[name] is not None and math.isnan(measured[name]):
+                measured[name] = None
+        data["measured"] = measured
+    return "{\n" + ",\n".join(f"{json.dumps(k)}: {json.dumps(v, sort_keys=True, allow_nan=False)}"
+                              for k, v in data.items()) + "\n}\n"
+
+
+def write_summaries(results_dir, to, selection=Selection()):
+    """Summarises every point of a results directory into `to`/<scene>/<point>.json, the
+    frictional steady parts found with the selection's min_length and max_width (which the
+    summary records: a reader must ask for the same); returns the paths written."""
+    results_dir = Path(results_dir)
+    if not results_dir.is_dir():
+        raise DataError(f"{results_dir}: no such results directory")
+    points = sorted(p for p in results_dir.glob("*/*") if (p / "point.json").exists())
+    if not points:
+        raise DataError(f"{results_dir}: no sweep points here (no <scene>/<point>/point.json)")
+    written = []
+    for point in points:
+        path = Path(to) / point.parent.name / f"{point.name}.json"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(summary_text(read_run(point, RESOLUTIONS, selection), selection))
+        written.append(path)
+    return written
+
+
+def read_summaries(directory, selection=Selection()):
+    """The RunRecords of a directory of summaries (<scene>/<point>.json), sorted by path; a
+    summary that cannot be read is a record ended 'unreadable' with the reason."""
+    directory = Path(directory)
+    paths = sorted(directory.glob("*/*.json"))
+    if not paths:
+        raise DataError(f"{directory}: no sweep points here (no <scene>/<point>/point.json) "
+                        "and no summaries (<scene>/<point>.json)")
+    if selection.resolution not in RESOLUTIONS:
+        raise DataError(f"{directory}: summaries hold the steady parts at resolutions "
+                        f"{', '.join(f'{r:g}' for r in RESOLUTIONS)} only: resolution "
+                        f"{selection.resolution:g} needs the raw outputs")
+    records = []
+    for path in paths:
+        try:
+            records.append(read_summary(path, selection))
+        except DataError as error:
+            records.append(RunRecord(point=path, scene=path.parent.name, source="summary",
+                                     ended="unreadable", reason=str(error)))
+    return records
+
+
+class _Checker:
+    """Reads a summary's values, each checked for its kind; a DataError names the file and
+    the value."""
+
+    def __init__(self, path):
+        self.path = path
+
+    def fail(self, where, what):
+        raise DataError(f"{self.path}: corrupt summary: {where} {what}")
+
+    def number(self, value, where, optional=False):
+        if value is None and optional:
+            return None
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or \
+                not math.isfinite(value):
+            self.fail(where, f"is {value!r}, not a finite number")
+        return float(value)
+
+    def text(self, value, where, optional=False):
+        if value is None and optional:
+            return None
+        if not isinstance(value, str):
+            self.fail(where, f"is {value!r}, not text")
+        return value
+
+    def mapping(self, value, where, optional=False):
+        if value is None and optional:
+            return None
+        if not isinstance(value, dict):
+            self.fail(where, "is not an object")
+        return value
+
+    def numbers(self, value, where):
+        if not isinstance(value, list):
+            self.fail(where, "is not a list")
+        return [self.number(v, f"{where}[{k}]") for k, v in enumerate(value)]
+
+    def key(self, data, name, where):
+        if name not in data:
+            self.fail(where, f"has no {name}")
+        return data[name]
+
+    def part(self, data, where, names, blocks):
+        """A steady part or the window: the numbers `names`, and the blocks if `blocks`."""
+        data = self.mapping(data, where)
+        part = {n: self.number(self.key(data, n, where), f"{where}.{n}") for n in names}
+        if blocks:
+            columns = self.mapping(self.key(data, "blocks", where), f"{where}.blocks")
+            part["blocks"] = {q: self.numbers(self.key(columns, q, f"{where}.blocks"),
+                                              f"{where}.blocks.{q}") for q in BLOCK_QUANTITIES}
+            if len({len(v) for v in part["blocks"].values()}) > 1:
+                self.fail(f"{where}.blocks", "has columns of different lengths")
+        return part
+
+    def measured(self, data):
+        data = self.mapping(data, "measured")
+        problem = self.text(self.key(data, "problem", "measured"), "measured.problem",
+                            optional=True)
+        steady = self.mapping(self.key(data, "steady", "measured"), "measured.steady")
+        measured = {"problem": problem, "steady": {}}
+        for key, parts in steady.items():
+            try:
+                resolution = float(key)
+            except ValueError:
+                resolution = None
+            if resolution not in RESOLUTIONS:
+                self.fail(f"measured.steady.{key}", "is not a resolution this version keeps")
+            if not isinstance(parts, list):
+                self.fail(f"measured.steady.{key}", "is not a list")
+            names = ("start", "stop", "mean") + (("span", "mean_samples") if problem is None
+                                                 else ())
+            measured["steady"][resolution] = [
+                self.part(p, f"measured.steady.{key}[{k}]", names, blocks=problem is None)
+                for k, p in enumerate(parts)]
+        if problem is not None:
+            return measured
+        measured["window"] = self.part(self.key(data, "window", "measured"), "measured.window",
+                                       ("start", "stop", "span"), blocks=True)
+        n_boundary = self.number(self.key(data, "n_boundary", "measured"),
+                                 "measured.n_boundary")
+        if n_boundary < 0 or n_boundary != int(n_boundary):
+            self.fail("measured.n_boundary", f"is {n_boundary:g}, not a count")
+        measured["n_boundary"] = int(n_boundary)
+        measured["rest_at"] = self.number(self.key(data, "rest_at", "measured"),
+                                          "measured.rest_at", optional=True)
+        if "period_problem" in data:
+            measured["period_problem"] = self.text(data["period_problem"],
+                                                   "measured.period_problem", optional=True)
+            for name in ("period", "bump_time"):
+                value = self.number(self.key(data, name, "measured"), f"measured.{name}",
+                                    optional=True)
+                measured[name] = math.nan if value is None else value
+        return measured
+
+    def energy(self, data):
+        data = self.mapping(data, "energy")
+        window = self.number(self.key(data, "window", "energy"), "energy.window")
+        if window < DRAWN_WINDOW:
+            self.fail("energy.window", f"is {window:g}, below {DRAWN_WINDOW:g}")
+        return {"window": window, "t0": self.number(self.key(data, "t0", "energy"), "energy.t0"),
+                "E": self.numbers(self.key(data, "E", "energy"), "energy.E")}
+
+
+def read_summary(path, selection=Selection()):
+    """The RunRecord of one summary file, every value checked; a DataError names the file and
+    what is wrong with it. Its steady parts must have been found with the selection's
+    min_length and max_width."""
+    path = Path(path)
+    try:
+        data = json.loads(path.read_text())
+    except (ValueError, UnicodeDecodeError) as error:
+        raise DataError(f"{path}: not a run summary: not valid JSON ({error})")
+    if not isinstance(data, dict) or data.get("schema") != SCHEMA:
+        raise DataError(f"{path}: not a run summary (no \"schema\": \"{SCHEMA}\")")
+    if data.get("version") != VERSION:
+        raise DataError(f"{path}: run summary version {data.get('version')!r}; this code reads "
+                        f"version {VERSION} (python3 -m postprocess summarize writes it)")
+    check = _Checker(path)
+    for name in FIELDS + ("steady_rule",):
+        check.key(data, name, "the summary")
+    rule = check.mapping(data["steady_rule"], "steady_rule")
+    wanted = {"min_length": selection.min_length, "max_width": selection.max_width}
+    if {n: check.number(check.key(rule, n, "steady_rule"), f"steady_rule.{n}")
+            for n in wanted} != wanted:
+        raise DataError(f"{path}: its steady parts were found with {rule}, not with the "
+                        f"selection's {wanted}: the raw outputs are needed")
+    ended = check.text(data["ended"], "ended")
+    if ended not in ENDINGS[:4]:
+        check.fail("ended", f"is {ended!r}, not one of {', '.join(ENDINGS[:4])}")
+    record = RunRecord(point=path, scene=check.text(data["scene"], "scene"), source="summary",
+                       ended=ended,
+                       stopped_at=check.number(data["stopped_at"], "stopped_at", optional=True),
+                       failure=check.text(data["failure"], "failure", optional=True),
+                       variables=check.mapping(data["variables"], "variables", optional=True),
+                       cpu_seconds=check.number(data["cpu_seconds"], "cpu_seconds",
+                                                optional=True),
+                       reason=check.text(data["reason"], "reason", optional=True))
+    if record.scene != path.parent.name:
+        check.fail("scene", f"is {record.scene!r}, but the file is in {path.parent.name}/")
+    params = check.mapping(data["params"], "params", optional=True)
+    if params is not None:
+        for name, value in params.items():
+            if not isinstance(value, str):
+                check.number(value, f"params.{name}")
+        record.params = checked_params(params, f"{path}: params")
+    if data["measured"] is not None:
+        if record.params is None:
+            check.fail("measured", "is there without params")
+        record.measured = check.measured(data["measured"])
+    if data["energy"] is not None:
+        record.energy = check.energy(data["energy"])
+    if record.reason is None and record.measured is None:
+        check.fail("the summary", "has neither measured nor a reason")
+    return record

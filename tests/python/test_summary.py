@@ -1,0 +1,191 @@
+"""Run summaries (python3 -m postprocess summarize, docs/sweeps.md): the report and compare
+from summaries give the tables they give from the raw outputs; a summary that is not one, or
+of another version, is refused by name."""
+import csv
+import json
+
+import numpy as np
+import pytest
+
+from postprocess.__main__ import main
+from postprocess.runs import load_runs
+from postprocess.selection import Selection
+from test_postprocess import crashed, single_disk_trajectory, write_point
+
+RNG = np.random.default_rng(11)
+
+
+def with_energy(point, energy, dt=0.001, stop=None):
+    """Replace e_total (and e_trans, e_rot: 0.9 and 0.1 of it) by energy(t); with `stop`, end
+    the run there as the deck does when the pile stops."""
+    lines = []
+    for line in (point / "energy.txt").read_text().splitlines():
+        if not line.startswith("#"):
+            words = line.split()
+            t = int(words[0]) * dt
+            if stop is not None and t > stop:
+                continue
+            e = energy(t)
+            line = " ".join([words[0], repr(0.9 * e), repr(0.1 * e), repr(e)] + words[4:])
+        lines.append(line)
+    (point / "energy.txt").write_text("\n".join(lines) + "\n")
+    if stop is not None:
+        (point / "stopped.txt").write_text(f"stopped_at {stop}\n")
+    return point
+
+
+def frictional(point, seed, energy=lambda t: 0.6 + 0.01 * np.sin(t), stop=None):
+    """A frictional run of 1000 time units, E(t) sampled every 0.1."""
+    write_point(point, scene="frictional_flow", run_time=1000.0, average_start=100.0)
+    with_energy(point, energy, stop=stop)
+    (point / "point.json").write_text(json.dumps({"kn": 200000, "seed": seed}))
+
+
+def sweep(tmp_path):
+    """A synthetic sweep with one run of each kind the report tells apart: usable collisional
+    and single-disk points at two k_n, frictional seeds flowing in range (steady at every
+    resolution; or kept at 1 and 5 only: samples wider than 0.45), out of range, stopped
+    after a steady part and before average_start, a crashed and an unfinished point."""
+    out = tmp_path / "results"
+
+    def point(scene, name, variables):
+        p = out / scene / name
+        p.mkdir(parents=True)
+        (p / "point.json").write_text(json.dumps(variables))
+        (p / "done.txt").write_text("done\n")
+        return p
+
+    for kn in (1e5, 4e5):
+        p = write_point(point("collisional_flow", f"kn{kn:g}", {"kn": kn}))
+        p.joinpath("params.txt").write_text(p.joinpath("params.txt").read_text().replace(
+            "kn 200000", f"kn {kn:g}"))
+        with_energy(p, lambda t, kn=kn: 0.6 * (kn / 1e5) ** -0.05 + 0.01 * np.sin(t))
+        p = point("single_disk", f"kn{kn:g}", {"kn": kn})
+        write_point(p, scene="single_disk")
+        p.joinpath("params.txt").write_text(p.joinpath("params.txt").read_text().replace(
+            "kn 200000", f"kn {kn:g}"))
+        single_disk_trajectory(p, 100.0, spacing=0.1)
+    noise = RNG.uniform(-0.3, 0.3, 10001)
+    frictional(point("frictional_flow", "s1", {}), 1)
+    frictional(point("frictional_flow", "s2", {}), 2,
+               lambda t: 0.65 + noise[int(round(t / 0.1))])
+    frictional(point("frictional_flow", "s3", {}), 3, lambda t: 0.95 + 0.01 * np.sin(t))
+    frictional(point("frictional_flow", "s4", {}), 4, stop=800.0)
+    frictional(point("frictional_flow", "s5", {}), 5, stop=40.0)
+    crashed(point("collisional_flow", "crashed", {"kn": 8e5}))
+    (point("collisional_flow", "running", {"kn": 1.6e6}) / "done.txt").unlink()
+    return out
+
+
+def table(path, without=("point",)):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return [{k: v for k, v in row.items() if k not in without} for row in rows]
+
+
+@pytest.fixture(scope="module")
+def summarized(tmp_path_factory):
+    tmp_path = tmp_path_factory.mktemp("summaries")
+    results = sweep(tmp_path)
+    assert main(["summarize", str(results), "--to", str(tmp_path / "data")]) == 0
+    return results, tmp_path / "data"
+
+
+@pytest.mark.parametrize("options", [[], ["--energy-range", "0.3", "1.2"],
+                                     ["--resolution", "5"], ["--resolution", "0.1"]])
+def test_the_report_from_summaries_has_the_tables_of_the_report_from_raw_outputs(
+        summarized, tmp_path, capsys, options):
+    results, data = summarized
+    assert main(["report", str(results), "--output", str(tmp_path / "raw")] + options) == 0
+    raw_said = capsys.readouterr().err
+    assert main(["report", str(data), "--output", str(tmp_path / "summary")] + options) == 0
+    summary_said = capsys.readouterr().err
+    for name in ("observables_collisional_flow.csv", "observables_single_disk.csv",
+                 "observables_frictional_flow.csv", "runs.csv", "comparison.csv"):
+        raw = table(tmp_path / "raw" / name)
+        assert raw and raw == table(tmp_path / "summary" / name), name
+    # the same runs left out, for the same reasons
+    assert raw_said.count("left out") == summary_said.count("left out") >= 3
+    for line in raw_said.splitlines():
+        point, reason = line.removeprefix(f"left out {results}/").split(": ", 1)
+        assert f"left out {data}/{point}.json: {reason}" in summary_said
+    assert "crashed (exit status 1; ERROR: Lost atoms" in summary_said
+
+
+def test_summaries_say_how_each_run_ended_and_what_it_is(summarized):
+    results, data = summarized
+    raw = {r.point.relative_to(results): r for r in load_runs(results)}
+    summaries = {r.point.relative_to(data).with_suffix(""): r for r in load_runs(data)}
+    assert raw.keys() == summaries.keys()
+    ended = {str(k): r.ended for k, r in summaries.items()}
+    assert ended["collisional_flow/crashed"] == "failed"
+    assert ended["collisional_flow/running"] == "incomplete"
+    assert ended["frictional_flow/s4"] == ended["frictional_flow/s5"] == "stopped"
+    assert ended["frictional_flow/s1"] == "flowing"
+    for key, r in raw.items():
+        s = summaries[key]
+        assert (s.ended, s.stopped_at, s.variables, s.params, s.reason) == \
+            (r.ended, r.stopped_at, r.variables, r.params, r.reason)
+        assert s.observables == r.observables
+    # the frictional seed with wide samples: kept at resolutions 1 and 5, not at 0.1
+    noisy = summaries[next(k for k in summaries if str(k) == "frictional_flow/s2")]
+    assert noisy.kept(Selection(), (0.1, 1.0, 5.0)) == {0.1: 0, 1.0: 1, 5.0: 1}
+
+
+def test_a_summary_is_a_few_kilobytes(summarized):
+    """A frictional run of 1000 time units: its E(t) over windows of 1 (1000 values) and its
+    steady parts' blocks; far below its raw outputs."""
+    _, data = summarized
+    sizes = {p.name: p.stat().st_size for p in data.glob("*/*.json")}
+    assert max(sizes.values()) < 16000, sizes
+
+
+def test_a_resolution_the_summaries_do_not_hold_is_refused(summarized, capsys):
+    _, data = summarized
+    assert main(["compare", str(data), "--resolution", "2"]) == 2
+    assert "summaries hold the steady parts at resolutions 0.1, 1, 5 only: resolution 2 " \
+           "needs the raw outputs" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("damage,message", [
+    ("version", "run summary version 2; this code reads version 1"),
+    ("not json", "not a run summary: not valid JSON"),
+    ("other json", 'not a run summary (no "schema": "granmn-run-summary")'),
+    ("block", "corrupt summary: measured.window.blocks.N_c[0] is 'x', not a finite number"),
+    ("missing", "corrupt summary: the summary has no params"),
+    ("params", "params: tau_c = 'fast' must be a finite number > 0"),
+    ("ended", "corrupt summary: ended is 'exploded', not one of flowing, stopped, failed, "
+              "incomplete"),
+    ("rule", "its steady parts were found with"),
+])
+def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, damage, message):
+    _, data = summarized
+    path = tmp_path / "data" / "collisional_flow" / "kn100000.json"
+    if damage == "rule":
+        path = tmp_path / "data" / "frictional_flow" / "s1.json"
+    path.parent.mkdir(parents=True)
+    summary = json.loads((data / path.parent.name / path.name).read_text())
+    if damage == "version":
+        summary["version"] = 2
+    if damage == "other json":
+        summary = {"kn": 1}
+    if damage == "block":
+        summary["measured"]["window"]["blocks"]["N_c"][0] = "x"
+    if damage == "missing":
+        del summary["params"]
+    if damage == "params":
+        summary["params"]["tau_c"] = "fast"
+    if damage == "ended":
+        summary["ended"] = "exploded"
+    if damage == "rule":
+        summary["steady_rule"]["max_width"] = 0.3
+    path.write_text("{kn: 5" if damage == "not json" else json.dumps(summary))
+    record, = load_runs(tmp_path / "data")
+    assert record.ended == "unreadable" and record.reason.startswith(f"{path}: ")
+    assert message in record.reason
+
+
+def test_summarize_needs_raw_outputs(summarized, capsys):
+    _, data = summarized
+    assert main(["summarize", str(data), "--to", str(data / "again")]) == 2
+    assert "no sweep points here" in capsys.readouterr().err
