@@ -64,7 +64,8 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
   size_vector = 2;    // force exerted by the particles on the walls (x, y)
   global_freq = 1;
   extvector = 1;
-  if (use_history) allocate_state(UT_COLUMNS);
+  // mu = 0: no columns yet; fix contacts/mn, if defined later, adds its own at init
+  allocate_state(use_history ? UT_COLUMNS : 0);
   wall_force[0] = wall_force[1] = 0.0;
 }
 

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from collision_decks import DISC_DENSITY, bounces, disk_over_floor, two_disks
-from granmn_run import law, restitution_error_bound, run_lammps
+from granmn_run import law, restitution_error_bound, run_lammps, run_scene
 from pile_decks import FIXES, styles
 
 COUNTS = "id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]"
@@ -44,11 +44,15 @@ def test_binary_collision_is_one_contact_per_disk_lasting_tau_c(tmp_path):
     assert sums[0] == 2 and sums[7] == 2
 
 
-def test_disk_resting_on_the_wall_touches_it_all_the_time(tmp_path):
+@pytest.mark.parametrize("mu", [0.5, 0.0])
+def test_disk_resting_on_the_wall_touches_it_all_the_time(tmp_path, mu):
+    """Also on a frictionless wall, whose fix keeps no u_t: the counters then add the wall
+    fix's per-atom columns at init (they once registered it with LAMMPS there, too late: a
+    wrong fix's callbacks, an error at exit or a crash in the first atom sort)."""
     kn = 2e5
     dt = law(kn, 0.7, 0.7)["tau_c"] / 50
     deck = f"""
-{disk_over_floor(kn, 0.5 - 1.0 / kn, dt)}thermo 0
+{disk_over_floor(kn, 0.5 - 1.0 / kn, dt, mu=mu)}thermo 0
 run 10000
 print "RESULT sums {SUMS}"
 """
@@ -290,3 +294,13 @@ print "RESULT sums $(f_c[2]) $(f_c[6])"
     assert begun == 1 and now == 1 and rows == []
     (begun, now), rows = corner(-1.5 - 0.3 / kn, "corner")    # at its equilibrium overlap
     assert begun == 2 and now == 2 and rows == []
+
+
+def test_frictional_scene_with_a_frictionless_wall_and_counters_runs(tmp_path):
+    """inputs/frictional_flow.lmp -var mu 0 crashed (Atom::sort -> AtomVec::grow at the first
+    run) when the wall fix, with no u_t to keep, got its per-atom columns from the counters
+    only at init. It runs; the lowest row starts about 1.6 above the floor (centres at 2), so
+    it lands within 2 time units: boundary contacts begun."""
+    run = run_scene("frictional_flow", tmp_path, mu=0, run_time=2, average_start=1)
+    assert run.atoms("counts.txt")["f_c[2]"].sum() > 0
+
