@@ -92,8 +92,12 @@ void FixWallGranMN::resolve_law()
     if (!given[1]) m.e = pm.e;
     if (!given[2]) m.beta = pm.beta;
     if (!given[3]) m.mu = pm.mu;
-    if (!parsed.options_given) o = pair->contact_law().options;
-    own_law = given[0] || given[1] || given[2] || given[3] || parsed.options_given;
+    // an option is a flag: one not given on the fix line is the pair's
+    const mn::Options &po = pair->contact_law().options;
+    o.limit_damping = o.limit_damping || po.limit_damping;
+    o.coulomb_cutback = o.coulomb_cutback || po.coulomb_cutback;
+    own_law = given[0] || given[1] || given[2] || given[3] ||
+        o.limit_damping != po.limit_damping || o.coulomb_cutback != po.coulomb_cutback;
   }
   const char *problem = mn::material_error(m);
   if (problem) error->all(FLERR, "Illegal fix wall/gran/mn command: {}", problem);

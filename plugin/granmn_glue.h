@@ -95,8 +95,7 @@ inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, d
 struct LawArguments {
   mn::Material material{0.0, 0.0, 0.0, 0.0};
   bool given[4] = {false, false, false, false};    // kn, e, beta, mu
-  mn::Options options;
-  bool options_given = false;
+  mn::Options options;    // an option is on if given
 };
 
 inline const char *law_keyword(int k)
@@ -126,7 +125,6 @@ inline int parse_law_keyword(LAMMPS_NS::LAMMPS *lmp, const char *command, int na
   if (strcmp(arg[iarg], "coulomb_cutback") == 0) flag = &law.options.coulomb_cutback;
   if (!flag) return 0;
   *flag = true;
-  law.options_given = true;
   return 1;
 }
 

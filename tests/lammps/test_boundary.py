@@ -66,3 +66,37 @@ timestep 5e-5
     assert vx1 == pytest.approx(-0.7, abs=0.01) and vx2 == pytest.approx(0.7, abs=0.01)
     passed = run_lammps(deck(["wall_types 2", "", "wall_types 2"]), tmp_path / "bumps_again")
     assert passed.result("vx") == [1.0, -1.0]
+
+
+def limit_damping_restitution(kn, e):
+    """Restitution of a normal collision with the boundary when the normal force is clamped
+    at zero: delta = (v0/w) exp(-g t) sin(w t) (g = eta_n/2, w^2 = kn - g^2) until
+    kn delta + eta_n delta' = 0, where the disk leaves with delta'."""
+    eta = law(kn, e, 0.7)["eta_n"]
+    g, w = eta / 2, np.sqrt(kn - eta * eta / 4)
+    phase = np.pi - np.arctan2(eta * w, kn - eta * g)    # w t at the release, in (pi/2, pi)
+    return np.exp(-g * phase / w) * abs(np.cos(phase) - g / w * np.sin(phase))
+
+
+@pytest.mark.parametrize("pair_options,wall_options,limited", [
+    ("limit_damping", "coulomb_cutback", True),
+    ("limit_damping coulomb_cutback", "", True),
+    ("", "coulomb_cutback", False)])
+def test_an_option_not_given_on_the_wall_fix_is_the_pair_styles(tmp_path, pair_options,
+                                                                 wall_options, limited):
+    """A disk falling head-on onto the wall at e = 0.5: with limit_damping (the pair's, also
+    when the wall fix gives another option) it leaves when the normal force reaches zero, with
+    0.646 of its speed (limit_damping_restitution), else with e_w = 0.616. dt = tau_w/400
+    keeps the measured value within the first-order bound (0.006) of the right one, far from
+    the other."""
+    kn, e = 2e5, 0.5
+    dt_over_tau = 1 / 400
+    deck, _ = disk_on_boundary((kn, e, 0.7, 0.5), law(kn, e, 0.7)["tau_w"] * dt_over_tau, "wall")
+    deck = deck.replace("mu 0.5 \n", f"mu 0.5 {pair_options}\n").replace(
+        "yplane 0.0 NULL\n", f"yplane 0.0 NULL {wall_options}\n")
+    rebound = run_lammps(deck, tmp_path).atoms()["vy"][0]
+    expected = limit_damping_restitution(kn, e) if limited else law(kn, e, 0.7)["e_w"]
+    print(f"{pair_options} / {wall_options}: rebound {rebound:.5f}, expected {expected:.5f}")
+    bound = restitution_error_bound(expected, dt_over_tau)
+    assert abs(limit_damping_restitution(kn, e) - law(kn, e, 0.7)["e_w"]) > 4 * bound
+    assert abs(rebound - expected) <= bound
