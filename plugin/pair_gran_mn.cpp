@@ -273,6 +273,27 @@ void PairGranMN::check_wall_types()
   }
 }
 
+// The boundary rule holds for immobile bumps: a bump that moves would collide with e and
+// tau of neither a pair nor the boundary.
+void PairGranMN::check_wall_types_not_integrated()
+{
+  if (wall_types.empty()) return;
+  const int *type = atom->type, *mask = atom->mask;
+  for (int k = 0; k < modify->nfix; k++) {
+    const Fix *fix = modify->fix[k];
+    if (!fix->time_integrate) continue;
+    bigint integrated = 0;
+    for (int i = 0; i < atom->nlocal; i++)
+      if ((mask[i] & fix->groupbit) && is_wall_type[type[i]]) integrated++;
+    bigint integrated_all = 0;
+    MPI_Allreduce(&integrated, &integrated_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+    if (integrated_all)
+      error->all(FLERR, "pair_style gran/mn: fix {} ({}) integrates {} atoms of wall_types, "
+                        "which are immobile bumps with the boundary rule: leave them out of "
+                        "its group", fix->id, fix->style, integrated_all);
+  }
+}
+
 void PairGranMN::coeff(int narg, char **arg)
 {
   if (narg != 2)
@@ -306,6 +327,7 @@ void PairGranMN::init_style()
     error->all(FLERR, "Pair style gran/mn requires ghost atoms store velocity "
                       "(comm_modify vel yes)");
   check_wall_types();
+  check_wall_types_not_integrated();
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
 

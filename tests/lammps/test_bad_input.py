@@ -102,6 +102,8 @@ ERRORS = {
     "spheres integrated by nve/sphere": (
         deck(fix="unfix integrate\nfix spin all nve/sphere"),
         "fix spin (nve/sphere) integrates spheres; the law is for disks"),
+    "integrated bump": (deck(pair=GOOD_PAIR + " wall_types 2", fix="set atom 2 type 2"),
+                        "fix integrate (nve) integrates 1 atoms of wall_types"),
 }
 
 
