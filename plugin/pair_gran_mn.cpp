@@ -98,6 +98,52 @@ void PairGranMN::report_end(int i, int j, double dx, double dy, double rsq, cons
     counters->pair_ended(i, j, j_wall, state, vn, record);
 }
 
+// Two disks whose centres came within the larger radius: the law has lost them (their normal
+// flips once the centres cross, and they fly apart on swapped sides). Says what stops them.
+// A pair that got there within one step (its overlap is less than the step's motion) needs a
+// finer step: one with ten steps across the smaller radius r. Otherwise the spring was already
+// acting and is too soft: a head-on approach at speed v stops within an overlap v/w (undamped;
+// w^2 = 2 kn for two disks, kn against a bump), which must stay below r.
+void PairGranMN::report_passed_through(int i, int j, double r)
+{
+  const tagint *tag = atom->tag;
+  if (r == 0.0)
+    error->one(FLERR, "pair_style gran/mn: atoms {} and {} are at the same position: the "
+                      "contact has no normal", tag[i], tag[j]);
+  const double radius_min = MIN(atom->radius[i], atom->radius[j]);
+  const double delta = atom->radius[i] + atom->radius[j] - r;
+  if (update->setupflag)
+    error->one(FLERR, "pair_style gran/mn: atoms {} and {} overlap by {:.6g}, more than the "
+                      "smaller radius {:.6g}: the centre of one is inside the other (placed so?)",
+                      tag[i], tag[j], delta, radius_min);
+  double **x = atom->x, **v = atom->v;
+  const double vn = fabs((x[i][0] - x[j][0]) * (v[i][0] - v[j][0]) +
+                         (x[i][1] - x[j][1]) * (v[i][1] - v[j][1])) / r;
+  const bool boundary = is_wall_type[atom->type[i]] || is_wall_type[atom->type[j]];
+  const double dt = update->dt;
+  std::string cause;
+  double speed;
+  if (vn * dt >= delta) {
+    speed = vn;
+    cause = fmt::format("they got there within one step (the time step {:.6g} moves them by "
+                        "{:.6g}): use a time step below {:.6g} (ten steps across the radius)",
+                        dt, vn * dt, 0.1 * radius_min / vn);
+  } else {
+    // the speed they met at, from the energy of the normal motion: damping only lowers it
+    const double omega2 = (boundary ? 1.0 : 2.0) * law.kn;
+    speed = sqrt(vn * vn + omega2 * delta * delta);
+    const double stopped_within = speed / sqrt(omega2);
+    cause = fmt::format("kn = {:.6g} stops them only within an overlap of {:.6g}: it takes "
+                        "kn > {:.6g} to stop them within the radius",
+                        law.kn, stopped_within, law.kn * pow(stopped_within / radius_min, 2));
+  }
+  error->one(FLERR, "pair_style gran/mn: atoms {} and {} have passed through each other at step "
+                    "{}: the centre of one is inside the other (overlap {:.6g} > {:.6g}, the "
+                    "smaller radius); they met at a relative speed of about {:.6g} ({}); {}",
+             tag[i], tag[j], update->ntimestep, delta, radius_min, speed,
+             boundary ? "a disk and a bump" : "two disks", cause);
+}
+
 void PairGranMN::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
@@ -160,9 +206,8 @@ void PairGranMN::compute(int eflag, int vflag)
       }
 
       const double r = sqrt(rsq);
-      if (r == 0.0)
-        error->one(FLERR, "pair_style gran/mn: atoms {} and {} are at the same position: the "
-                          "contact has no normal", tag[i], tag[j]);
+      // the centre of one inside the other: as the wall fix's centre that reached its wall
+      if (r <= MAX(radi, radius[j])) report_passed_through(i, j, r);
       const mn::Kinematics kin =
           mn::kinematics(dx, dy, r, radsum, v[i][0] - v[j][0], v[i][1] - v[j][1],
                          radi * omega[i][2] + radius[j] * omega[j][2]);

@@ -102,6 +102,9 @@ ERRORS = {
     "spheres integrated by nve/sphere": (
         deck(fix="unfix integrate\nfix spin all nve/sphere"),
         "fix spin (nve/sphere) integrates spheres; the law is for disks"),
+    "atoms placed inside each other": (deck(second="0.3 0.5 0"),
+                                       "atoms 1 and 2 overlap by 0.7, more than the smaller "
+                                       "radius 0.5"),
     "integrated bump": (deck(pair=GOOD_PAIR + " wall_types 2", fix="set atom 2 type 2"),
                         "fix integrate (nve) integrates 1 atoms of wall_types"),
 }
