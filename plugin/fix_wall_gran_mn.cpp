@@ -120,10 +120,8 @@ void FixWallGranMN::init()
                       "history; define it again after giving mu > 0");
   // The pair style already checked the time step against the same law.
   if (own_law)
-    granmn::check_timestep(lmp, "fix wall/gran/mn", update->dt,
-                           mn::max_stable_dt(law, granmn::integrator_in_use(modify)), law.tau_c,
-                           granmn::integrator_in_use(modify),
-                           mn::amplifies_undamped_mode(law, granmn::integrator_in_use(modify)));
+    granmn::check_timestep(lmp, "fix wall/gran/mn", update->dt, law,
+                           granmn::integrator_in_use(modify));
 }
 
 void FixWallGranMN::setup(int vflag)

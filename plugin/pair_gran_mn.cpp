@@ -376,9 +376,7 @@ void PairGranMN::init_style()
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
 
-  const double dt = update->dt;
   const mn::Integrator integrator = granmn::integrator_in_use(modify);
-  const double dt_max = mn::max_stable_dt(law, integrator);
   if (!law_reported && comm->me == 0) {
     utils::logmesg(lmp,
                    "pair_style gran/mn: kn = {:.8g} e = {} beta = {} mu = {}\n"
@@ -391,8 +389,7 @@ void PairGranMN::init_style()
                    mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
     law_reported = true;
   }
-  granmn::check_timestep(lmp, "pair_style gran/mn", dt, dt_max, law.tau_c, integrator,
-                         mn::amplifies_undamped_mode(law, integrator));
+  granmn::check_timestep(lmp, "pair_style gran/mn", update->dt, law, integrator);
 
   // The per-contact history: u_t when there is friction, then the counters' record if asked.
   counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
