@@ -302,6 +302,14 @@ void PairGranMN::settings(int narg, char **arg)
     if (!parsed.given[k])
       error->all(FLERR, "Illegal pair_style gran/mn command: {} must be given",
                  granmn::law_keyword(k));
+  // One law per simulation: fix wall/gran/mn, fix contacts/mn and the v_mn_* variables take
+  // it from the gran/mn style. pair_style hybrid declares its sub-styles in order, so a second
+  // gran/mn finds the first here.
+  const Pair *first = force->pair_match("gran/mn", 1);
+  if (first && first != this)
+    error->all(FLERR, "pair_style gran/mn: pair_style hybrid holds gran/mn twice; the gran/mn "
+                      "styles support one (fix wall/gran/mn, fix contacts/mn and the v_mn_* "
+                      "variables take their law from it): give one gran/mn sub-style");
   material = parsed.material;
   options = parsed.options;
   derive_law();
@@ -375,6 +383,10 @@ void PairGranMN::init_style()
   check_wall_types_not_integrated();
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
+  if (neighbor->build_once && comm->me == 0)
+    error->warning(FLERR, "pair_style gran/mn: neigh_modify once yes builds the neighbor list "
+                          "only at the start of a run: disks that come into contact later are "
+                          "never seen (no force, no contact); leave out 'once yes'");
 
   const mn::Integrator integrator = granmn::integrator_in_use(modify);
   if (!law_reported && comm->me == 0) {

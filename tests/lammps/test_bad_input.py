@@ -109,6 +109,11 @@ ERRORS = {
                                        "radius 0.5"),
     "integrated bump": (deck(pair=GOOD_PAIR + " wall_types 2", fix="set atom 2 type 2"),
                         "fix integrate (nve) integrates 1 atoms of wall_types"),
+    "two gran/mn sub-styles": (
+        deck(pair="pair_style hybrid gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5 "
+                  "gran/mn kn 1e6 e 0.7 beta 0.7 mu 0.5",
+             coeff="pair_coeff * * gran/mn 1"),
+        "pair_style hybrid holds gran/mn twice"),
     "beta near zero at tau_c/100": (
         deck(pair="pair_style gran/mn kn 2e5 e 0.7 beta 1e-40 mu 0.5",
              timestep="timestep $(v_mn_tau_c/100)"),
@@ -203,3 +208,9 @@ def test_a_mode_damped_too_hard_for_tau_c_over_100_is_named_with_a_step_that_wor
     (start,), (end,) = finer.result("start"), finer.result("end")
     assert 0 < end < start
 
+
+def test_neighbor_list_built_once_is_warned_about(tmp_path):
+    """neigh_modify once yes builds the list only at the start of a run: two disks 0.2 apart
+    that meet later never interact. The pair style warns."""
+    run = run_lammps(deck(fix="neigh_modify once yes"), tmp_path, header=False)
+    assert "neigh_modify once yes builds the neighbor list only at the start of a run" in run.output
