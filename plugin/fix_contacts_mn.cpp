@@ -27,8 +27,8 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), step_particle(nullptr),
     step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
     fold_ghosts(false),
-    now(0.0), clock_step(0), window_start(0.0), rows_every(0), row_array(nullptr), nmax_rows(0), rows_cleared(-1),
-    vector_step(-1)
+    now(0.0), clock_step(0), window_start(0.0), rows_every(0), row_array(nullptr), nmax_rows(0),
+    rows_handed(0), handed_step(-1), vector_step(-1)
 {
   int iarg = 3;
   while (iarg < narg) {
@@ -97,7 +97,16 @@ void FixContactsMN::init()
 void FixContactsMN::advance_clock()
 {
   if (update->ntimestep > clock_step) now += (update->ntimestep - clock_step) * update->dt;
-  clock_step = update->ntimestep;    // (reset_timestep moves the step, not the clock)
+  clock_step = update->ntimestep;
+}
+
+// Rows handed to dump local at an earlier step (or before a reset_timestep) have been written.
+void FixContactsMN::drop_handed_rows()
+{
+  if (rows_handed && update->ntimestep != handed_step) {
+    rows.erase(rows.begin(), rows.begin() + (size_t) rows_handed * ROW_COLS);
+    rows_handed = 0;
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -116,8 +125,11 @@ void FixContactsMN::grow_step_arrays()
   memory->create(begun_boundary, nmax_step, "contacts/mn:begun_boundary");
 }
 
+// No time passes between runs: the step a run starts at is the clock's, also after
+// reset_timestep moved it (either way).
 void FixContactsMN::setup_pre_force(int vflag)
 {
+  clock_step = update->ntimestep;
   pre_force(vflag);
 }
 
@@ -129,12 +141,7 @@ void FixContactsMN::pre_force(int)
   const int n = fold_ghosts ? atom->nlocal : atom->nlocal + atom->nghost;
   for (int i = 0; i < n; i++)
     step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
-  // rows published at the previous step have been written by then
-  if (rows_every && update->ntimestep > rows_cleared &&
-      (update->ntimestep - 1) % rows_every == 0) {
-    rows.clear();
-    rows_cleared = update->ntimestep;
-  }
+  drop_handed_rows();
 }
 
 void FixContactsMN::pair_ended(int i, int j, bool boundary, const double *record, double vn,
@@ -207,6 +214,11 @@ void FixContactsMN::publish_rows()
     for (int c = 0; c < ROW_COLS; c++) row_array[r][c] = rows[ROW_COLS * r + c];
   array_local = row_array;
   size_local_rows = n;
+  // dump local N writes them at this step
+  if (update->ntimestep % rows_every == 0) {
+    rows_handed = n;
+    handed_step = update->ntimestep;
+  }
 }
 
 int FixContactsMN::pack_reverse_comm(int n, int first, double *buf)

@@ -304,3 +304,38 @@ def test_frictional_scene_with_a_frictionless_wall_and_counters_runs(tmp_path):
     run = run_scene("frictional_flow", tmp_path, mu=0, run_time=2, average_start=1)
     assert run.atoms("counts.txt")["f_c[2]"].sum() > 0
 
+
+def local_rows(path):
+    """The rows of a dump local file, as tuples."""
+    rows, entries = [], False
+    for line in path.read_text().splitlines():
+        if line.startswith("ITEM:"):
+            entries = line.startswith("ITEM: ENTRIES")
+        elif entries:
+            rows.append(tuple(map(float, line.split())))
+    return rows
+
+
+@pytest.mark.parametrize("jump", [1000000, 0])
+def test_reset_timestep_in_the_middle_of_a_contact_moves_the_step_not_the_clock(tmp_path,
+                                                                               jump):
+    """Two disks meet 10.5 steps into the run; half-way through their contact the step is
+    reset, forward to 1e6 or back to 0. No time passes at a reset: the contact still lasts
+    tau_c (to the step, as any contact), starts when they met, and the window after the run is
+    the time of all steps taken. Back at step 0 its row is dumped once, not again at every
+    step that follows."""
+    material = (2e5, 0.7, 0.7, 0.5)
+    tau = law(*material[:3])["tau_c"]
+    dt = tau / 100
+    deck, _ = two_disks(material, dt, pre_steps=10)
+    steps = int(deck.split("run ")[1].split()[0])
+    deck = deck.replace(f"thermo 0\nrun {steps}\n",
+                        "fix c all contacts/mn local 1\ndump rows all local 1 rows.txt f_c[4] "
+                        f"f_c[5]\nthermo 0\nrun 60\nreset_timestep {jump}\nrun {steps - 60}\n"
+                        "print \"RESULT window $(f_c[7])\"\n")
+    run = run_lammps(deck, tmp_path)
+    (start, duration), = local_rows(tmp_path / "rows.txt")
+    assert start == pytest.approx(10.5 * dt, abs=dt)
+    assert duration == pytest.approx(tau, abs=dt)
+    assert run.result("window")[0] == pytest.approx(steps * dt, rel=1e-9)
+
