@@ -291,16 +291,36 @@ void FixContactsMN::grow_arrays(int nmax)
 }
 
 // The first value marks the layout: earlier versions wrote one value, a step (>= 0), and kept
-// contact start steps rather than times in the pair history.
-static constexpr double CLOCK_LAYOUT = -2.0;
+// contact start steps rather than times in the pair history; then the clock alone (-2). Now
+// (-3) the rows not yet dumped follow the clock, gathered from all processes: a run continued
+// from the file dumps them at its next multiple of N.
+static constexpr double CLOCK_LAYOUT = -2.0, CLOCK_AND_ROWS_LAYOUT = -3.0;
+static constexpr int CLOCK_VALUES = 4;
 
 void FixContactsMN::write_restart(FILE *fp)
 {
+  // rows handed to a dump are in its file already
+  const int skip = rows_handed * ROW_COLS;
+  const int mine = (int) rows.size() - skip;
+  std::vector<int> counts(comm->nprocs), offsets(comm->nprocs, 0);
+  MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
+  int total = 0;
+  for (int p = 0; p < comm->nprocs; p++) {
+    offsets[p] = total;
+    total += counts[p];
+  }
+  std::vector<double> values(CLOCK_VALUES + 1 + (comm->me == 0 ? total : 0));
+  MPI_Gatherv(rows.data() + skip, mine, MPI_DOUBLE, values.data() + CLOCK_VALUES + 1,
+              counts.data(), offsets.data(), MPI_DOUBLE, 0, world);
   if (comm->me == 0) {
-    const double clock[4] = {CLOCK_LAYOUT, now, (double) clock_step, window_start};
-    const int size = sizeof(clock);
+    values[0] = CLOCK_AND_ROWS_LAYOUT;
+    values[1] = now;
+    values[2] = (double) clock_step;
+    values[3] = window_start;
+    values[4] = total / ROW_COLS;
+    const int size = values.size() * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(clock, sizeof(double), 4, fp);
+    fwrite(values.data(), sizeof(double), values.size(), fp);
   }
 }
 
@@ -308,12 +328,20 @@ void FixContactsMN::restart(char *buf)
 {
   double layout;
   memcpy(&layout, buf, sizeof(double));
-  if (layout != CLOCK_LAYOUT)
+  if (layout != CLOCK_LAYOUT && layout != CLOCK_AND_ROWS_LAYOUT)
     error->all(FLERR, "Fix contacts/mn: the restart file was written by an earlier version that "
                       "kept steps, not times; write a new one");
-  double clock[4];
-  memcpy(clock, buf, sizeof(clock));
+  double clock[CLOCK_VALUES + 1];
+  memcpy(clock, buf, sizeof(double) * (layout == CLOCK_LAYOUT ? CLOCK_VALUES : CLOCK_VALUES + 1));
   now = clock[1];
   clock_step = (bigint) clock[2];
   window_start = clock[3];
+  // the pending rows go to the first process (dump local gathers them all); kept only if
+  // this run asks for rows
+  rows.clear();
+  rows_handed = 0;
+  if (layout == CLOCK_AND_ROWS_LAYOUT && comm->me == 0 && rows_every) {
+    rows.resize((size_t) clock[CLOCK_VALUES] * ROW_COLS);
+    memcpy(rows.data(), buf + sizeof(clock), rows.size() * sizeof(double));
+  }
 }

@@ -4,7 +4,7 @@ import pytest
 
 from collision_decks import DISC_DENSITY, bounces, disk_over_floor, two_disks
 from granmn_run import law, restitution_error_bound, run_lammps, run_scene
-from pile_decks import FIXES, styles
+from pile_decks import BETA, E, FIXES, KN, styles
 
 COUNTS = "id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]"
 SUMS = "$(f_c[1]) $(f_c[2]) $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6]) $(f_c[7]) $(f_c[8])"
@@ -339,3 +339,43 @@ def test_reset_timestep_in_the_middle_of_a_contact_moves_the_step_not_the_clock(
     assert duration == pytest.approx(tau, abs=dt)
     assert run.result("window")[0] == pytest.approx(steps * dt, rel=1e-9)
 
+
+RESTART_STEP = 1550    # not a multiple of the rows' 100 steps: rows are pending there
+
+
+def restart_between_dumps(settled, workdir, nprocs):
+    """The counted pile for 2 HALF steps, writing a restart file at step RESTART_STEP, between
+    two dumps of the rows (two runs, so that the run continued from the file has its neighbor
+    lists built at the same step: the same trajectory to rounding, hence the same contacts)."""
+    deck = (f"processors * 1 1\nread_data {settled}\ngroup mobile type 1\n" + styles(0.5) +
+            COUNTERS + f"run {RESTART_STEP}\nwrite_restart mid.restart\n"
+            f"run {2 * HALF - RESTART_STEP}\n" + FINAL_COUNTS)
+    return run_lammps(deck, workdir, nprocs=nprocs)
+
+
+@pytest.mark.parametrize("write_procs,read_procs", [(1, 2), (2, 1)])
+def test_rows_pending_at_a_restart_are_dumped_by_the_run_that_continues(
+        settled, tmp_path, write_procs, read_procs):
+    """A contact that ends between two dumps of the rows waits for the next one: at a restart
+    file written then, it is kept in the file, and the run continued from it dumps it. The rows
+    of the first run up to its last dump before the restart, with those of the continued run,
+    are the rows of the uninterrupted run; the final counts are its counts. The file is written
+    on one process and read on two, and the other way round (the rows are gathered)."""
+    reference = restart_between_dumps(settled, tmp_path / "reference", write_procs)
+    deck = (f"read_restart {reference.workdir / 'mid.restart'}\n"
+            "neighbor 0.1 bin\ncomm_modify vel yes\n" +
+            FIXES.format(tilt=0.3, integrator="nve/sphere disc") + COUNTERS +
+            f"run {2 * HALF - RESTART_STEP}\n" + FINAL_COUNTS)
+    restarted = run_lammps(deck, tmp_path / "restarted", nprocs=read_procs)
+    table, all_rows = counts_and_rows(reference)
+    _, rows_after = counts_and_rows(reference, after_step=RESTART_STEP // 100 * 100)
+    before = list(all_rows)
+    for row in rows_after:
+        before.remove(row)
+    continued_table, continued_rows = counts_and_rows(restarted)
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    pending = [row for row in rows_after if row[3] + row[4] <= RESTART_STEP * dt]
+    print(f"rows: {len(before)} before step {RESTART_STEP // 100 * 100}, {len(pending)} pending at "
+          f"the restart, {len(continued_rows)} after it")
+    assert pending    # the test would not see a lost row otherwise
+    assert_same_counts((continued_table, sorted(before + continued_rows)), (table, all_rows))
