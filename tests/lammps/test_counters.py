@@ -1,4 +1,6 @@
 """fix contacts/mn: contact counts, contact times and per-contact rows."""
+import struct
+
 import numpy as np
 import pytest
 
@@ -379,3 +381,29 @@ def test_rows_pending_at_a_restart_are_dumped_by_the_run_that_continues(
           f"the restart, {len(continued_rows)} after it")
     assert pending    # the test would not see a lost row otherwise
     assert_same_counts((continued_table, sorted(before + continued_rows)), (table, all_rows))
+
+
+def clock_only_layout(restart, target):
+    """The restart file as the previous version wrote it: fix contacts/mn's global record holds
+    the clock alone (layout -2: 4 values), not the clock, a row count and the rows (layout -3).
+    Only for a file with no rows pending (the count 0)."""
+    data = restart.read_bytes()
+    now_layout = struct.pack("=id", 5 * 8, -3.0)
+    start = data.index(now_layout)
+    clock = data[start + 12:start + 36]
+    assert struct.unpack("=d", data[start + 36:start + 44])[0] == 0.0
+    target.write_bytes(data[:start] + struct.pack("=id", 4 * 8, -2.0) + clock + data[start + 44:])
+    return target
+
+
+def test_restart_file_of_the_clock_only_layout_is_still_read(counted_reference, tmp_path):
+    """A restart file written before the rows went into it (its counters record holds the
+    clock alone) continues the counts as a current one does."""
+    restart = clock_only_layout(counted_reference.workdir / "mid.restart",
+                                tmp_path / "clock_only.restart")
+    deck = (f"read_restart {restart}\nneighbor 0.1 bin\ncomm_modify vel yes\n" +
+            FIXES.format(tilt=0.3, integrator="nve/sphere disc") + COUNTERS + f"run {HALF}\n" +
+            FINAL_COUNTS)
+    restarted = run_lammps(deck, tmp_path / "restarted")
+    assert_same_counts(counts_and_rows(counted_reference, after_step=HALF),
+                       counts_and_rows(restarted))
