@@ -27,8 +27,8 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), step_particle(nullptr),
     step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
     fold_ghosts(false),
-    now(0.0), clock_step(0), window_start(0.0), rows_every(0), row_array(nullptr), nmax_rows(0), rows_cleared(-1),
-    vector_step(-1)
+    now(0.0), clock_step(0), window_start(0.0), rows_every(0), row_array(nullptr), nmax_rows(0),
+    rows_handed(0), handed_step(-1), vector_step(-1)
 {
   int iarg = 3;
   while (iarg < narg) {
@@ -97,7 +97,16 @@ void FixContactsMN::init()
 void FixContactsMN::advance_clock()
 {
   if (update->ntimestep > clock_step) now += (update->ntimestep - clock_step) * update->dt;
-  clock_step = update->ntimestep;    // (reset_timestep moves the step, not the clock)
+  clock_step = update->ntimestep;
+}
+
+// Rows handed to dump local at an earlier step (or before a reset_timestep) have been written.
+void FixContactsMN::drop_handed_rows()
+{
+  if (rows_handed && update->ntimestep != handed_step) {
+    rows.erase(rows.begin(), rows.begin() + (size_t) rows_handed * ROW_COLS);
+    rows_handed = 0;
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -116,8 +125,11 @@ void FixContactsMN::grow_step_arrays()
   memory->create(begun_boundary, nmax_step, "contacts/mn:begun_boundary");
 }
 
+// No time passes between runs: the step a run starts at is the clock's, also after
+// reset_timestep moved it (either way).
 void FixContactsMN::setup_pre_force(int vflag)
 {
+  clock_step = update->ntimestep;
   pre_force(vflag);
 }
 
@@ -129,12 +141,7 @@ void FixContactsMN::pre_force(int)
   const int n = fold_ghosts ? atom->nlocal : atom->nlocal + atom->nghost;
   for (int i = 0; i < n; i++)
     step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
-  // rows published at the previous step have been written by then
-  if (rows_every && update->ntimestep > rows_cleared &&
-      (update->ntimestep - 1) % rows_every == 0) {
-    rows.clear();
-    rows_cleared = update->ntimestep;
-  }
+  drop_handed_rows();
 }
 
 void FixContactsMN::pair_ended(int i, int j, bool boundary, const double *record, double vn,
@@ -207,6 +214,11 @@ void FixContactsMN::publish_rows()
     for (int c = 0; c < ROW_COLS; c++) row_array[r][c] = rows[ROW_COLS * r + c];
   array_local = row_array;
   size_local_rows = n;
+  // dump local N writes them at this step
+  if (update->ntimestep % rows_every == 0) {
+    rows_handed = n;
+    handed_step = update->ntimestep;
+  }
 }
 
 int FixContactsMN::pack_reverse_comm(int n, int first, double *buf)
@@ -279,16 +291,36 @@ void FixContactsMN::grow_arrays(int nmax)
 }
 
 // The first value marks the layout: earlier versions wrote one value, a step (>= 0), and kept
-// contact start steps rather than times in the pair history.
-static constexpr double CLOCK_LAYOUT = -2.0;
+// contact start steps rather than times in the pair history; then the clock alone (-2). Now
+// (-3) the rows not yet dumped follow the clock, gathered from all processes: a run continued
+// from the file dumps them at its next multiple of N.
+static constexpr double CLOCK_LAYOUT = -2.0, CLOCK_AND_ROWS_LAYOUT = -3.0;
+static constexpr int CLOCK_VALUES = 4;
 
 void FixContactsMN::write_restart(FILE *fp)
 {
+  // rows handed to a dump are in its file already
+  const int skip = rows_handed * ROW_COLS;
+  const int mine = (int) rows.size() - skip;
+  std::vector<int> counts(comm->nprocs), offsets(comm->nprocs, 0);
+  MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
+  int total = 0;
+  for (int p = 0; p < comm->nprocs; p++) {
+    offsets[p] = total;
+    total += counts[p];
+  }
+  std::vector<double> values(CLOCK_VALUES + 1 + (comm->me == 0 ? total : 0));
+  MPI_Gatherv(rows.data() + skip, mine, MPI_DOUBLE, values.data() + CLOCK_VALUES + 1,
+              counts.data(), offsets.data(), MPI_DOUBLE, 0, world);
   if (comm->me == 0) {
-    const double clock[4] = {CLOCK_LAYOUT, now, (double) clock_step, window_start};
-    const int size = sizeof(clock);
+    values[0] = CLOCK_AND_ROWS_LAYOUT;
+    values[1] = now;
+    values[2] = (double) clock_step;
+    values[3] = window_start;
+    values[4] = total / ROW_COLS;
+    const int size = values.size() * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(clock, sizeof(double), 4, fp);
+    fwrite(values.data(), sizeof(double), values.size(), fp);
   }
 }
 
@@ -296,12 +328,20 @@ void FixContactsMN::restart(char *buf)
 {
   double layout;
   memcpy(&layout, buf, sizeof(double));
-  if (layout != CLOCK_LAYOUT)
+  if (layout != CLOCK_LAYOUT && layout != CLOCK_AND_ROWS_LAYOUT)
     error->all(FLERR, "Fix contacts/mn: the restart file was written by an earlier version that "
                       "kept steps, not times; write a new one");
-  double clock[4];
-  memcpy(clock, buf, sizeof(clock));
+  double clock[CLOCK_VALUES + 1];
+  memcpy(clock, buf, sizeof(double) * (layout == CLOCK_LAYOUT ? CLOCK_VALUES : CLOCK_VALUES + 1));
   now = clock[1];
   clock_step = (bigint) clock[2];
   window_start = clock[3];
+  // the pending rows go to the first process (dump local gathers them all); kept only if
+  // this run asks for rows
+  rows.clear();
+  rows_handed = 0;
+  if (layout == CLOCK_AND_ROWS_LAYOUT && comm->me == 0 && rows_every) {
+    rows.resize((size_t) clock[CLOCK_VALUES] * ROW_COLS);
+    memcpy(rows.data(), buf + sizeof(clock), rows.size() * sizeof(double));
+  }
 }

@@ -73,14 +73,18 @@ class FixContactsMN : public FixPerAtomState {
   bigint clock_step;           // the step `now` belongs to
   double window_start;         // time at which accumulation (re)started
   int rows_every;              // local rows: contacts completed in the last N steps (0: none)
-  std::vector<double> rows;    // 8 values per completed contact
+  std::vector<double> rows;    // 8 values per completed contact, not yet dumped
   double **row_array;
   int nmax_rows;
-  bigint rows_cleared;
+  // The first rows_handed rows were handed to dump local at step handed_step (a multiple of N);
+  // they go at the next step, whatever its number (reset_timestep may move it either way).
+  int rows_handed;
+  bigint handed_step;
   double vector_sums[8];
   bigint vector_step;
 
   void advance_clock();
+  void drop_handed_rows();
   void touching(double *record, bool began, double delta, double vn);
   void ended(const double *record, double tag_i, double tag_j, double kind, double vn_end);
   void collect(bool accumulate_time);

@@ -10,21 +10,21 @@ void FixPerAtomState::allocate_state(int columns)
 {
   ncols = columns;
   restart_peratom = 1;
-  wd_header = 1;    // only to say, when write_data runs, that the state is not in the file
+  wd_header = columns > 0;    // only to say, when write_data runs, that the state is not in it
   create_attribute = 1;
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
+  has_callbacks = true;
   for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
 }
 
 void FixPerAtomState::widen_state(int columns)
 {
   if (columns <= ncols) return;
-  if (ncols == 0) {
-    allocate_state(columns);
-    return;
-  }
+  if (!has_callbacks)
+    error->all(FLERR, "Fix {} ({}): per-atom state widened without allocate_state in the "
+                      "constructor", id, style);
   double **wider = nullptr;
   memory->create(wider, atom->nmax, columns, "fix:per-atom state");
   for (int i = 0; i < atom->nmax; i++)
@@ -32,6 +32,7 @@ void FixPerAtomState::widen_state(int columns)
   memory->destroy(state);
   state = wider;
   ncols = columns;
+  wd_header = 1;
 }
 
 // Called by write_data (on its writing process): writes nothing, warns that the per-atom state
@@ -46,7 +47,7 @@ void FixPerAtomState::write_data_header(FILE *, int)
 
 FixPerAtomState::~FixPerAtomState()
 {
-  if (ncols) {
+  if (has_callbacks) {
     atom->delete_callback(id, Atom::GROW);
     atom->delete_callback(id, Atom::RESTART);
   }

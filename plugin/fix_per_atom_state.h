@@ -31,10 +31,16 @@ class FixPerAtomState : public Fix {
   double **state = nullptr;    // ncols per atom, zero for new atoms
   int ncols = 0;
 
-  // Called once by a subclass's constructor; no call, no cost.
+  // Called once by a subclass's constructor (0 columns: none yet, but widen_state may add
+  // some later); no call, no cost. LAMMPS registers a fix's per-atom callbacks only while the
+  // fix is being constructed (Atom::add_callback takes the fix being added), hence here.
   void allocate_state(int columns);
   // More columns (zero for every atom) for a need found later, e.g. at init; keeps the others.
+  // Needs allocate_state first.
   void widen_state(int columns);
+
+ private:
+  bool has_callbacks = false;
 };
 
 // Internal to pair_style gran/mn: each atom's ID as it was, carried with the atom. LAMMPS keys

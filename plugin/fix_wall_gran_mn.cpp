@@ -64,7 +64,8 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
   size_vector = 2;    // force exerted by the particles on the walls (x, y)
   global_freq = 1;
   extvector = 1;
-  if (use_history) allocate_state(UT_COLUMNS);
+  // mu = 0: no columns yet; fix contacts/mn, if defined later, adds its own at init
+  allocate_state(use_history ? UT_COLUMNS : 0);
   wall_force[0] = wall_force[1] = 0.0;
 }
 
@@ -91,8 +92,12 @@ void FixWallGranMN::resolve_law()
     if (!given[1]) m.e = pm.e;
     if (!given[2]) m.beta = pm.beta;
     if (!given[3]) m.mu = pm.mu;
-    if (!parsed.options_given) o = pair->contact_law().options;
-    own_law = given[0] || given[1] || given[2] || given[3] || parsed.options_given;
+    // an option is a flag: one not given on the fix line is the pair's
+    const mn::Options &po = pair->contact_law().options;
+    o.limit_damping = o.limit_damping || po.limit_damping;
+    o.coulomb_cutback = o.coulomb_cutback || po.coulomb_cutback;
+    own_law = given[0] || given[1] || given[2] || given[3] ||
+        o.limit_damping != po.limit_damping || o.coulomb_cutback != po.coulomb_cutback;
   }
   const char *problem = mn::material_error(m);
   if (problem) error->all(FLERR, "Illegal fix wall/gran/mn command: {}", problem);
@@ -115,10 +120,8 @@ void FixWallGranMN::init()
                       "history; define it again after giving mu > 0");
   // The pair style already checked the time step against the same law.
   if (own_law)
-    granmn::check_timestep(lmp, "fix wall/gran/mn", update->dt,
-                           mn::max_stable_dt(law, granmn::integrator_in_use(modify)), law.tau_c,
-                           granmn::integrator_in_use(modify),
-                           mn::amplifies_undamped_mode(law, granmn::integrator_in_use(modify)));
+    granmn::check_timestep(lmp, "fix wall/gran/mn", update->dt, law,
+                           granmn::integrator_in_use(modify));
 }
 
 void FixWallGranMN::setup(int vflag)

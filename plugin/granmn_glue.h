@@ -69,34 +69,42 @@ inline const char *integrator_name(mn::Integrator integrator)
   return integrator == mn::Integrator::AdamsBashforth2 ? "Adams-Bashforth 2" : "velocity Verlet";
 }
 
-// A time step beyond the stability limit of the stiffest contact mode is an error; one that
-// resolves a binary collision with fewer than 10 steps is worth a warning.
-inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, double dt_max,
-                           double tau_c, mn::Integrator integrator, bool amplifies)
+// A time step beyond the stability limit of the stiffest contact mode is an error that names
+// the mode and the step that works (below tau_c/100 when e or beta near 0 damps a mode hard);
+// one that resolves a binary collision with fewer than 10 steps is worth a warning.
+inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, const mn::Law &law,
+                           mn::Integrator integrator)
 {
-  if (amplifies)
+  if (mn::amplifies_undamped_mode(law, integrator))
     lmp->error->warning(FLERR,
                         "{}: Adams-Bashforth 2 slowly amplifies an undamped contact mode (e = 1, "
                         "or beta = 1 with friction): collisions are fine at this step, contacts "
                         "that last gain energy; velocity Verlet keeps them", who);
-  if (dt > dt_max)
+  const mn::StabilityLimit limit = mn::stability_limit(law, integrator);
+  const double paper_dt = 0.01 * law.tau_c;
+  if (dt > limit.dt)
     lmp->error->all(FLERR,
                     "{}: timestep {} exceeds the stability limit {:.6g} of {} for the stiffest "
-                    "contact (tau_c = {:.6g}); the paper uses dt = tau_c/100",
-                    who, dt, dt_max, integrator_name(integrator), tau_c);
-  if (dt > 0.1 * tau_c)
+                    "contact mode, {}: use a timestep below {:.6g} ({})",
+                    who, dt, limit.dt, integrator_name(integrator), mn::mode_name(limit.mode),
+                    limit.dt,
+                    limit.dt < paper_dt
+                        ? fmt::format("the paper's tau_c/100 = {:.6g} is too coarse here: e or "
+                                      "beta close to 0 damps this mode so hard that it needs a "
+                                      "finer step", paper_dt)
+                        : fmt::format("the paper uses tau_c/100 = {:.6g}", paper_dt));
+  if (dt > 0.1 * law.tau_c)
     lmp->error->warning(FLERR,
                         "{}: timestep {} resolves a collision (tau_c = {:.6g}) with fewer "
                         "than 10 steps",
-                        who, dt, tau_c);
+                        who, dt, law.tau_c);
 }
 
 // The contact-law keywords a style's arguments may hold, and which of them were given.
 struct LawArguments {
   mn::Material material{0.0, 0.0, 0.0, 0.0};
   bool given[4] = {false, false, false, false};    // kn, e, beta, mu
-  mn::Options options;
-  bool options_given = false;
+  mn::Options options;    // an option is on if given
 };
 
 inline const char *law_keyword(int k)
@@ -126,7 +134,6 @@ inline int parse_law_keyword(LAMMPS_NS::LAMMPS *lmp, const char *command, int na
   if (strcmp(arg[iarg], "coulomb_cutback") == 0) flag = &law.options.coulomb_cutback;
   if (!flag) return 0;
   *flag = true;
-  law.options_given = true;
   return 1;
 }
 

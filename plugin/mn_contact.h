@@ -284,18 +284,48 @@ inline bool amplifies_undamped_mode(const Law &law, Integrator integrator)
       (law.eta_n == 0.0 || (law.mu > 0.0 && law.eta_t == 0.0));
 }
 
-// The stiffest mode of the law decides: normal and (if mu > 0) sticking tangential motion,
-// for a pair of mobile disks (mass scale 2M) and against the boundary (mass scale m_i).
-// Uses I = m sigma^2/8 (disks), for which the tangential equation does not depend on masses.
+// The modes of a contact whose stability bounds the step: normal and (if mu > 0) sticking
+// tangential motion, for a pair of mobile disks (mass scale 2M) and against the boundary (mass
+// scale m_i). Uses I = m sigma^2/8 (disks), for which the tangential equation does not depend
+// on masses.
+enum class Mode { NormalPair, NormalBoundary, TangentialPair, TangentialBoundary };
+
+inline const char *mode_name(Mode mode)
+{
+  switch (mode) {
+    case Mode::NormalPair: return "the normal mode of two disks";
+    case Mode::NormalBoundary: return "the normal mode against the boundary";
+    case Mode::TangentialPair: return "the tangential (sticking) mode of two disks";
+    case Mode::TangentialBoundary: return "the tangential (sticking) mode against the boundary";
+  }
+  return "";
+}
+
+// The largest stable step and the mode that sets it (the stiffest one under the integrator).
+struct StabilityLimit {
+  double dt;
+  Mode mode;
+};
+
+inline StabilityLimit stability_limit(const Law &law, Integrator integrator)
+{
+  StabilityLimit limit{max_stable_dt(integrator, 2.0 * law.kn, 2.0 * law.eta_n),
+                       Mode::NormalPair};
+  auto consider = [&](double w2, double g, Mode mode) {
+    const double dt = max_stable_dt(integrator, w2, g);
+    if (dt < limit.dt) limit = {dt, mode};
+  };
+  consider(law.kn, law.eta_n, Mode::NormalBoundary);
+  if (law.mu > 0.0) {
+    consider(6.0 * law.kt, 6.0 * law.eta_t, Mode::TangentialPair);
+    consider(3.0 * law.kt, 3.0 * law.eta_t, Mode::TangentialBoundary);
+  }
+  return limit;
+}
+
 inline double max_stable_dt(const Law &law, Integrator integrator)
 {
-  double dt = std::min(max_stable_dt(integrator, 2.0 * law.kn, 2.0 * law.eta_n),
-                       max_stable_dt(integrator, law.kn, law.eta_n));
-  if (law.mu > 0.0) {
-    dt = std::min(dt, max_stable_dt(integrator, 6.0 * law.kt, 6.0 * law.eta_t));
-    dt = std::min(dt, max_stable_dt(integrator, 3.0 * law.kt, 3.0 * law.eta_t));
-  }
-  return dt;
+  return stability_limit(law, integrator).dt;
 }
 
 }    // namespace mn

@@ -98,6 +98,52 @@ void PairGranMN::report_end(int i, int j, double dx, double dy, double rsq, cons
     counters->pair_ended(i, j, j_wall, state, vn, record);
 }
 
+// Two disks whose centres came within the larger radius: the law has lost them (their normal
+// flips once the centres cross, and they fly apart on swapped sides). Says what stops them.
+// A pair that got there within one step (its overlap is less than the step's motion) needs a
+// finer step: one with ten steps across the smaller radius r. Otherwise the spring was already
+// acting and is too soft: a head-on approach at speed v stops within an overlap v/w (undamped;
+// w^2 = 2 kn for two disks, kn against a bump), which must stay below r.
+void PairGranMN::report_passed_through(int i, int j, double r)
+{
+  const tagint *tag = atom->tag;
+  if (r == 0.0)
+    error->one(FLERR, "pair_style gran/mn: atoms {} and {} are at the same position: the "
+                      "contact has no normal", tag[i], tag[j]);
+  const double radius_min = MIN(atom->radius[i], atom->radius[j]);
+  const double delta = atom->radius[i] + atom->radius[j] - r;
+  if (update->setupflag)
+    error->one(FLERR, "pair_style gran/mn: atoms {} and {} overlap by {:.6g}, more than the "
+                      "smaller radius {:.6g}: the centre of one is inside the other (placed so?)",
+                      tag[i], tag[j], delta, radius_min);
+  double **x = atom->x, **v = atom->v;
+  const double vn = fabs((x[i][0] - x[j][0]) * (v[i][0] - v[j][0]) +
+                         (x[i][1] - x[j][1]) * (v[i][1] - v[j][1])) / r;
+  const bool boundary = is_wall_type[atom->type[i]] || is_wall_type[atom->type[j]];
+  const double dt = update->dt;
+  std::string cause;
+  double speed;
+  if (vn * dt >= delta) {
+    speed = vn;
+    cause = fmt::format("they got there within one step (the time step {:.6g} moves them by "
+                        "{:.6g}): use a time step below {:.6g} (ten steps across the radius)",
+                        dt, vn * dt, 0.1 * radius_min / vn);
+  } else {
+    // the speed they met at, from the energy of the normal motion: damping only lowers it
+    const double omega2 = (boundary ? 1.0 : 2.0) * law.kn;
+    speed = sqrt(vn * vn + omega2 * delta * delta);
+    const double stopped_within = speed / sqrt(omega2);
+    cause = fmt::format("kn = {:.6g} stops them only within an overlap of {:.6g}: it takes "
+                        "kn > {:.6g} to stop them within the radius",
+                        law.kn, stopped_within, law.kn * pow(stopped_within / radius_min, 2));
+  }
+  error->one(FLERR, "pair_style gran/mn: atoms {} and {} have passed through each other at step "
+                    "{}: the centre of one is inside the other (overlap {:.6g} > {:.6g}, the "
+                    "smaller radius); they met at a relative speed of about {:.6g} ({}); {}",
+             tag[i], tag[j], update->ntimestep, delta, radius_min, speed,
+             boundary ? "a disk and a bump" : "two disks", cause);
+}
+
 void PairGranMN::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
@@ -160,9 +206,8 @@ void PairGranMN::compute(int eflag, int vflag)
       }
 
       const double r = sqrt(rsq);
-      if (r == 0.0)
-        error->one(FLERR, "pair_style gran/mn: atoms {} and {} are at the same position: the "
-                          "contact has no normal", tag[i], tag[j]);
+      // the centre of one inside the other: as the wall fix's centre that reached its wall
+      if (r <= MAX(radi, radius[j])) report_passed_through(i, j, r);
       const mn::Kinematics kin =
           mn::kinematics(dx, dy, r, radsum, v[i][0] - v[j][0], v[i][1] - v[j][1],
                          radi * omega[i][2] + radius[j] * omega[j][2]);
@@ -257,6 +302,14 @@ void PairGranMN::settings(int narg, char **arg)
     if (!parsed.given[k])
       error->all(FLERR, "Illegal pair_style gran/mn command: {} must be given",
                  granmn::law_keyword(k));
+  // One law per simulation: fix wall/gran/mn, fix contacts/mn and the v_mn_* variables take
+  // it from the gran/mn style. pair_style hybrid declares its sub-styles in order, so a second
+  // gran/mn finds the first here.
+  const Pair *first = force->pair_match("gran/mn", 1);
+  if (first && first != this)
+    error->all(FLERR, "pair_style gran/mn: pair_style hybrid holds gran/mn twice; the gran/mn "
+                      "styles support one (fix wall/gran/mn, fix contacts/mn and the v_mn_* "
+                      "variables take their law from it): give one gran/mn sub-style");
   material = parsed.material;
   options = parsed.options;
   derive_law();
@@ -270,6 +323,27 @@ void PairGranMN::check_wall_types()
     if (t < 1 || t > atom->ntypes)
       error->all(FLERR, "pair_style gran/mn: wall type {} is out of range 1..{}", t, atom->ntypes);
     is_wall_type[t] = 1;
+  }
+}
+
+// The boundary rule holds for immobile bumps: a bump that moves would collide with e and
+// tau of neither a pair nor the boundary.
+void PairGranMN::check_wall_types_not_integrated()
+{
+  if (wall_types.empty()) return;
+  const int *type = atom->type, *mask = atom->mask;
+  for (int k = 0; k < modify->nfix; k++) {
+    const Fix *fix = modify->fix[k];
+    if (!fix->time_integrate) continue;
+    bigint integrated = 0;
+    for (int i = 0; i < atom->nlocal; i++)
+      if ((mask[i] & fix->groupbit) && is_wall_type[type[i]]) integrated++;
+    bigint integrated_all = 0;
+    MPI_Allreduce(&integrated, &integrated_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+    if (integrated_all)
+      error->all(FLERR, "pair_style gran/mn: fix {} ({}) integrates {} atoms of wall_types, "
+                        "which are immobile bumps with the boundary rule: leave them out of "
+                        "its group", fix->id, fix->style, integrated_all);
   }
 }
 
@@ -306,12 +380,15 @@ void PairGranMN::init_style()
     error->all(FLERR, "Pair style gran/mn requires ghost atoms store velocity "
                       "(comm_modify vel yes)");
   check_wall_types();
+  check_wall_types_not_integrated();
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
+  if (neighbor->build_once && comm->me == 0)
+    error->warning(FLERR, "pair_style gran/mn: neigh_modify once yes builds the neighbor list "
+                          "only at the start of a run: disks that come into contact later are "
+                          "never seen (no force, no contact); leave out 'once yes'");
 
-  const double dt = update->dt;
   const mn::Integrator integrator = granmn::integrator_in_use(modify);
-  const double dt_max = mn::max_stable_dt(law, integrator);
   if (!law_reported && comm->me == 0) {
     utils::logmesg(lmp,
                    "pair_style gran/mn: kn = {:.8g} e = {} beta = {} mu = {}\n"
@@ -324,8 +401,7 @@ void PairGranMN::init_style()
                    mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
     law_reported = true;
   }
-  granmn::check_timestep(lmp, "pair_style gran/mn", dt, dt_max, law.tau_c, integrator,
-                         mn::amplifies_undamped_mode(law, integrator));
+  granmn::check_timestep(lmp, "pair_style gran/mn", update->dt, law, integrator);
 
   // The per-contact history: u_t when there is friction, then the counters' record if asked.
   counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));

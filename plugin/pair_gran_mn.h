@@ -64,8 +64,10 @@ class PairGranMN : public Pair {
   void allocate();
   void derive_law();
   void check_wall_types();
+  void check_wall_types_not_integrated();
   void update_exclusions();
   void remove_exclusions();
+  void report_passed_through(int, int, double);
   void report_end(int, int, double, double, double, const double *, const tagint *);
 };
 

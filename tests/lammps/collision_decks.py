@@ -108,7 +108,7 @@ def contact_interval(trace, contact_distance, dt):
     return (crossing(last, last + 1) - crossing(first - 1, first)) * dt, first, last
 
 
-def disk_over_floor(kn, height, dt):
+def disk_over_floor(kn, height, dt, mu=0.5):
     """A unit disk at `height` over the flat wall y = 0 under gravity, with counters c."""
     return f"""
 region box block -3 3 -1 5 -0.5 0.5
@@ -117,7 +117,7 @@ create_atoms 1 single 0 {height!r} 0
 set type 1 diameter 1.0
 set type 1 density/disc {DISC_DENSITY!r}
 group mobile type 1
-pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu 0.5
+pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu {mu!r}
 pair_coeff * *
 timestep {dt!r}
 fix integrate mobile nve/sphere disc

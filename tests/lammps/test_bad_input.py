@@ -1,5 +1,7 @@
 """Every bad argument of pair_style gran/mn and fix wall/gran/mn stops lmp with an error that
 names the problem (or, for a merely coarse time step, warns)."""
+import re
+
 import pytest
 
 from granmn_run import HEADER, PLUGIN, run_lammps
@@ -102,6 +104,24 @@ ERRORS = {
     "spheres integrated by nve/sphere": (
         deck(fix="unfix integrate\nfix spin all nve/sphere"),
         "fix spin (nve/sphere) integrates spheres; the law is for disks"),
+    "atoms placed inside each other": (deck(second="0.3 0.5 0"),
+                                       "atoms 1 and 2 overlap by 0.7, more than the smaller "
+                                       "radius 0.5"),
+    "integrated bump": (deck(pair=GOOD_PAIR + " wall_types 2", fix="set atom 2 type 2"),
+                        "fix integrate (nve) integrates 1 atoms of wall_types"),
+    "two gran/mn sub-styles": (
+        deck(pair="pair_style hybrid gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5 "
+                  "gran/mn kn 1e6 e 0.7 beta 0.7 mu 0.5",
+             coeff="pair_coeff * * gran/mn 1"),
+        "pair_style hybrid holds gran/mn twice"),
+    "beta near zero at tau_c/100": (
+        deck(pair="pair_style gran/mn kn 2e5 e 0.7 beta 1e-40 mu 0.5",
+             timestep="timestep $(v_mn_tau_c/100)"),
+        "the tangential (sticking) mode of two disks: use a timestep below 4.49"),
+    "e near zero at tau_c/100": (
+        deck(pair="pair_style gran/mn kn 2e5 e 1e-40 beta 0.7 mu 0.5",
+             timestep="timestep $(v_mn_tau_c/100)"),
+        "the normal mode of two disks: use a timestep below 0.00131"),
 }
 
 
@@ -154,3 +174,43 @@ run 10
     run = run_lammps(text, tmp_path, header=False)
     said = "atoms have other IDs than in the last run" in run.output
     assert said == (compress == "yes"), run.output[-2000:]
+
+
+@pytest.mark.parametrize("weak", ["beta", "e"])
+def test_a_mode_damped_too_hard_for_tau_c_over_100_is_named_with_a_step_that_works(tmp_path,
+                                                                                   weak):
+    """e or beta close to 0 damps a contact mode so hard that the integrator needs a step
+    below the paper's tau_c/100 (beta = 1e-40: the sticking tangential mode, eta_t =
+    -ln(beta)/(3 tau_c); e = 1e-40: the normal one, and tau_c itself grows with |ln e|). The
+    error names the mode and the largest stable step; at 0.9 of it a collision with spin
+    (tangential motion; sticking at mu = 5) runs and loses energy, as a damped contact must:
+    an unstable mode would grow by orders of magnitude over the contact's 100+ steps."""
+    e, beta = (0.7, 1e-40) if weak == "beta" else (1e-40, 0.7)
+    material = f"kn 2e5 e {e} beta {beta} mu 5"
+    refused = run_lammps(deck(pair=f"pair_style gran/mn {material}",
+                              timestep="timestep $(v_mn_tau_c/100)"), tmp_path / "paper",
+                         header=False, check=False)
+    found = re.search(r"for the stiffest contact mode, the (\S+) .* use a timestep below (\S+) "
+                      r"\(the paper's tau_c/100 = \S+ is too coarse here", refused.output)
+    assert refused.returncode != 0 and found, refused.output[-2000:]
+    assert found[1] == ("tangential" if weak == "beta" else "normal")
+    dt = 0.9 * float(found[2])
+    energy = ("unfix integrate\nfix integrate all nve/sphere disc\nfix flat all enforce2d\n"
+              "set atom 1 vx 1 omega 0 0 10\n"
+              "compute disk all property/atom radius omegaz\n"    # disks: I = m r^2/2
+              "variable spin atom 0.25*mass*c_disk[1]^2*c_disk[2]^2\n"
+              "compute spin all reduce sum v_spin\ncompute ke all ke\n"
+              "variable energy equal c_ke+c_spin\nthermo_style custom step v_energy\n"
+              "run 0\nprint \"RESULT start ${energy}\"")
+    text = deck(pair=f"pair_style gran/mn {material}", timestep=f"timestep {dt!r}", fix=energy)
+    text = text.replace("run 10\n", "run $(ceil(0.5/dt))\nprint \"RESULT end ${energy}\"\n")
+    finer = run_lammps(text, tmp_path / "finer", header=False)
+    (start,), (end,) = finer.result("start"), finer.result("end")
+    assert 0 < end < start
+
+
+def test_neighbor_list_built_once_is_warned_about(tmp_path):
+    """neigh_modify once yes builds the list only at the start of a run: two disks 0.2 apart
+    that meet later never interact. The pair style warns."""
+    run = run_lammps(deck(fix="neigh_modify once yes"), tmp_path, header=False)
+    assert "neigh_modify once yes builds the neighbor list only at the start of a run" in run.output

@@ -1,8 +1,10 @@
 """Binary collisions through lmp: restitution and duration against docs/model.md section 3."""
+import re
+
 import numpy as np
 import pytest
 
-from collision_decks import contact_interval, two_disks
+from collision_decks import contact_interval, disk_on_boundary, two_disks
 from granmn_run import HEADER, PLUGIN, law, restitution_error_bound, run_lammps
 
 KN = [2 ** p * 1e5 for p in (-1, 8, 17)]
@@ -96,3 +98,75 @@ def test_every_unit_system_gives_the_requested_restitutions_and_duration(tmp_pat
     assert abs(c["v_n"] - 0.7) <= bound_n
     assert abs(beta_measured - 0.7) <= bound_t
     assert abs(c["duration"] - c["tau"]) <= c["dt"]
+
+
+PASSING = re.compile(r"atoms (\d+) and (\d+) have passed through each other at step (\d+).*"
+                     r"relative speed of about (\S+) \(.*it takes kn > (\S+) to stop them")
+
+
+def collision(material, speed, boundary):
+    """Two disks meeting head-on at `speed`, or a disk falling at it onto a bump, at dt = 1/100
+    of the contact's duration."""
+    if boundary:
+        return disk_on_boundary(material, law(*material[:3])["tau_w"] / 100, "bump",
+                                v_n=speed)[0]
+    return two_disks(material, law(*material[:3])["tau_c"] / 100, v_n=speed)[0]
+
+
+@pytest.mark.parametrize("boundary", [False, True])
+def test_disks_that_would_pass_through_each_other_stop_with_the_stiffness_that_holds_them(
+        tmp_path, boundary):
+    """At v_rel = 1000 and kn = 2e5 the spring cannot stop two disks within their radius (the
+    undamped overlap v/sqrt(2 kn) = 1.58 > 1): their centres cross, the normal flips and they
+    fly apart on swapped sides, as if they had bounced with e = -0.75. Like a disk that reaches
+    the wall, this is an error naming both atoms, the step, the speed they met at (from the
+    energy of the normal motion when it is found: between e and 1 times the true one, damping
+    only takes energy away) and the kn that stops them within the smaller radius (the
+    damped overlap at v is at most the speed found over omega, so that kn suffices: at 1.1
+    times it the collision is an ordinary one, with its restitution to the first-order error
+    of the step). Against a bump (mass scale m_i, omega^2 = kn) the same."""
+    material = (2e5, 0.7, 0.7, 0.5)
+    speed = 1000.0
+    run = run_lammps(collision(material, speed, boundary), tmp_path / "passing", check=False)
+    assert run.returncode != 0
+    found = PASSING.search(run.output.replace("\n", " "))
+    assert found, run.output[-2000:]
+    ids, met_at, kn_needed = {found[1], found[2]}, float(found[4]), float(found[5])
+    assert ids == {"1", "2"}
+    assert 0.7 * speed <= met_at <= speed
+    material = (1.1 * kn_needed,) + material[1:]
+    held = run_lammps(collision(material, speed, boundary), tmp_path / "held").atoms()
+    if boundary:
+        rebound, expected = held["vy"][np.argmax(held["id"])], law(*material[:3])["e_w"]
+    else:
+        rebound, expected = held["vx"][1] - held["vx"][0], material[1]
+    assert abs(rebound / speed - expected) <= restitution_error_bound(expected, 1 / 100)
+
+
+def test_a_violent_collision_within_the_radius_is_no_error(tmp_path):
+    """v_rel = 100 at kn = 2e5: the overlap peaks near 100/sqrt(4e5) = 0.16, well inside the
+    radius 0.5: a collision like any other (e = 0.7 to the first-order error of the step)."""
+    c = collide(tmp_path, "violent", (2e5, 0.7, 0.7, 0.5), 1 / 100, v_n=100.0)
+    assert abs(c["v_n"] / 100.0 - 0.7) <= restitution_error_bound(0.7, 1 / 100)
+
+
+def test_disks_that_pass_through_each_other_within_one_step_are_told_the_step_that_works(
+        tmp_path):
+    """kn = 2e5 stops disks meeting at v = 285 within v/sqrt(2 kn) = 0.45 < 0.5, but a stable
+    step of 2.6e-3 (tau_c/1.9, warned about) moves them by 0.74: from apart to 0.59 deep within
+    one step. The error says that the step is the cause and gives one with ten steps across
+    the radius; at that step the collision is an ordinary one (e = 0.7 to the first-order error
+    of the step, here dt/tau_c = 0.035)."""
+    material = (2e5, 0.7, 0.7, 0.5)
+    speed = 285.0
+    deck, _ = two_disks(material, 2.6e-3, v_n=speed, phase=0.2)
+    # the list rebuilt at every step: each disk moves by more than the skin in one
+    run = run_lammps("neigh_modify delay 0\n" + deck, tmp_path / "coarse", check=False)
+    found = re.search(r"atoms 1 and 2 have passed through each other .* they got there within "
+                      r"one step .* use a time step below (\S+) \(ten steps",
+                      run.output.replace("\n", " "))
+    assert run.returncode != 0 and found, run.output[-2000:]
+    dt = float(found[1])
+    tau = law(*material[:3])["tau_c"]
+    c = collide(tmp_path, "resolved", material, dt / tau, v_n=speed)
+    assert abs(c["v_n"] / speed - 0.7) <= restitution_error_bound(0.7, dt / tau)

@@ -37,32 +37,58 @@ def test_boundary_contact_duration_and_restitution(tmp_path, boundary, e):
 
 
 def test_pair_style_given_again_follows_its_new_wall_types(tmp_path):
-    """Two type-2 disks head-on. While type 2 is a wall type, its pairs are kept out of the
-    neighbor list (bumps never interact); once pair_style is given again without wall_types they
-    are disks like any other and must collide; given a third time with wall_types 2 they pass
-    through each other again."""
-    def deck(styles):
-        text = """
+    """Two type-2 disks at rest, overlapping by 0.1, not integrated (bumps stay where they
+    are). While type 2 is a wall type, the pair is kept out of the neighbor list (bumps never
+    interact): no force. Given again without wall_types, they are disks like any other and
+    push each other apart with 2M kn delta = kn delta = 2e4 (unit masses, at rest: no
+    damping); given a third time with wall_types 2, the force is gone again."""
+    text = """
 region box block -5 5 -5 5 -0.5 0.5
 create_box 2 box
-create_atoms 2 single -0.6 0 0
-create_atoms 2 single 0.6 0 0
+create_atoms 2 single -0.45 0 0
+create_atoms 2 single 0.45 0 0
 set type * diameter 1.0
 set type * density/disc 1.2732395447351628
-velocity all set 0 0 0
-set atom 1 vx 1.0
-set atom 2 vx -1.0
-fix integrate all nve/sphere disc
-fix flat all enforce2d
 timestep 5e-5
+variable fx1 equal fx[1]
 """
-        for pair in styles:
-            text += f"pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5 {pair}\npair_coeff * *\nrun 0\n"
-        text += "run 20000\nprint \"RESULT vx ${vx1} ${vx2}\"\n"
-        return "variable vx1 equal vx[1]\nvariable vx2 equal vx[2]\n" + text
+    for k, keywords in enumerate(["wall_types 2", "", "wall_types 2"]):
+        text += (f"pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5 {keywords}\npair_coeff * *\n"
+                 f"run 0\nprint \"RESULT fx{k} ${{fx1}}\"\n")
+    run = run_lammps(text, tmp_path)
+    assert run.result("fx0") == [0.0] and run.result("fx2") == [0.0]
+    assert run.result("fx1")[0] == pytest.approx(-2e4, rel=1e-9)
 
-    collided = run_lammps(deck(["wall_types 2", ""]), tmp_path / "then_disks")
-    vx1, vx2 = collided.result("vx")
-    assert vx1 == pytest.approx(-0.7, abs=0.01) and vx2 == pytest.approx(0.7, abs=0.01)
-    passed = run_lammps(deck(["wall_types 2", "", "wall_types 2"]), tmp_path / "bumps_again")
-    assert passed.result("vx") == [1.0, -1.0]
+
+def limit_damping_restitution(kn, e):
+    """Restitution of a normal collision with the boundary when the normal force is clamped
+    at zero: delta = (v0/w) exp(-g t) sin(w t) (g = eta_n/2, w^2 = kn - g^2) until
+    kn delta + eta_n delta' = 0, where the disk leaves with delta'."""
+    eta = law(kn, e, 0.7)["eta_n"]
+    g, w = eta / 2, np.sqrt(kn - eta * eta / 4)
+    phase = np.pi - np.arctan2(eta * w, kn - eta * g)    # w t at the release, in (pi/2, pi)
+    return np.exp(-g * phase / w) * abs(np.cos(phase) - g / w * np.sin(phase))
+
+
+@pytest.mark.parametrize("pair_options,wall_options,limited", [
+    ("limit_damping", "coulomb_cutback", True),
+    ("limit_damping coulomb_cutback", "", True),
+    ("", "coulomb_cutback", False)])
+def test_an_option_not_given_on_the_wall_fix_is_the_pair_styles(tmp_path, pair_options,
+                                                                 wall_options, limited):
+    """A disk falling head-on onto the wall at e = 0.5: with limit_damping (the pair's, also
+    when the wall fix gives another option) it leaves when the normal force reaches zero, with
+    0.646 of its speed (limit_damping_restitution), else with e_w = 0.616. dt = tau_w/400
+    keeps the measured value within the first-order bound (0.006) of the right one, far from
+    the other."""
+    kn, e = 2e5, 0.5
+    dt_over_tau = 1 / 400
+    deck, _ = disk_on_boundary((kn, e, 0.7, 0.5), law(kn, e, 0.7)["tau_w"] * dt_over_tau, "wall")
+    deck = deck.replace("mu 0.5 \n", f"mu 0.5 {pair_options}\n").replace(
+        "yplane 0.0 NULL\n", f"yplane 0.0 NULL {wall_options}\n")
+    rebound = run_lammps(deck, tmp_path).atoms()["vy"][0]
+    expected = limit_damping_restitution(kn, e) if limited else law(kn, e, 0.7)["e_w"]
+    print(f"{pair_options} / {wall_options}: rebound {rebound:.5f}, expected {expected:.5f}")
+    bound = restitution_error_bound(expected, dt_over_tau)
+    assert abs(limit_damping_restitution(kn, e) - law(kn, e, 0.7)["e_w"]) > 4 * bound
+    assert abs(rebound - expected) <= bound

@@ -1,10 +1,12 @@
 """fix contacts/mn: contact counts, contact times and per-contact rows."""
+import struct
+
 import numpy as np
 import pytest
 
 from collision_decks import DISC_DENSITY, bounces, disk_over_floor, two_disks
-from granmn_run import law, restitution_error_bound, run_lammps
-from pile_decks import FIXES, styles
+from granmn_run import law, restitution_error_bound, run_lammps, run_scene
+from pile_decks import BETA, E, FIXES, KN, styles
 
 COUNTS = "id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]"
 SUMS = "$(f_c[1]) $(f_c[2]) $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6]) $(f_c[7]) $(f_c[8])"
@@ -44,11 +46,15 @@ def test_binary_collision_is_one_contact_per_disk_lasting_tau_c(tmp_path):
     assert sums[0] == 2 and sums[7] == 2
 
 
-def test_disk_resting_on_the_wall_touches_it_all_the_time(tmp_path):
+@pytest.mark.parametrize("mu", [0.5, 0.0])
+def test_disk_resting_on_the_wall_touches_it_all_the_time(tmp_path, mu):
+    """Also on a frictionless wall, whose fix keeps no u_t: the counters then add the wall
+    fix's per-atom columns at init (they once registered it with LAMMPS there, too late: a
+    wrong fix's callbacks, an error at exit or a crash in the first atom sort)."""
     kn = 2e5
     dt = law(kn, 0.7, 0.7)["tau_c"] / 50
     deck = f"""
-{disk_over_floor(kn, 0.5 - 1.0 / kn, dt)}thermo 0
+{disk_over_floor(kn, 0.5 - 1.0 / kn, dt, mu=mu)}thermo 0
 run 10000
 print "RESULT sums {SUMS}"
 """
@@ -290,3 +296,114 @@ print "RESULT sums $(f_c[2]) $(f_c[6])"
     assert begun == 1 and now == 1 and rows == []
     (begun, now), rows = corner(-1.5 - 0.3 / kn, "corner")    # at its equilibrium overlap
     assert begun == 2 and now == 2 and rows == []
+
+
+def test_frictional_scene_with_a_frictionless_wall_and_counters_runs(tmp_path):
+    """inputs/frictional_flow.lmp -var mu 0 crashed (Atom::sort -> AtomVec::grow at the first
+    run) when the wall fix, with no u_t to keep, got its per-atom columns from the counters
+    only at init. It runs; the lowest row starts about 1.6 above the floor (centres at 2), so
+    it lands within 2 time units: boundary contacts begun."""
+    run = run_scene("frictional_flow", tmp_path, mu=0, run_time=2, average_start=1)
+    assert run.atoms("counts.txt")["f_c[2]"].sum() > 0
+
+
+def local_rows(path):
+    """The rows of a dump local file, as tuples."""
+    rows, entries = [], False
+    for line in path.read_text().splitlines():
+        if line.startswith("ITEM:"):
+            entries = line.startswith("ITEM: ENTRIES")
+        elif entries:
+            rows.append(tuple(map(float, line.split())))
+    return rows
+
+
+@pytest.mark.parametrize("jump", [1000000, 0])
+def test_reset_timestep_in_the_middle_of_a_contact_moves_the_step_not_the_clock(tmp_path,
+                                                                               jump):
+    """Two disks meet 10.5 steps into the run; half-way through their contact the step is
+    reset, forward to 1e6 or back to 0. No time passes at a reset: the contact still lasts
+    tau_c (to the step, as any contact), starts when they met, and the window after the run is
+    the time of all steps taken. Back at step 0 its row is dumped once, not again at every
+    step that follows."""
+    material = (2e5, 0.7, 0.7, 0.5)
+    tau = law(*material[:3])["tau_c"]
+    dt = tau / 100
+    deck, _ = two_disks(material, dt, pre_steps=10)
+    steps = int(deck.split("run ")[1].split()[0])
+    deck = deck.replace(f"thermo 0\nrun {steps}\n",
+                        "fix c all contacts/mn local 1\ndump rows all local 1 rows.txt f_c[4] "
+                        f"f_c[5]\nthermo 0\nrun 60\nreset_timestep {jump}\nrun {steps - 60}\n"
+                        "print \"RESULT window $(f_c[7])\"\n")
+    run = run_lammps(deck, tmp_path)
+    (start, duration), = local_rows(tmp_path / "rows.txt")
+    assert start == pytest.approx(10.5 * dt, abs=dt)
+    assert duration == pytest.approx(tau, abs=dt)
+    assert run.result("window")[0] == pytest.approx(steps * dt, rel=1e-9)
+
+
+RESTART_STEP = 1550    # not a multiple of the rows' 100 steps: rows are pending there
+
+
+def restart_between_dumps(settled, workdir, nprocs):
+    """The counted pile for 2 HALF steps, writing a restart file at step RESTART_STEP, between
+    two dumps of the rows (two runs, so that the run continued from the file has its neighbor
+    lists built at the same step: the same trajectory to rounding, hence the same contacts)."""
+    deck = (f"processors * 1 1\nread_data {settled}\ngroup mobile type 1\n" + styles(0.5) +
+            COUNTERS + f"run {RESTART_STEP}\nwrite_restart mid.restart\n"
+            f"run {2 * HALF - RESTART_STEP}\n" + FINAL_COUNTS)
+    return run_lammps(deck, workdir, nprocs=nprocs)
+
+
+@pytest.mark.parametrize("write_procs,read_procs", [(1, 2), (2, 1)])
+def test_rows_pending_at_a_restart_are_dumped_by_the_run_that_continues(
+        settled, tmp_path, write_procs, read_procs):
+    """A contact that ends between two dumps of the rows waits for the next one: at a restart
+    file written then, it is kept in the file, and the run continued from it dumps it. The rows
+    of the first run up to its last dump before the restart, with those of the continued run,
+    are the rows of the uninterrupted run; the final counts are its counts. The file is written
+    on one process and read on two, and the other way round (the rows are gathered)."""
+    reference = restart_between_dumps(settled, tmp_path / "reference", write_procs)
+    deck = (f"read_restart {reference.workdir / 'mid.restart'}\n"
+            "neighbor 0.1 bin\ncomm_modify vel yes\n" +
+            FIXES.format(tilt=0.3, integrator="nve/sphere disc") + COUNTERS +
+            f"run {2 * HALF - RESTART_STEP}\n" + FINAL_COUNTS)
+    restarted = run_lammps(deck, tmp_path / "restarted", nprocs=read_procs)
+    table, all_rows = counts_and_rows(reference)
+    _, rows_after = counts_and_rows(reference, after_step=RESTART_STEP // 100 * 100)
+    before = list(all_rows)
+    for row in rows_after:
+        before.remove(row)
+    continued_table, continued_rows = counts_and_rows(restarted)
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    pending = [row for row in rows_after if row[3] + row[4] <= RESTART_STEP * dt]
+    print(f"rows: {len(before)} before step {RESTART_STEP // 100 * 100}, {len(pending)} pending at "
+          f"the restart, {len(continued_rows)} after it")
+    assert pending    # the test would not see a lost row otherwise
+    assert_same_counts((continued_table, sorted(before + continued_rows)), (table, all_rows))
+
+
+def clock_only_layout(restart, target):
+    """The restart file as the previous version wrote it: fix contacts/mn's global record holds
+    the clock alone (layout -2: 4 values), not the clock, a row count and the rows (layout -3).
+    Only for a file with no rows pending (the count 0)."""
+    data = restart.read_bytes()
+    now_layout = struct.pack("=id", 5 * 8, -3.0)
+    start = data.index(now_layout)
+    clock = data[start + 12:start + 36]
+    assert struct.unpack("=d", data[start + 36:start + 44])[0] == 0.0
+    target.write_bytes(data[:start] + struct.pack("=id", 4 * 8, -2.0) + clock + data[start + 44:])
+    return target
+
+
+def test_restart_file_of_the_clock_only_layout_is_still_read(counted_reference, tmp_path):
+    """A restart file written before the rows went into it (its counters record holds the
+    clock alone) continues the counts as a current one does."""
+    restart = clock_only_layout(counted_reference.workdir / "mid.restart",
+                                tmp_path / "clock_only.restart")
+    deck = (f"read_restart {restart}\nneighbor 0.1 bin\ncomm_modify vel yes\n" +
+            FIXES.format(tilt=0.3, integrator="nve/sphere disc") + COUNTERS + f"run {HALF}\n" +
+            FINAL_COUNTS)
+    restarted = run_lammps(deck, tmp_path / "restarted")
+    assert_same_counts(counts_and_rows(counted_reference, after_step=HALF),
+                       counts_and_rows(restarted))

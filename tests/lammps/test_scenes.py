@@ -168,6 +168,22 @@ def test_bad_frictional_start_and_stop_variables_stop_with_a_message(tmp_path, c
     assert run.returncode != 0 and message in run.output, run.output[-1500:]
 
 
+BAD_SINGLE_DISK_VARIABLES = {
+    "one bump": (dict(n_bumps=1), "deck variable n_bumps = 1 must be an integer >= 2"),
+    "a bump and a half": (dict(n_bumps=2.5), "deck variable n_bumps = 2.5 must be an integer >= 2"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_SINGLE_DISK_VARIABLES))
+def test_bad_single_disk_variables_stop_with_a_message(tmp_path, case):
+    """With one bump the box (1.002 long) ends before the disk's start at x = 1.1: no disk,
+    and the energy per disk divided by zero; a fractional count leaves a bump spacing that is
+    not the slope's across the periodic boundary."""
+    variables, message = BAD_SINGLE_DISK_VARIABLES[case]
+    run = run_scene("single_disk", tmp_path, check=False, **variables)
+    assert run.returncode != 0 and message in run.output, run.output[-1500:]
+
+
 STOPPING = dict(kn=2e5, sin_theta=0.10, row_spacing=1.1, dt_fraction=0.05, dt_cap=1,
                 run_time=100, average_start=50)
 

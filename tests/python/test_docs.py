@@ -13,7 +13,8 @@ DOC = (ROOT / "docs" / "bad_input.md").read_text()
 
 def test_every_bad_input_case_is_in_the_table():
     tables = [test_bad_input.ERRORS, test_counters.BAD, test_scenes.BAD_VARIABLES,
-              test_scenes.BAD_FRICTIONAL_VARIABLES, test_sweep.BAD_CONFIGS]
+              test_scenes.BAD_FRICTIONAL_VARIABLES, test_scenes.BAD_SINGLE_DISK_VARIABLES,
+              test_sweep.BAD_CONFIGS]
     for table in tables:
         for case, (_, message) in table.items():
             assert f"| {case}" in DOC and message.replace("|", "\\|") in DOC, case

@@ -306,6 +306,30 @@ TEST(Stability, LawLimitIsTheStiffestModeAndAboveTheRecommendedStep)
   EXPECT_LT(dt_max, law.tau_c);
 }
 
+// The limit names the mode that sets it. With usual e and beta that is the normal mode of two
+// disks (the stiffest, w^2 = 2 kn); beta -> 0 damps the sticking tangential mode (rate 6 eta_t
+// for two disks) so hard that it sets a limit below tau_c/100, and e -> 0 does the same to the
+// normal mode (tau_c grows with |ln e|).
+TEST(Stability, LimitNamesTheModeThatSetsIt)
+{
+  for (const auto integrator : {mn::Integrator::VelocityVerlet, mn::Integrator::AdamsBashforth2}) {
+    const mn::Law usual = mn::derive({2e5, 0.7, 0.7, 0.5});
+    EXPECT_EQ(mn::stability_limit(usual, integrator).mode, mn::Mode::NormalPair);
+    const mn::Law sticky = mn::derive({2e5, 0.7, 1e-40, 0.5});
+    const mn::StabilityLimit tangential = mn::stability_limit(sticky, integrator);
+    EXPECT_EQ(tangential.mode, mn::Mode::TangentialPair);
+    EXPECT_EQ(tangential.dt, mn::max_stable_dt(integrator, 6 * sticky.kt, 6 * sticky.eta_t));
+    EXPECT_LT(tangential.dt, sticky.tau_c / 100);
+    // without friction the tangential mode does not exist
+    EXPECT_EQ(mn::stability_limit(mn::derive({2e5, 0.7, 1e-40, 0.0}), integrator).mode,
+              mn::Mode::NormalPair);
+    const mn::Law dead = mn::derive({2e5, 1e-40, 0.7, 0.5});
+    const mn::StabilityLimit normal = mn::stability_limit(dead, integrator);
+    EXPECT_EQ(normal.mode, mn::Mode::NormalPair);
+    EXPECT_LT(normal.dt, dead.tau_c / 100);
+  }
+}
+
 // Adams-Bashforth 2 amplifies an undamped mode (e = 1) at every step, so it has no strict
 // limit: the reported one is where a contact (pi/w) grows by UNDAMPED_GROWTH_PER_CONTACT. The
 // paper's tau_c/100 is well inside it; iterating the step over one contact shows the growth.
