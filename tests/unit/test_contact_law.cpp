@@ -360,6 +360,35 @@ TEST(Force, LiteralHistoryKeepsGrowingWhileSlidingCutbackDoesNot)
   EXPECT_NEAR(ut_literal, 100 * 1e-4 * 1.0, 1e-12);    // the literal integral of v_t
 }
 
+// Under Adams-Bashforth 2, u_t is the trapezoidal sum of the v_t seen at the force evaluations,
+// exact for a v_t linear in time; a re-evaluation (dt = 0, LAMMPS's setup) records v_t without
+// advancing u_t; a new contact (slot 0) counts v_t = 0 before it, adding v_t dt/2 on its first
+// step. Velocity Verlet's rule is the plain sum v_t dt (its v_t is the half-step one). Rules out
+// AB2 summing v_t(t + dt) dt (off by (v_t(end) - v_t(start)) dt/2 here) and a new contact
+// taking a whole step of v_t.
+TEST(Force, AdamsBashforthAdvancesUtByTheTrapezoidalRule)
+{
+  const mn::Law law = mn::derive({1e5, 0.7, 0.7, 1e6});
+  const double dt = 1e-4;
+  auto vt_at = [](int step) { return 0.3 + 0.1 * step; };
+  auto at = [&](int step) { return mn::kinematics(1.0, 0.0, 1.0, 1.001, 0.0, vt_at(step), 0.0); };
+  double ut = 0.0, vt_previous = 0.0, ut_verlet = 0.0;
+  mn::contact_force(law, 1.0, at(0), &ut, 0.0, mn::Integrator::AdamsBashforth2, &vt_previous);
+  EXPECT_EQ(ut, 0.0);
+  EXPECT_EQ(vt_previous, vt_at(0));
+  for (int step = 1; step <= 10; step++) {
+    mn::contact_force(law, 1.0, at(step), &ut, dt, mn::Integrator::AdamsBashforth2, &vt_previous);
+    mn::contact_force(law, 1.0, at(step), &ut_verlet, dt);
+  }
+  const double integral = 10 * dt * 0.5 * (vt_at(0) + vt_at(10));    // linear in time
+  EXPECT_NEAR(ut, integral, 1e-15);
+  EXPECT_NEAR(ut_verlet, integral + 0.5 * dt * (vt_at(10) - vt_at(0)), 1e-15);
+
+  double fresh_ut = 0.0, fresh_vt = 0.0;    // as a new contact's slots are
+  mn::contact_force(law, 1.0, at(3), &fresh_ut, dt, mn::Integrator::AdamsBashforth2, &fresh_vt);
+  EXPECT_NEAR(fresh_ut, 0.5 * dt * vt_at(3), 1e-18);
+}
+
 // Velocity Verlet on an undamped oscillator is stable up to dt = 2/omega exactly.
 TEST(Stability, VelocityVerletUndampedLimitIsTwoOverOmega)
 {
