@@ -26,7 +26,8 @@ using namespace FixConst;
 //                                                  [limit_damping] [coulomb_cutback]
 FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), own_law(false), use_history(false),
-    counters(nullptr), force_per_mass_acceleration(1.0), force_reduced(false)
+    integrator(mn::Integrator::VelocityVerlet), vt_previous_column(-1), counters(nullptr),
+    force_per_mass_acceleration(1.0), force_reduced(false)
 {
   if (domain->dimension != 2)
     error->all(FLERR, "Fix wall/gran/mn is a 2D law: it requires dimension 2");
@@ -115,6 +116,13 @@ void FixWallGranMN::init()
   counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
   // each wall fix keeps its own contact state for the counters, per atom and side
   if (counters) widen_state(UT_COLUMNS + 2 * FixContactsMN::WALL_SLOTS);
+  // Adams-Bashforth 2's rule for u_t needs each side's previous v_t: two columns after the
+  // counters' (so that neither moves when the other is added between runs), kept from then on
+  integrator = granmn::integrator_in_use(modify);
+  const int vt_previous_first = UT_COLUMNS + 2 * FixContactsMN::WALL_SLOTS;
+  if (use_history && integrator == mn::Integrator::AdamsBashforth2)
+    widen_state(vt_previous_first + 2);
+  vt_previous_column = use_history && ncols >= vt_previous_first + 2 ? vt_previous_first : -1;
   if (law.mu > 0.0 && !use_history)
     error->all(FLERR, "Fix wall/gran/mn was defined with mu = 0 and keeps no tangential "
                       "history; define it again after giving mu > 0");
@@ -147,6 +155,8 @@ void FixWallGranMN::post_force(int)
   double **history = state;
   const double to_force = force_per_mass_acceleration;
   const int first_side = has_lo ? 0 : 1, last_side = has_hi ? 1 : 0;
+  const mn::Integrator scheme = integrator;
+  const int vt_column = vt_previous_column;
   double wall_fx = 0.0, wall_fy = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
@@ -161,6 +171,7 @@ void FixWallGranMN::post_force(int)
                           touching, radius[i] - dist, normal * v[i][axis]);
       if (!touching) {
         if (use_history) history[i][side] = 0.0;
+        if (vt_column >= 0) history[i][vt_column + side] = 0.0;
         continue;
       }
       if (dist <= 0.0)
@@ -172,8 +183,9 @@ void FixWallGranMN::post_force(int)
       const mn::Kinematics kin =
           mn::kinematics(dx, dy, dist, radius[i], v[i][0], v[i][1], radius[i] * omega[i][2]);
       const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
-      const mn::Force fc = mn::contact_force(contact, scale, kin,
-                                             use_history ? &history[i][side] : nullptr, dt_history);
+      const mn::Force fc = mn::contact_force(
+          contact, scale, kin, use_history ? &history[i][side] : nullptr, dt_history, scheme,
+          vt_column >= 0 ? &history[i][vt_column + side] : nullptr);
       const mn::Cartesian fxy = mn::cartesian(kin, fc);
       const double fx = fxy.fx, fy = fxy.fy;
       f[i][0] += fx;

@@ -32,6 +32,9 @@ class FixWallGranMN : public FixPerAtomState {
   bool use_history;           // mu > 0: per-atom u_t in state[i][side], side 0 lower, 1 upper
   // u_t of the two sides; with fix contacts/mn, its per-side contact state follows
   static constexpr int UT_COLUMNS = 2;
+  mn::Integrator integrator;    // the run's, found at init
+  // First of the two sides' previous v_t (Adams-Bashforth 2's rule for u_t), -1 if not kept
+  int vt_previous_column;
   class FixContactsMN *counters;    // nullptr unless fix contacts/mn is defined
   double wall_force[2], wall_force_all[2];
   double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units

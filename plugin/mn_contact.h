@@ -119,11 +119,42 @@ struct Force {
   bool sliding;   // the Coulomb cap was active
 };
 
+enum class Integrator {
+  VelocityVerlet,   // LAMMPS's: the force at a step sees the half-step velocity
+  AdamsBashforth2   // the paper's: AB2 for velocities, trapezoidal rule for positions
+};
+
+// Advances a contact's tangential displacement u_t (the integral of v_t over the contact) by one
+// step of dt, with the rule the integrator uses for positions, so that u_t is as accurate as they
+// are (docs/model.md section 4):
+// - velocity Verlet evaluates forces with the half-step velocity: u_t += v_t dt is the midpoint
+//   rule;
+// - Adams-Bashforth 2 evaluates them with the step's own velocity and moves positions by the
+//   trapezoidal rule: u_t += dt/2 (v_t(t - dt) + v_t(t)). v_t(t - dt) is the contact's v_t at its
+//   previous force evaluation, kept in *vt_previous. A new contact's slot holds 0: v_t counts as
+//   zero before the contact, so its first step adds v_t dt/2, v_t times the mean time that a
+//   contact begun within the step has been on (v_t dt would count the whole step: a bias of
+//   first order in dt).
+// *vt_previous, where given, is set to v_t under either integrator (also when dt = 0), so that
+// it is current when a later run switches to Adams-Bashforth 2.
+inline void advance_tangential_displacement(Integrator integrator, double vt, double dt,
+                                            double *ut, double *vt_previous)
+{
+  if (integrator == Integrator::AdamsBashforth2)
+    *ut += 0.5 * dt * (*vt_previous + vt);
+  else
+    *ut += vt * dt;
+  if (vt_previous) *vt_previous = vt;
+}
+
 // Force of one contact. ut is the tangential displacement of this contact (nullptr when
-// mu = 0: no friction, no history). It is advanced by vt*dt_history first (dt_history = 0
-// when forces are only re-evaluated, as in LAMMPS's setup).
+// mu = 0: no friction, no history). It is advanced first over dt_history (0 when forces are only
+// re-evaluated, as in LAMMPS's setup) by the integrator's rule; Adams-Bashforth 2 needs
+// vt_previous (see advance_tangential_displacement), velocity Verlet none.
 inline Force contact_force(const Law &law, double mass_scale, const Kinematics &k, double *ut,
-                           double dt_history)
+                           double dt_history,
+                           Integrator integrator = Integrator::VelocityVerlet,
+                           double *vt_previous = nullptr)
 {
   Force f;
   f.fn = mass_scale * (law.kn * k.delta - law.eta_n * k.vn);
@@ -132,7 +163,7 @@ inline Force contact_force(const Law &law, double mass_scale, const Kinematics &
   f.sliding = false;
   if (!ut) return f;
 
-  *ut += k.vt * dt_history;
+  advance_tangential_displacement(integrator, k.vt, dt_history, ut, vt_previous);
   const double trial = -mass_scale * (law.kt * (*ut) + law.eta_t * k.vt);
   const double cap = law.mu * std::fabs(f.fn);
   if (std::fabs(trial) > cap) {
@@ -182,11 +213,6 @@ inline double trapezoidal_position(double x, double v, double v_new, double dt)
 {
   return x + 0.5 * dt * (v + v_new);
 }
-
-enum class Integrator {
-  VelocityVerlet,   // LAMMPS's: the force at a step sees the half-step velocity
-  AdamsBashforth2   // the paper's: AB2 for velocities, trapezoidal rule for positions
-};
 
 namespace detail {
 

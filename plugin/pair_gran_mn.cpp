@@ -176,6 +176,8 @@ void PairGranMN::compute(int eflag, int vflag)
   const double to_force = force_per_mass_acceleration;
   FixContactsMN *const tally = counters;
   const int stride = size_history, ut_slot = layout.ut, record_slot = layout.record;
+  const int vt_previous_slot = layout.vt_previous;
+  const mn::Integrator scheme = integrator;
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
@@ -219,7 +221,9 @@ void PairGranMN::compute(int eflag, int vflag)
       double *ut = ut_slot >= 0 ? slots + ut_slot : nullptr;
       // the law gives mass x acceleration; LAMMPS turns force back into it with ftm2v
       const double scale = contact_mass_scale(i_wall, j_wall, rmass[i], rmass[j]) * to_force;
-      const mn::Force fc = mn::contact_force(contact, scale, kin, ut, dt_history);
+      const mn::Force fc =
+          mn::contact_force(contact, scale, kin, ut, dt_history, scheme,
+                            vt_previous_slot >= 0 ? slots + vt_previous_slot : nullptr);
 
       const mn::Cartesian fxy = mn::cartesian(kin, fc);
       const double fx = fxy.fx, fy = fxy.fy;
@@ -388,7 +392,7 @@ void PairGranMN::init_style()
                           "only at the start of a run: disks that come into contact later are "
                           "never seen (no force, no contact); leave out 'once yes'");
 
-  const mn::Integrator integrator = granmn::integrator_in_use(modify);
+  integrator = granmn::integrator_in_use(modify);
   if (!law_reported && comm->me == 0) {
     utils::logmesg(lmp,
                    "pair_style gran/mn: kn = {:.8g} e = {} beta = {} mu = {}\n"
@@ -403,10 +407,13 @@ void PairGranMN::init_style()
   }
   granmn::check_timestep(lmp, "pair_style gran/mn", update->dt, law, integrator);
 
-  // The per-contact history: u_t when there is friction, then the counters' record if asked.
+  // The per-contact history: u_t when there is friction (and under Adams-Bashforth 2 the
+  // previous v_t its rule for u_t needs), then the counters' record if asked.
   counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
   layout = HistoryLayout();
   if (material.mu > 0.0) layout.ut = layout.size++;
+  if (material.mu > 0.0 && integrator == mn::Integrator::AdamsBashforth2)
+    layout.vt_previous = layout.size++;
   if (counters) {
     layout.record = layout.size;
     layout.size += FixContactsMN::RECORD_SIZE;
@@ -414,13 +421,17 @@ void PairGranMN::init_style()
   const int needed = layout.size;
   if (fix_history && needed != size_history)
     error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
-                      "mu or fix contacts/mn; define fix contacts/mn and mu before the first run");
+                      "mu, fix contacts/mn or integrator (fix nve/ab2 keeps one more value per "
+                      "contact when mu > 0); define fix contacts/mn, mu and the integrator "
+                      "before the first run");
   // LAMMPS restores per-pair history with the size of the new run: a different size would
-  // misread every partner, so the run must keep mu > 0 (or not) and fix contacts/mn (or not)
+  // misread every partner, so the run must keep mu > 0 (or not), fix contacts/mn (or not) and
+  // the integrator
   if (!fix_history && restart_history_size >= 0 && needed != restart_history_size)
     error->all(FLERR, "pair_style gran/mn: the restart file holds {} history values per contact, "
-                      "this run needs {}: keep mu zero or non-zero and define fix contacts/mn "
-                      "(or not) as in the run that wrote it", restart_history_size, needed);
+                      "this run needs {}: keep mu zero or non-zero, define fix contacts/mn "
+                      "(or not) and use the integrator (fix nve/ab2 or not) as in the run that "
+                      "wrote it", restart_history_size, needed);
   size_history = needed;
   history = size_history > 0 ? 1 : 0;
   // At a reneighboring, fix neigh/history keeps a pair's history only if the pair overlapped

@@ -46,11 +46,13 @@ class PairGranMN : public Pair {
   std::vector<char> is_wall_type;    // per type, 1..ntypes
   int history;                       // 1: per-pair history kept
   int size_history;                  // values per contact in the neighbor history
-  // Where each part of a contact's history sits (-1: not kept): u_t (mu > 0), then fix
+  // Where each part of a contact's history sits (-1: not kept): u_t (mu > 0), the previous
+  // v_t that Adams-Bashforth 2's rule for u_t needs (mu > 0 under fix nve/ab2), then fix
   // contacts/mn's record (if defined).
   struct HistoryLayout {
-    int ut = -1, record = -1, size = 0;
+    int ut = -1, vt_previous = -1, record = -1, size = 0;
   } layout;
+  mn::Integrator integrator = mn::Integrator::VelocityVerlet;    // the run's, found at init_style
   int restart_history_size;          // per-pair history size in the restart read, -1 if none
   class FixContactsMN *counters;     // nullptr unless fix contacts/mn is defined
   std::vector<std::pair<int, int>> excluded_types;    // type pairs this style excluded

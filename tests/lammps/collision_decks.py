@@ -52,9 +52,10 @@ write_dump all custom final.txt id x y vx vy omegaz modify sort id format float 
 """, contact
 
 
-def disk_on_boundary(material, dt, boundary, v_n=1.0, phase=0.5, pre_steps=10):
-    """A unit disk falling at v_n (no gravity) onto a fixed bump below it (a type-2 atom
-    listed in wall_types, not integrated) or onto the flat wall y = 0."""
+def disk_on_boundary(material, dt, boundary, v_n=1.0, phase=0.5, pre_steps=10, spin=0.0,
+                     integrator="verlet"):
+    """A unit disk falling at v_n (no gravity), spinning at `spin`, onto a fixed bump below it
+    (a type-2 atom listed in wall_types, not integrated) or onto the flat wall y = 0."""
     tau = law(material[0], material[1], material[2])["tau_w"]
     gap = v_n * (pre_steps + phase) * dt
     steps = pre_steps + int(math.ceil(tau / dt)) + 20
@@ -63,12 +64,13 @@ def disk_on_boundary(material, dt, boundary, v_n=1.0, phase=0.5, pre_steps=10):
 create_atoms 2 single 0 0 0
 create_atoms 1 single 0 {1.0 + gap!r} 0
 """
-        styles = _common(material, dt, "wall_types 2")
+        styles = _common(material, dt, "wall_types 2", integrator)
         floor = 0.0
         contact = 1.0
     else:
         atoms = f"create_atoms 1 single 0 {0.5 + gap!r} 0\n"
-        styles = _common(material, dt) + "fix floor mobile wall/gran/mn yplane 0.0 NULL\n"
+        styles = (_common(material, dt, integrator=integrator) +
+                  "fix floor mobile wall/gran/mn yplane 0.0 NULL\n")
         floor = 0.0
         contact = 0.5
     return f"""
@@ -79,7 +81,7 @@ set type * diameter 1.0
 set type * density/disc {DISC_DENSITY!r}
 velocity all set 0 0 0
 group mobile type 1
-set group mobile vy {-v_n!r}
+set group mobile vy {-v_n!r} omega 0 0 {spin!r}
 {styles}
 variable mobile_id equal count(all)
 variable height equal y[v_mobile_id]-{floor!r}

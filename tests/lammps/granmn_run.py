@@ -112,3 +112,27 @@ def restitution_error_bound(e, dt_over_tau):
     mode, |e_measured - e| <= 3 (1 + e) |ln e| dt/tau, plus the second-order error of the
     smooth part, (dt/tau)^2."""
     return 3 * (1 + e) * abs(np.log(e)) * dt_over_tau + dt_over_tau ** 2
+
+
+def ab2_error_bound(dt_over_tau):
+    """How far fix nve/ab2 may put a measured restitution (or duration/tau) of a contact that
+    begins half-way through a step (the collision decks' phase) from the analytic one.
+
+    Adams-Bashforth 2 for velocities with the trapezoidal rule for positions and u_t is second
+    order: over half an oscillation of angular frequency w = pi/tau its error is c (w dt)^2,
+    c of the order of AB2's error constant 5/12 (measured: 0.2). A contact starting half-way
+    through a step costs nothing at first order (docs/choosing_dt.md). Bound: (pi dt/tau)^2."""
+    return (np.pi * dt_over_tau) ** 2
+
+
+# Order of convergence: halving dt divides the error, or the difference of the measurements at
+# dt and dt/2, by 2^order. Velocity Verlet's damping sees velocities half a step old: its
+# restitutions are first order (ratio 2); fix nve/ab2 is second order (ratio 4). A first-order
+# part (ratio 2), such as u_t advanced by v_t(t) dt under AB2, fails the lower bound 3.
+ORDER_RATIO = {"verlet": (1.5, 2.6), "ab2": (3.0, np.inf)}
+
+
+def convergence_ratio(values):
+    """(m(dt) - m(dt/2)) / (m(dt/2) - m(dt/4)) for measurements at dt, dt/2, dt/4: 2^order,
+    whatever the exact value (which the geometry of an oblique impact shifts a little)."""
+    return (values[0] - values[1]) / (values[1] - values[2])

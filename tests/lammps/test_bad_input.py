@@ -101,6 +101,9 @@ ERRORS = {
     "point particle under nve/ab2": (
         deck(fix="unfix integrate\nset atom 1 diameter 0.0\nfix integrate all nve/ab2"),
         "Fix nve/ab2 integrates disks: 1 atoms of its group have diameter 0"),
+    "integrator changed between runs (mu > 0)": (
+        deck(fix="run 10\nunfix integrate\nfix integrate all nve/ab2"),
+        "its contact history was set up for a different mu, fix contacts/mn or integrator"),
     "spheres integrated by nve/sphere": (
         deck(fix="unfix integrate\nfix spin all nve/sphere"),
         "fix spin (nve/sphere) integrates spheres; the law is for disks"),
@@ -156,6 +159,23 @@ def test_write_data_warns_that_the_state_of_the_fixes_is_not_in_the_file(tmp_pat
     run = run_lammps(deck(fix="unfix integrate\nfix integrate all nve/ab2") +
                      "write_data state.data\n", tmp_path, header=False)
     assert "write_data does not carry the per-atom state of fix integrate (nve/ab2)" in run.output
+
+
+@pytest.mark.parametrize("written, continued", [("nve", "nve/ab2"), ("nve/ab2", "nve")])
+def test_restart_under_the_other_integrator_is_refused(tmp_path, written, continued):
+    """Under fix nve/ab2 a frictional contact keeps its previous v_t too (2 history values, 1
+    under velocity Verlet): a restart continued under the other integrator would misread every
+    contact's history, and is refused."""
+    first = run_lammps(deck(second="0.95 0.5 0",
+                            fix=f"unfix integrate\nfix integrate all {written}") +
+                       "write_restart state.restart\n", tmp_path / "written", header=False)
+    run = run_lammps(f"read_restart {first.workdir / 'state.restart'}\ncomm_modify vel yes\n"
+                     f"fix integrate all {continued}\nrun 10\n", tmp_path / "continued",
+                     check=False)
+    held, needed = (1, 2) if continued == "nve/ab2" else (2, 1)
+    assert run.returncode != 0
+    assert (f"the restart file holds {held} history values per contact, this run needs {needed}"
+            in run.output), run.output[-1500:]
 
 
 @pytest.mark.parametrize("compress", ["yes", "no"])

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from collision_decks import contact_interval, disk_on_boundary, two_disks
-from granmn_run import HEADER, PLUGIN, law, restitution_error_bound, run_lammps
+from granmn_run import (HEADER, ORDER_RATIO, PLUGIN, ab2_error_bound, convergence_ratio, law,
+                        restitution_error_bound, run_lammps)
 
 KN = [2 ** p * 1e5 for p in (-1, 8, 17)]
 
@@ -77,6 +78,37 @@ def test_sticking_oblique_impact_has_tangential_restitution_beta(tmp_path, beta)
               f"bound {bound:.2e}")
         assert abs(beta_measured - beta) <= bound
         assert abs(c["v_n"] - 0.7) <= restitution_error_bound(0.7, dt_over_tau) + 1e-3
+
+
+@pytest.mark.parametrize("integrator", ["verlet", "ab2"])
+def test_sticking_oblique_impact_converges_at_the_integrators_order(tmp_path, integrator):
+    """The sticking oblique impact above with beta = e = 0.7 at dt = tau_c/50, /100, /200: e,
+    beta and the duration converge at the integrator's order, first under velocity Verlet,
+    second under fix nve/ab2, whose u_t follows the trapezoidal rule of its positions (with
+    u_t advanced by v_t(t) dt, AB2's beta was first order: 0.665, 0.683, 0.691). Each value
+    lies within the integrator's bound (granmn_run.py), plus 1e-3 for the turn of the line of
+    centres; the duration within a step (Verlet) or the second-order bound (AB2)."""
+    e = 0.7
+    fractions = (1 / 50, 1 / 100, 1 / 200)
+    measured = []
+    for fraction in fractions:
+        c = collide(tmp_path, f"dt{fraction}", (256e5, e, e, 1e6), fraction, spin=0.6,
+                    integrator=integrator)
+        beta_measured = -c["v_t"] / -(0.5 * 0.6 + 0.5 * 0.6)
+        measured.append((c["v_n"], beta_measured, c["duration"] / c["tau"]))
+        print(f"{integrator} dt=tau_c/{1 / fraction:.0f}: e {measured[-1][0]:.6f} "
+              f"beta {measured[-1][1]:.6f} duration/tau_c {measured[-1][2]:.6f}")
+    for fraction, (e_measured, beta_measured, duration) in zip(fractions, measured):
+        bound = (ab2_error_bound(fraction) if integrator == "ab2"
+                 else restitution_error_bound(e, fraction))
+        assert abs(e_measured - e) <= bound + 1e-3
+        assert abs(beta_measured - e) <= bound + 1e-3
+        assert abs(duration - 1) <= (ab2_error_bound(fraction) if integrator == "ab2" else fraction)
+    low, high = ORDER_RATIO[integrator]
+    for k, name in enumerate(("e", "beta", "duration")):
+        ratio = convergence_ratio([m[k] for m in measured])
+        print(f"{name}: convergence ratio {ratio:.2f}")
+        assert low <= ratio <= high, (name, ratio)
 
 
 UNITS = ["lj", "real", "metal", "si", "cgs", "electron", "micro", "nano"]

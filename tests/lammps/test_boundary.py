@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from collision_decks import contact_interval, disk_on_boundary
-from granmn_run import law, restitution_error_bound, run_lammps
+from granmn_run import (ORDER_RATIO, ab2_error_bound, convergence_ratio, law,
+                        restitution_error_bound, run_lammps)
 
 
 @pytest.mark.parametrize("boundary", ["bump", "wall"])
@@ -34,6 +35,56 @@ def test_boundary_contact_duration_and_restitution(tmp_path, boundary, e):
     if boundary == "bump":
         # the bump was not integrated: it has not moved
         assert atoms["y"][np.argmin(atoms["id"])] == 0.0
+
+
+@pytest.mark.parametrize("integrator", ["verlet", "ab2"])
+@pytest.mark.parametrize("boundary", ["bump", "wall"])
+def test_sticking_oblique_bounce_converges_at_the_integrators_order(tmp_path, boundary,
+                                                                    integrator):
+    """A spinning disk (spin-only slip, mu = 1e6: it sticks) bouncing on the boundary with
+    beta = e = 0.7. With beta = e the boundary's sticking tangential mode is its normal one
+    (3 eta_t = eta_n and 3 kt = kn, docs/model.md section 3), so the normal and the tangential
+    restitution are both e_w, and the contact lasts tau_w. At dt = tau_w/50, /100, /200 they
+    converge at the integrator's order: first under velocity Verlet, second under fix nve/ab2
+    (with u_t advanced by v_t(t) dt, AB2's tangential restitution was first order, -2.5 % at
+    tau_w/100). Each value within the integrator's bound (granmn_run.py), plus 1e-3 on the bump
+    for the turn of the line of centres."""
+    kn, e, spin = 256e5, 0.7, 1.2
+    ref = law(kn, e, e)
+    fractions = (1 / 50, 1 / 100, 1 / 200)
+    measured = []
+    for fraction in fractions:
+        dt = ref["tau_w"] * fraction
+        deck, contact = disk_on_boundary((kn, e, e, 1e6), dt, boundary, spin=spin,
+                                         integrator=integrator)
+        run = run_lammps(deck, tmp_path / f"dt{fraction}")
+        atoms = run.atoms()
+        mobile, fixed = np.argmax(atoms["id"]), np.argmin(atoms["id"])
+        if boundary == "bump":    # the normal from the bump to the disk, t = (-n_y, n_x)
+            n = np.array([atoms["x"][mobile] - atoms["x"][fixed],
+                          atoms["y"][mobile] - atoms["y"][fixed]])
+            n /= np.linalg.norm(n)
+        else:
+            n = np.array([0.0, 1.0])
+        v = np.array([atoms["vx"][mobile], atoms["vy"][mobile]])
+        v_t = -n[1] * v[0] + n[0] * v[1] - 0.5 * atoms["omegaz"][mobile]
+        duration, _, _ = contact_interval(run.table("trace.txt"), contact, dt)
+        measured.append((n @ v / 1.0, -v_t / -(0.5 * spin), duration / ref["tau_w"]))
+        print(f"{boundary} {integrator} dt=tau_w/{1 / fraction:.0f}: e_w={ref['e_w']:.6f} "
+              f"measured {measured[-1][0]:.6f}, tangential {measured[-1][1]:.6f}, "
+              f"duration/tau_w {measured[-1][2]:.6f}")
+    geometry = 1e-3 if boundary == "bump" else 0.0
+    for fraction, (e_measured, beta_measured, duration) in zip(fractions, measured):
+        bound = (ab2_error_bound(fraction) if integrator == "ab2"
+                 else restitution_error_bound(ref["e_w"], fraction))
+        assert abs(e_measured - ref["e_w"]) <= bound + geometry
+        assert abs(beta_measured - ref["e_w"]) <= bound + geometry
+        assert abs(duration - 1) <= (ab2_error_bound(fraction) if integrator == "ab2" else fraction)
+    low, high = ORDER_RATIO[integrator]
+    for k, name in enumerate(("e_w", "tangential", "duration")):
+        ratio = convergence_ratio([m[k] for m in measured])
+        print(f"{name}: convergence ratio {ratio:.2f}")
+        assert low <= ratio <= high, (name, ratio)
 
 
 def test_pair_style_given_again_follows_its_new_wall_types(tmp_path):

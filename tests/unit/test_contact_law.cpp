@@ -30,23 +30,22 @@ struct Rates {
   double vx[2], vy[2], ax[2], ay[2], alpha[2], dut;
 };
 
-Rates rates(const mn::Law &law, const Scene &s)
+// The contact's kinematics and mass scale.
+mn::Kinematics contact_kinematics(const Scene &s, double &mass_scale)
 {
-  Rates d{{s.a.vx, s.b.vx}, {s.a.vy, s.b.vy}, {0, 0}, {0, 0}, {0, 0}, 0};
-  mn::Kinematics k;
-  double mass_scale;
   if (s.wall) {
-    k = mn::kinematics(0.0, s.a.y, s.a.y, s.a.r, s.a.vx, s.a.vy, s.a.r * s.a.w);
     mass_scale = s.a.m;
-  } else {
-    const double dx = s.a.x - s.b.x, dy = s.a.y - s.b.y;
-    k = mn::kinematics(dx, dy, std::hypot(dx, dy), s.a.r + s.b.r, s.a.vx - s.b.vx,
-                       s.a.vy - s.b.vy, s.a.r * s.a.w + s.b.r * s.b.w);
-    mass_scale = 2.0 * s.a.m * s.b.m / (s.a.m + s.b.m);
+    return mn::kinematics(0.0, s.a.y, s.a.y, s.a.r, s.a.vx, s.a.vy, s.a.r * s.a.w);
   }
-  if (k.delta <= 0.0) return d;
-  double ut = s.ut;
-  const mn::Force f = mn::contact_force(law, mass_scale, k, law.mu > 0 ? &ut : nullptr, 0.0);
+  const double dx = s.a.x - s.b.x, dy = s.a.y - s.b.y;
+  mass_scale = 2.0 * s.a.m * s.b.m / (s.a.m + s.b.m);
+  return mn::kinematics(dx, dy, std::hypot(dx, dy), s.a.r + s.b.r, s.a.vx - s.b.vx,
+                        s.a.vy - s.b.vy, s.a.r * s.a.w + s.b.r * s.b.w);
+}
+
+// The accelerations (ax, ay, alpha per disk) that the contact force f gives.
+void accelerations(const Scene &s, const mn::Kinematics &k, const mn::Force &f, Rates &d)
+{
   const double fx = f.fn * k.nx - f.ft * k.ny, fy = f.fn * k.ny + f.ft * k.nx;
   d.ax[0] = fx / s.a.m;
   d.ay[0] = fy / s.a.m;
@@ -56,6 +55,17 @@ Rates rates(const mn::Law &law, const Scene &s)
     d.ay[1] = -fy / s.b.m;
     d.alpha[1] = -s.b.r * f.ft / s.b.inertia();
   }
+}
+
+Rates rates(const mn::Law &law, const Scene &s)
+{
+  Rates d{{s.a.vx, s.b.vx}, {s.a.vy, s.b.vy}, {0, 0}, {0, 0}, {0, 0}, 0};
+  double mass_scale;
+  const mn::Kinematics k = contact_kinematics(s, mass_scale);
+  if (k.delta <= 0.0) return d;
+  double ut = s.ut;
+  const mn::Force f = mn::contact_force(law, mass_scale, k, law.mu > 0 ? &ut : nullptr, 0.0);
+  accelerations(s, k, f, d);
   d.dut = k.vt;
   return d;
 }
@@ -75,14 +85,17 @@ Scene advance(const Scene &s, const Rates &d, double h)
   return n;
 }
 
-// RK4 over the whole contact; returns its duration and leaves the scene after separation.
-double collide(const mn::Law &law, Scene &s, double tau)
+double overlap(const Scene &q)
 {
-  auto overlap = [&](const Scene &q) {
-    if (q.wall) return q.a.r - q.a.y;
-    return q.a.r + q.b.r - std::hypot(q.a.x - q.b.x, q.a.y - q.b.y);
-  };
-  const double h = tau / 2e4;
+  if (q.wall) return q.a.r - q.a.y;
+  return q.a.r + q.b.r - std::hypot(q.a.x - q.b.x, q.a.y - q.b.y);
+}
+
+// RK4 over the whole contact, with steps of tau/resolution; returns its duration and leaves the
+// scene after separation.
+double collide(const mn::Law &law, Scene &s, double tau, double resolution = 2e4)
+{
+  const double h = tau / resolution;
   double t = 0.0, t_start = -1.0;
   for (int step = 0; step < 4000000; step++) {
     const double before = overlap(s);
@@ -108,6 +121,91 @@ double collide(const mn::Law &law, Scene &s, double tau)
   }
   ADD_FAILURE() << "contact never ended";
   return 0.0;
+}
+
+// The contact as LAMMPS integrates it: fix nve/sphere disc (velocity Verlet) or fix nve/ab2 moves
+// the disks by steps of dt, and each force evaluation advances u_t as pair_style gran/mn and fix
+// wall/gran/mn do (mn::contact_force with the integrator; the history is cleared when the contact
+// has ended). Stops two steps after the contact's end (AB2 still uses the contact's last
+// acceleration in the step after it); returns the contact's duration, from the overlap
+// interpolated linearly between steps as the LAMMPS tests measure it.
+double integrate(const mn::Law &law, Scene &s, double dt, mn::Integrator integrator)
+{
+  const bool ab2 = integrator == mn::Integrator::AdamsBashforth2;
+  double vt_previous = 0.0;
+  auto evaluate = [&](double dt_history) {
+    Rates d{{0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}, 0};
+    double mass_scale;
+    const mn::Kinematics k = contact_kinematics(s, mass_scale);
+    if (k.delta <= 0.0) {
+      s.ut = vt_previous = 0.0;
+      return d;
+    }
+    const mn::Force f = mn::contact_force(law, mass_scale, k, law.mu > 0 ? &s.ut : nullptr,
+                                          dt_history, integrator, ab2 ? &vt_previous : nullptr);
+    accelerations(s, k, f, d);
+    return d;
+  };
+  Disk *disk[2] = {&s.a, &s.b};
+  const int mobile = s.wall ? 1 : 2;
+  Rates a = evaluate(0.0), a_previous = a;    // nve/ab2's first step: a(t - dt) = a(t)
+  double t = 0.0, t_start = -1.0, duration = -1.0;
+  for (int step = 0, after_end = -1; step < 1000000 && after_end < 2; step++) {
+    const double before = overlap(s);
+    if (ab2) {
+      for (int i = 0; i < mobile; i++) {
+        Disk &q = *disk[i];
+        const double vx = mn::ab2_velocity(q.vx, a.ax[i], a_previous.ax[i], dt);
+        const double vy = mn::ab2_velocity(q.vy, a.ay[i], a_previous.ay[i], dt);
+        q.x = mn::trapezoidal_position(q.x, q.vx, vx, dt);
+        q.y = mn::trapezoidal_position(q.y, q.vy, vy, dt);
+        q.vx = vx;
+        q.vy = vy;
+        q.w = mn::ab2_velocity(q.w, a.alpha[i], a_previous.alpha[i], dt);
+      }
+      a_previous = a;
+      a = evaluate(dt);
+    } else {
+      for (int i = 0; i < mobile; i++) {
+        Disk &q = *disk[i];
+        q.vx += 0.5 * dt * a.ax[i];
+        q.vy += 0.5 * dt * a.ay[i];
+        q.w += 0.5 * dt * a.alpha[i];
+        q.x += dt * q.vx;
+        q.y += dt * q.vy;
+      }
+      a = evaluate(dt);
+      for (int i = 0; i < mobile; i++) {
+        Disk &q = *disk[i];
+        q.vx += 0.5 * dt * a.ax[i];
+        q.vy += 0.5 * dt * a.ay[i];
+        q.w += 0.5 * dt * a.alpha[i];
+      }
+    }
+    const double after = overlap(s);
+    if (before <= 0 && after > 0) t_start = t + dt * (-before) / (after - before);
+    t += dt;
+    if (after_end >= 0) after_end++;
+    if (t_start >= 0 && duration < 0 && before > 0 && after <= 0) {
+      duration = t - dt + dt * before / (before - after) - t_start;
+      after_end = 0;
+    }
+  }
+  if (duration < 0) ADD_FAILURE() << "contact never ended";
+  return duration;
+}
+
+// Restitutions -v_n'/v_n, -v_t'/v_t and duration of a contact between two states of a Scene.
+struct Outcome {
+  double e, beta, duration;
+};
+
+Outcome outcome(const Scene &before, const Scene &after, double duration)
+{
+  double mass_scale;
+  const mn::Kinematics k0 = contact_kinematics(before, mass_scale);
+  const mn::Kinematics k1 = contact_kinematics(after, mass_scale);
+  return {-k1.vn / k0.vn, -k1.vt / k0.vt, duration};
 }
 
 Disk disk(double diameter, double x, double y, double vx, double vy)
@@ -262,6 +360,35 @@ TEST(Force, LiteralHistoryKeepsGrowingWhileSlidingCutbackDoesNot)
   EXPECT_NEAR(ut_literal, 100 * 1e-4 * 1.0, 1e-12);    // the literal integral of v_t
 }
 
+// Under Adams-Bashforth 2, u_t is the trapezoidal sum of the v_t seen at the force evaluations,
+// exact for a v_t linear in time; a re-evaluation (dt = 0, LAMMPS's setup) records v_t without
+// advancing u_t; a new contact (slot 0) counts v_t = 0 before it, adding v_t dt/2 on its first
+// step. Velocity Verlet's rule is the plain sum v_t dt (its v_t is the half-step one). Rules out
+// AB2 summing v_t(t + dt) dt (off by (v_t(end) - v_t(start)) dt/2 here) and a new contact
+// taking a whole step of v_t.
+TEST(Force, AdamsBashforthAdvancesUtByTheTrapezoidalRule)
+{
+  const mn::Law law = mn::derive({1e5, 0.7, 0.7, 1e6});
+  const double dt = 1e-4;
+  auto vt_at = [](int step) { return 0.3 + 0.1 * step; };
+  auto at = [&](int step) { return mn::kinematics(1.0, 0.0, 1.0, 1.001, 0.0, vt_at(step), 0.0); };
+  double ut = 0.0, vt_previous = 0.0, ut_verlet = 0.0;
+  mn::contact_force(law, 1.0, at(0), &ut, 0.0, mn::Integrator::AdamsBashforth2, &vt_previous);
+  EXPECT_EQ(ut, 0.0);
+  EXPECT_EQ(vt_previous, vt_at(0));
+  for (int step = 1; step <= 10; step++) {
+    mn::contact_force(law, 1.0, at(step), &ut, dt, mn::Integrator::AdamsBashforth2, &vt_previous);
+    mn::contact_force(law, 1.0, at(step), &ut_verlet, dt);
+  }
+  const double integral = 10 * dt * 0.5 * (vt_at(0) + vt_at(10));    // linear in time
+  EXPECT_NEAR(ut, integral, 1e-15);
+  EXPECT_NEAR(ut_verlet, integral + 0.5 * dt * (vt_at(10) - vt_at(0)), 1e-15);
+
+  double fresh_ut = 0.0, fresh_vt = 0.0;    // as a new contact's slots are
+  mn::contact_force(law, 1.0, at(3), &fresh_ut, dt, mn::Integrator::AdamsBashforth2, &fresh_vt);
+  EXPECT_NEAR(fresh_ut, 0.5 * dt * vt_at(3), 1e-18);
+}
+
 // Velocity Verlet on an undamped oscillator is stable up to dt = 2/omega exactly.
 TEST(Stability, VelocityVerletUndampedLimitIsTwoOverOmega)
 {
@@ -356,4 +483,113 @@ TEST(Stability, AdamsBashforthOnAnUndampedModeIsLimitedByTheGrowthOverAContact)
   EXPECT_LT(growth_over_a_contact(law.tau_c / 100), 1e-4);
   EXPECT_NEAR(growth_over_a_contact(dt_max), mn::UNDAMPED_GROWTH_PER_CONTACT,
               0.5 * mn::UNDAMPED_GROWTH_PER_CONTACT);
+}
+
+// ---------------------------------------------------------------------------------------
+// The integrators' order of convergence on single collisions (as LAMMPS runs them), against
+// RK4 at tau/2e5.
+
+namespace {
+
+// Sticking oblique impacts: two unit disks (spin-only slip, stiff as above) and a unit disk
+// falling obliquely on the wall y = 0, `gap` of free flight before the contact (closing speed 1).
+Scene oblique_pair(double gap)
+{
+  Scene s;
+  s.a = disk(1.0, -0.5 - 0.5 * gap, 0, 0.5, 0);
+  s.b = disk(1.0, 0.5 + 0.5 * gap, 0, -0.5, 0);
+  s.a.w = s.b.w = 0.6;
+  return s;
+}
+
+Scene oblique_wall(double gap)
+{
+  Scene s;
+  s.wall = true;
+  s.a = disk(1.0, 0, 0.5 + gap, 0.5, -1.0);
+  return s;
+}
+
+struct Convergence {
+  Outcome reference;
+  std::vector<Outcome> errors;    // measured - reference, at dt = tau/50, /100, /200
+};
+
+// The contact begins half-way through a step (after 3.5 steps of free flight), as in the LAMMPS
+// decks: there a contact that switches on between steps costs no first-order error.
+Convergence convergence(const mn::Law &law, Scene (*scene)(double), double tau,
+                        mn::Integrator integrator)
+{
+  Convergence c;
+  Scene s = scene(0.2 * tau), start = s;
+  c.reference = outcome(start, s, collide(law, s, tau, 2e5));
+  for (double steps : {50.0, 100.0, 200.0}) {
+    const double dt = tau / steps;
+    s = start = scene(3.5 * dt);
+    const Outcome o = outcome(start, s, integrate(law, s, dt, integrator));
+    c.errors.push_back({o.e - c.reference.e, o.beta - c.reference.beta,
+                        o.duration - c.reference.duration});
+    std::printf("%s dt = tau/%g: e %+.3e beta %+.3e duration/tau %+.3e\n",
+                integrator == mn::Integrator::AdamsBashforth2 ? "AB2   " : "Verlet", steps,
+                c.errors.back().e, c.errors.back().beta, c.errors.back().duration / tau);
+  }
+  return c;
+}
+
+}    // namespace
+
+// Velocity Verlet's damping sees velocities half a step old: its restitutions are first order
+// in dt, within 3 (1 + x)|ln x| dt/tau + (dt/tau)^2 of x (tests/lammps/granmn_run.py
+// restitution_error_bound argues it). Adams-Bashforth 2 with the trapezoidal rule for positions
+// and u_t is second order: over half an oscillation of angular frequency w = pi/tau its error is
+// c (w dt)^2 with c of the order of its error constant (5/12; measured 0.2), so
+// |error| <= (pi dt/tau)^2. A first-order u_t (u_t += v_t(t) dt under AB2, as before) errs by
+// ~0.55 pi dt/tau in beta (0.035 at tau/50, nine times the bound) and halves its error with dt
+// (ratio 2, not 4).
+void expect_orders(const mn::Law &law, Scene (*scene)(double), double tau, double e, double beta)
+{
+  const double steps[3] = {50.0, 100.0, 200.0};
+  for (auto integrator : {mn::Integrator::VelocityVerlet, mn::Integrator::AdamsBashforth2}) {
+    const bool ab2 = integrator == mn::Integrator::AdamsBashforth2;
+    const Convergence c = convergence(law, scene, tau, integrator);
+    EXPECT_NEAR(c.reference.e, e, 1e-4);
+    EXPECT_NEAR(c.reference.beta, beta, 1e-3);    // the line of centres turns by ~1e-4 rad
+    EXPECT_NEAR(c.reference.duration / tau, 1.0, 1e-4);
+    for (int k = 0; k < 3; k++) {
+      const double h = 1.0 / steps[k];    // dt/tau
+      const Outcome &error = c.errors[k];
+      auto bound = [&](double x) {
+        return ab2 ? std::pow(mn::PI * h, 2) : 3 * (1 + x) * std::fabs(std::log(x)) * h + h * h;
+      };
+      EXPECT_LE(std::fabs(error.e), bound(e)) << "dt = tau/" << steps[k];
+      EXPECT_LE(std::fabs(error.beta), bound(beta)) << "dt = tau/" << steps[k];
+      // a contact starts and ends between steps: at most a step off; AB2 second order
+      EXPECT_LE(std::fabs(error.duration / tau), ab2 ? std::pow(mn::PI * h, 2) : h);
+    }
+    // halving dt divides the error by 2^order
+    for (int k = 0; k < 2; k++) {
+      const Outcome &coarse = c.errors[k], &fine = c.errors[k + 1];
+      for (double ratio : {coarse.e / fine.e, coarse.beta / fine.beta}) {
+        if (ab2)
+          EXPECT_GE(ratio, 3.0) << "AB2 is second order; dt = tau/" << steps[k];
+        else
+          EXPECT_TRUE(ratio >= 1.5 && ratio <= 2.6) << "Verlet: first order, ratio " << ratio;
+      }
+      if (ab2) EXPECT_GE(coarse.duration / fine.duration, 3.0);
+    }
+  }
+}
+
+TEST(Convergence, StickingObliqueImpactUnderBothIntegrators)
+{
+  const mn::Law law = mn::derive({1e8, 0.7, 0.7, 1e6});
+  expect_orders(law, oblique_pair, law.tau_c, 0.7, 0.7);
+}
+
+// With beta = e the wall's sticking tangential mode is its normal one (3 eta_t = eta_n and
+// 3 kt = kn, docs/model.md section 3): the tangential restitution against the wall is e_w too.
+TEST(Convergence, StickingObliqueWallBounceUnderBothIntegrators)
+{
+  const mn::Law law = mn::derive({2e5, 0.7, 0.7, 1e6});
+  expect_orders(law, oblique_wall, law.tau_w, law.e_w, law.e_w);
 }
