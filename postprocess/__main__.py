@@ -110,24 +110,34 @@ def main(argv=None):
 
 
 def write_limit(sweep, scenes, out, selection):
-    """The limit command: limit.md and limit.png in out; the verdicts on the terminal."""
-    rows = main_series(scenes.get("frictional_flow", []))
+    """The limit command: limit.md and a figure per series in out (the main series first, then
+    each variant with enough k_n); the verdicts on the terminal."""
+    rows = scenes.get("frictional_flow", [])
     if not rows:
         print(f"postprocess: {sweep}: no usable frictional points", file=sys.stderr)
         return 2
-    runs = [run for o in rows for run in o.get("runs", [o])]
-    decisions = [limit.decide(runs, q) for q in limit.QUANTITIES]
-    levels = {q: limit.decide_within_levels(runs, q) for q in limit.QUANTITIES}
+    main = main_series(rows)
+    labels = [main[0]["label"]] + sorted({o["label"] for o in rows} - {main[0]["label"]})
     out.mkdir(parents=True, exist_ok=True)
-    lines = [f"# The hard-sphere-limit rule on {sweep}", "",
-             f"Selection: {selection.describe()}; {len(runs)} selected runs.", ""]
-    lines += limit.report_lines(decisions, levels)
-    if any(d.fits for d in decisions):
-        figures.limit_figure([d for d in decisions if d.fits], out / "limit.png")
-        lines += ["![the rule's data and fits](limit.png)", ""]
+    lines = [f"# The hard-sphere-limit rule on {sweep}", "", f"Selection: {selection.describe()}.",
+             ""]
+    for number, name in enumerate(labels):
+        runs = [run for o in rows if o["label"] == name for run in o.get("runs", [o])]
+        decisions = [limit.decide(runs, q) for q in limit.QUANTITIES]
+        if number and all(d.verdict.startswith("not applied") for d in decisions):
+            continue    # a variant at too few k_n (a check of the step at one k_n)
+        levels = {q: limit.decide_within_levels(runs, q) for q in limit.QUANTITIES}
+        title = f"{'main series' if number == 0 else 'variant'} {name or '(no variable varies)'}"
+        lines += [f"## {title}: {len(runs)} selected runs", ""]
+        lines += limit.report_lines(decisions, levels)
+        if any(d.fits for d in decisions):
+            figure = f"limit{number}.png"
+            figures.limit_figure([d for d in decisions if d.fits], out / figure)
+            lines += [f"![the rule's data and fits]({figure})", ""]
+        for d in decisions:
+            print(f"{title}: {limit.NAMES[d.quantity]}: {d.verdict}" +
+                  (f" ({d.why})" if d.why else ""))
     (out / "limit.md").write_text("\n".join(lines))
-    for d in decisions:
-        print(f"{limit.NAMES[d.quantity]}: {d.verdict}" + (f" ({d.why})" if d.why else ""))
     print(f"limit report: {out / 'limit.md'}")
     return 0
 

@@ -125,5 +125,5 @@ def test_limit_command_writes_the_verdicts_and_the_figure(tmp_path, capsys):
     text = (tmp_path / "limit" / "limit.md").read_text()
     assert "t_c - N_c tau_c: **finite**" in text
     assert "time with two or more contacts: **vanishing**" in text
-    assert (tmp_path / "limit" / "limit.png").stat().st_size > 10000
+    assert (tmp_path / "limit" / "limit0.png").stat().st_size > 10000
     assert "limit report:" in capsys.readouterr().out
