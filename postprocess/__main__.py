@@ -1,5 +1,5 @@
 """python3 -m postprocess {report,compare,transition,limit} SWEEP_DIR [--output DIR]
-        [--resolution T] [--energy-range LOW HIGH] [--min-span T]
+        [--resolution T] [--energy-range LOW HIGH] [--min-span T] [--max-width W]
 python3 -m postprocess summarize RESULTS_DIR [--to DIR]
 
 report      tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
@@ -20,7 +20,10 @@ T time units (default 1).
 paper's 0.4 0.8); other values show whether a conclusion depends on the window.
 --min-span T: the shortest steady part kept, in time units (default: the paper's 500; the
 stiff preset's runs average over 300 and use 250, docs/hard_sphere_limit.md). Summaries hold
-the steady parts found with one min-span: summarize and read them with the same."""
+the steady parts found with one min-span: summarize and read them with the same.
+--max-width W: the widest range of E(t) (after averaging over --resolution) a steady part may
+have (default 0.45; the stiff preset's rule uses 1.0, docs/hard_sphere_limit.md); summaries
+likewise hold one."""
 import argparse
 import sys
 from pathlib import Path
@@ -49,6 +52,7 @@ def main(argv=None):
     parser.add_argument("--energy-range", type=float, nargs=2, default=(0.4, 0.8),
                         metavar=("LOW", "HIGH"))
     parser.add_argument("--min-span", type=float, default=Selection.min_length)
+    parser.add_argument("--max-width", type=float, default=Selection.max_width)
     args = parser.parse_args(argv)
     if not args.resolution > 0:
         parser.error(f"--resolution {args.resolution:g} must be > 0")
@@ -57,8 +61,10 @@ def main(argv=None):
         parser.error(f"--energy-range {low:g} {high:g} must satisfy 0 <= LOW < HIGH")
     if not args.min_span > 0:
         parser.error(f"--min-span {args.min_span:g} must be > 0")
+    if not args.max_width > 0:
+        parser.error(f"--max-width {args.max_width:g} must be > 0")
     selection = Selection(resolution=args.resolution, energy_range=(low, high),
-                          min_length=args.min_span)
+                          min_length=args.min_span, max_width=args.max_width)
     if args.to is not None and args.command != "summarize":
         parser.error("--to is for summarize")
     if args.command == "summarize":
