@@ -6,6 +6,7 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "fix_checkpoint_mn.h"
 #include "fix_contacts_mn.h"
 #include "fix_per_atom_state.h"
 #include "fix_nve_ab2.h"
@@ -49,6 +50,8 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
        (lammpsplugin_factory2 *) &fix_creator<FixContactsMN>},
       {"nve/ab2", "Adams-Bashforth 2 / trapezoidal integrator for disks (Mitarai-Nakanishi)",
        (lammpsplugin_factory2 *) &fix_creator<FixNVEAB2>},
+      {"checkpoint/mn", "A run's identity in its restart files, checked on resuming",
+       (lammpsplugin_factory2 *) &fix_creator<FixCheckpointMN>},
       {"GRANMN/ATOM_IDS", "internal to pair_style gran/mn: each atom's ID, carried with it",
        (lammpsplugin_factory2 *) &fix_creator<FixAtomIDs>}};
   for (const auto &fix : fixes) {

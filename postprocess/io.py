@@ -153,12 +153,9 @@ def read_counts(point):
     return {fix_columns.get(name, name): values for name, values in table.items()}
 
 
-def read_profile(point):
-    """profile.txt (fix ave/chunk, one block): bin centre, count, density, vx, vy."""
-    path = Path(point) / "profile.txt"
-    if not path.exists():
-        raise DataError(f"{path}: missing")
-    lines = [l for l in path.read_text().splitlines() if l.strip() and not l.startswith("#")]
+def profile_block(path, lines, start=1):
+    """One fix ave/chunk block (header 'step chunks count', then the bins): bin centre, count,
+    density, vx, vy as a 2D array."""
     if not lines:
         raise DataError(f"{path}: no data")
     try:
@@ -170,12 +167,44 @@ def read_profile(point):
     if len(body) != nchunks:
         raise DataError(f"{path}: {len(body)} bins, the header says {nchunks}: truncated?")
     data = []
-    for number, line in enumerate(body, 2):
+    for number, line in enumerate(body, start + 1):
         words = line.split()
         if len(words) != 6:
             raise DataError(f"{path}: bin line {line!r} does not have 6 columns")
         data.append(numbers(path, number, words[1:]))
-    data = np.array(data)
+    return np.array(data)
+
+
+def read_profile(point):
+    """profile.txt (fix ave/chunk, one block): bin centre, count, density, vx, vy. A run with
+    checkpoints writes profile_chunks.txt instead: one block per chunk of the span, headed by
+    '# chunk START END SAMPLES'; the span's profile is their mean weighted by SAMPLES (each
+    block is a running average over its SAMPLES samples; a bin a block lacks counts as 0)."""
+    path = Path(point) / "profile.txt"
+    chunks = Path(point) / "profile_chunks.txt"
+    if not path.exists() and chunks.exists():
+        blocks, weights = [], []
+        for line in chunks.read_text().splitlines():
+            if line.startswith("# chunk"):
+                blocks.append([])
+                weights.append(float(line.split()[4]))
+            elif line.strip() and blocks:
+                blocks[-1].append(line)
+        if not blocks:
+            raise DataError(f"{chunks}: no chunk")
+        arrays = [profile_block(chunks, block) for block in blocks]
+        longest = max(arrays, key=len)
+        total = np.zeros_like(longest)
+        for array, weight in zip(arrays, weights):
+            total[:len(array), 1:] += weight * array[:, 1:]
+        total[:, 1:] /= sum(weights)
+        total[:, 0] = longest[:, 0]
+        data = total
+    elif not path.exists():
+        raise DataError(f"{path}: missing")
+    else:
+        lines = [l for l in path.read_text().splitlines() if l.strip() and not l.startswith("#")]
+        data = profile_block(path, lines)
     return {"y": data[:, 0], "count": data[:, 1], "density": data[:, 2], "vx": data[:, 3],
             "vy": data[:, 4]}
 

@@ -24,7 +24,10 @@ lmp printed), timing.json (wall and CPU seconds), running.json while its lmp run
 (the ERROR lines and the output) if it failed, and done.txt, written by the deck last.
 A point is done when done.txt and timing.json carry the token of one run (the runner gives
 each run its own and writes timing.json once that run has ended): such a point is never run
-again, so a killed sweep resumes where it stopped; any other point is run again from scratch.
+again, so a killed sweep resumes where it stopped. Any other point resumes from its last
+checkpoint (checkpoint_interval > 0: checkpoint.txt names the last complete one; its outputs are
+cut back to that step, a half-written line or frame included; docs/sweeps.md) if its point.json
+is this point's, else it is run again from scratch.
 
 The runner owns its lmp processes: they die with it (kill -9 included), SIGTERM or SIGINT
 stops them and the sweep (exit status 128 + the signal); it refuses to start while a point's
@@ -58,6 +61,7 @@ import tomllib
 from itertools import product
 from pathlib import Path
 
+import checkpoints
 from postprocess.law import LawError, derived    # scripts/postprocess links the package
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -67,7 +71,7 @@ SCENES = tuple(sorted(deck.stem for deck in (ROOT / "inputs").glob("*.lmp")
                       if re.search(r"^variable scene index (\w+)", deck.read_text(), re.M)))
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 # Deck variables the runner sets itself for every point.
-RESERVED = {"plugin", "lib", "out", "run_token"}
+RESERVED = {"plugin", "lib", "out", "run_token", "resume"}
 # What LAMMPS's input syntax does not carry in a file name: a word ends at whitespace;
 # quotes, $ (a variable) and # (a comment) are syntax.
 PATH_SYNTAX = {" ": "a space", "\t": "a tab", "\n": "a newline", '"': "a quote (\")",
@@ -300,6 +304,23 @@ def prepare(directory, point):
     (directory / "point.json").write_text(json.dumps(point, indent=1, sort_keys=True) + "\n")
 
 
+def resume_or_prepare(directory, point):
+    """{"resume": N} for a point whose directory holds a checkpoint (checkpoint.N.restart) of the
+    same point, its outputs cut back to it; else {} and a fresh directory. The deck itself
+    refuses a checkpoint of another point or plugin layout, by name (fix checkpoint/mn)."""
+    try:
+        same_point = json.loads((directory / "point.json").read_text()) == point
+        latest = same_point and checkpoints.latest(directory)
+        if latest:
+            step, slot = latest
+            checkpoints.cut_outputs(directory, step)
+            return {"resume": slot}
+    except (OSError, ValueError, KeyError):
+        pass
+    prepare(directory, point)
+    return {}
+
+
 def completed(directory):
     """Whether a point's outputs are those of a run that ended: done.txt (the deck's last
     output) and timing.json (the runner's, once it saw the run end) carry the same run token,
@@ -455,10 +476,10 @@ def run_serial(point, directory, paths, env):
     if _stopped_by:
         return "stopped", 0.0, ""
     token = secrets.token_hex(8)
-    prepare(directory, point)
+    resume = resume_or_prepare(directory, point)
     command = [str(paths["lmp"]), "-in", str(ROOT / "inputs" / f"{point['scene']}.lmp"),
                "-log", str(directory / "log.lammps"), "-screen", "none", "-nocite"]
-    for name, value in point_variables(point, directory, paths, token).items():
+    for name, value in {**point_variables(point, directory, paths, token), **resume}.items():
         command += ["-var", name, format_value(value)]
     (directory / "command.txt").write_text(shlex.join(command) + "\n")
     proc = start(command, directory / "run.out", env, [directory])
@@ -478,10 +499,11 @@ def run_partitions(batch, batch_dir, paths, env):
     directories = [directory for _, directory in batch]
     tokens = [secrets.token_hex(8) for _ in batch]
     for (point, directory), token in zip(batch, tokens):
-        prepare(directory, point)
+        resume = resume_or_prepare(directory, point)
         lines = [f"log {directory / 'log.lammps'}"]
         lines += [f"variable {name} index {format_value(value)}"
-                  for name, value in point_variables(point, directory, paths, token).items()]
+                  for name, value in {**point_variables(point, directory, paths, token),
+                                      **resume}.items()]
         lines.append(f"include {ROOT / 'inputs' / (point['scene'] + '.lmp')}")
         (directory / "settings.lmp").write_text("\n".join(lines) + "\n")
     driver = batch_dir / "driver.lmp"

@@ -1,0 +1,170 @@
+"""Checkpoints (inputs/lib/checkpoint.lmp, fix checkpoint/mn): a point killed with kill -9
+mid-chunk and resumed by scripts/sweep.py from its last checkpoint ends with the same outputs
+as the uninterrupted checkpointed run; what the killed run left half-written is never taken;
+a checkpoint of another point, another restart layout or a damaged file is refused."""
+import glob
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from test_sweep import BUILD, ROOT, SWEEP, kill_session, sweep
+
+# A contact-rich stretch: the frictional pile falls and flows (friction, multiple contacts,
+# the floor wall); the single disk bounces over its bumps. Checkpoints every 2 time units, the
+# transient's end (4) falls between two of them.
+CONFIGS = {
+    "frictional_flow": 'scene = "frictional_flow"\nrun_time = 24\naverage_start = 5\n'
+                       'stop_energy = 0\nrows = "yes"\n',
+    "single_disk": 'scene = "single_disk"\nrun_time = 40\naverage_start = 5\n',
+}
+
+
+def write_config(tmp_path, scene, interval=2):
+    path = tmp_path / f"{scene}.toml"
+    path.write_text(f'name = "c"\n[defaults]\ncheckpoint_interval = {interval}\n'
+                    f'{CONFIGS[scene]}[[grid]]\nseed = 1\n' if scene != "single_disk" else
+                    f'name = "c"\n[defaults]\ncheckpoint_interval = {interval}\n'
+                    f'{CONFIGS[scene]}[[grid]]\nkn = 5e4\n')
+    return path
+
+
+def data_lines(path):
+    return [line for line in path.read_text().splitlines() if not line.startswith("#")]
+
+
+def point_dir(output):
+    return Path(glob.glob(str(output / "*" / "*"))[0])
+
+
+def kill_mid_chunk(config, output):
+    """Starts the sweep and kills it (kill -9, its lmp with it) once the run has written past
+    its second checkpoint; the checkpoint step it can resume from."""
+    runner = subprocess.Popen(SWEEP + [str(config), "--output", str(output), "--build",
+                                       str(BUILD), "--jobs", "1"], stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL, start_new_session=True)
+    deadline = time.time() + 300
+    while time.time() < deadline:
+        logs = glob.glob(str(output / "*" / "*" / "checkpoint.txt"))
+        lines = Path(logs[0]).read_text().splitlines() if logs else []
+        if len(lines) >= 2:
+            step = int(lines[1].split()[1])
+            energy = (Path(logs[0]).parent / "energy.txt").read_text().split()
+            if energy and energy[-1] and len([1 for line in Path(logs[0]).parent.joinpath(
+                    "energy.txt").read_text().splitlines() if line[:1].isdigit() and
+                    int(line.split()[0]) > step]) >= 3:
+                break
+        time.sleep(0.005)
+    os.killpg(runner.pid, signal.SIGKILL)
+    runner.wait()
+    directory = point_dir(output)
+    assert not (directory / "done.txt").exists(), "the run ended before it could be killed"
+    return directory, step
+
+
+@pytest.mark.parametrize("scene", sorted(CONFIGS))
+def test_killed_point_resumes_from_its_checkpoint_to_the_same_outputs(tmp_path, scene):
+    """The uninterrupted run and the resumed one pass through the same LAMMPS setups at the
+    same steps (each chunk between checkpoints is one `run`), and the restart file holds the
+    full state (positions, velocities, contact histories, the wall's and the counters' per-atom
+    state and window): the outputs agree bit for bit. Any loss (a counter's window restarted,
+    a contact's history dropped, a setup the other run did not have, an output line written
+    twice or lost) changes energy.txt at its 10 digits within the first chunk after the
+    resume, and the flow's chaos amplifies even a 1e-16 difference to all digits by the end."""
+    config = write_config(tmp_path, scene)
+    sweep(config, tmp_path / "whole", "--jobs", "1")
+    directory, step = kill_mid_chunk(config, tmp_path / "killed")
+    # a line cut mid-way by the kill, and a done.txt without this run's token
+    with open(directory / "energy.txt", "a") as energy:
+        energy.write(f"{step + 10**6} 0.12")
+    (directory / "done.txt").write_text("kn 1 steps 1 dt 1\n")
+    proc = sweep(config, tmp_path / "killed", "--jobs", "1")
+    assert "1 to run" in proc.stdout
+    assert "resuming from checkpoint" in (directory / "log.lammps").read_text()
+    whole = point_dir(tmp_path / "whole")
+    names = ["energy.txt", "snapshots.lammpstrj"]
+    names += ["counts.txt", "profile_chunks.txt", "contacts.txt"] if scene != "single_disk" \
+        else ["trajectory.txt"]
+    for name in names:    # (each LAMMPS run heads its lines with the column names: not compared)
+        assert data_lines(directory / name) == data_lines(whole / name), name
+    assert not list(directory.glob("checkpoint*")), "checkpoints left after the run completed"
+    if scene != "single_disk":
+        from postprocess.io import read_profile
+        # 100 disks in the bins, on average over the span's chunks
+        assert read_profile(directory)["count"].sum() == pytest.approx(100, abs=1e-5)
+
+
+def test_truncated_done_is_not_taken(tmp_path):
+    """done.txt without the token of the run that timing.json recorded is rerun, not read."""
+    config = write_config(tmp_path, "single_disk", interval=5)
+    sweep(config, tmp_path / "out", "--jobs", "1")
+    directory = point_dir(tmp_path / "out")
+    (directory / "done.txt").write_text("kn 5e4 steps")
+    proc = sweep(config, tmp_path / "out", "--jobs", "1")
+    assert "1 to run" in proc.stdout and "run " in (directory / "done.txt").read_text()
+
+
+def resume_by_hand(tmp_path, deck_vars, restart):
+    """lmp on the single-disk deck resuming from `restart` (put where the deck looks)."""
+    out = tmp_path / "resume"
+    out.mkdir(exist_ok=True)
+    (out / "checkpoint.1.restart").write_bytes(restart)
+    command = [str(BUILD / "lammps" / "lmp"), "-in", str(ROOT / "inputs" / "single_disk.lmp"),
+               "-screen", "none", "-log", str(out / "log.lammps"), "-nocite"]
+    variables = {"plugin": str(BUILD / "plugin" / "granmnplugin.so"),
+                 "lib": str(ROOT / "inputs" / "lib"), "out": str(out), "run_token": "t",
+                 "checkpoint_interval": 5, "run_time": 40, "average_start": 5, "resume": 1,
+                 **deck_vars}
+    for name, value in variables.items():
+        command += ["-var", name, str(value)]
+    proc = subprocess.run(command, capture_output=True, text=True, timeout=120)
+    return proc.returncode, (out / "log.lammps").read_text(errors="replace")
+
+
+@pytest.fixture(scope="module")
+def checkpoint_file(tmp_path_factory):
+    """A checkpoint of the single disk (kn 5e4, run_time 40, checkpoint_interval 5)."""
+    tmp = tmp_path_factory.mktemp("ckpt")
+    config = tmp / "c.toml"
+    config.write_text('name = "c"\n[defaults]\ncheckpoint_interval = 5\n'
+                      f'{CONFIGS["single_disk"]}[[grid]]\nkn = 5e4\n')
+    directory, _ = kill_mid_chunk(config, tmp / "out")
+    return (directory / "checkpoint.1.restart").read_bytes()
+
+
+def test_checkpoint_of_the_same_point_is_taken(tmp_path, checkpoint_file):
+    status, log = resume_by_hand(tmp_path, {"kn": "50000"}, checkpoint_file)
+    assert status == 0, log[-2000:]
+
+
+def test_checkpoint_of_another_point_is_refused(tmp_path, checkpoint_file):
+    status, log = resume_by_hand(tmp_path, {"kn": "1e5"}, checkpoint_file)
+    assert status != 0
+    assert "is a checkpoint of point 'single_disk,kn=50000," in log and "kn=1e5" in log
+
+
+def test_checkpoint_of_another_layout_is_refused(tmp_path, checkpoint_file):
+    """The layout number is the first double of fix checkpoint/mn's record: written as 1,
+    changed here to 2 (a file of a later plugin)."""
+    import struct
+    marker = b"checkpoint/mn"
+    at = checkpoint_file.index(marker)
+    layout = struct.pack("d", 1.0)
+    where = checkpoint_file.index(layout, at)
+    damaged = checkpoint_file[:where] + struct.pack("d", 2.0) + checkpoint_file[where + 8:]
+    status, log = resume_by_hand(tmp_path, {"kn": "50000"}, damaged)
+    assert status != 0 and "restart layout 2 of the gran/mn styles" in log
+
+
+def test_damaged_checkpoint_is_refused(tmp_path, checkpoint_file):
+    """A file cut short (a disk that filled up) stops the run with read_restart's ERROR after
+    the line naming the file; it is never run from."""
+    status, log = resume_by_hand(tmp_path, {"kn": "50000"}, checkpoint_file[:len(checkpoint_file) // 2])
+    assert status != 0
+    assert "resuming from checkpoint" in log and "ERROR" in log
+    assert "Loop time" not in log
