@@ -3,7 +3,8 @@
    keyed on LAMMPS_VERSION_NUMBER (yyyymmdd of src/version.h; CMakeLists.txt defines it).
    Tested: 29 Sep 2021 (Debian 12), 4 Feb 2025 (Debian trixie) and 4 Jul 2026 (Debian sid).
    The cut-offs are the releases that changed each API (doc/src/Developer_updating.rst of
-   current LAMMPS).
+   current LAMMPS); where that names none, a release known to have the change or the first
+   tested one, as said at each.
 ------------------------------------------------------------------------- */
 
 #ifndef GRANMN_COMPAT_H
@@ -52,9 +53,9 @@ inline void request_size_list(LAMMPS_NS::Neighbor *neighbor, LAMMPS_NS::Pair *pa
 }
 
 // Modify's fix look-ups: get_fix_by_id() and get_fix_by_style() (lammps/lammps PR #3001, late
-// 2021; not in the 29 Sep 2021 stable line) replace find_fix() and the public arrays fix[]/nfix,
-// which 4 Jul 2026 marks deprecated and upstream is taking out of the API. The cut-off errs
-// late, at a release sure to have them; the arrays serve every release before it.
+// 2021; not in the 29 Sep 2021 stable line) replace find_fix(), deprecated in 4 Jul 2026's
+// modify.h, and the arrays fix[]/nfix, which upstream means to make private (issue #2870).
+// The cut-off errs late, at a later release that has them; the arrays serve every one before.
 inline LAMMPS_NS::Fix *fix_by_id(LAMMPS_NS::Modify *modify, const std::string &id)
 {
 #if LAMMPS_VERSION_NUMBER >= 20220324
