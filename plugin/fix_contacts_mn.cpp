@@ -82,10 +82,8 @@ int FixContactsMN::setmask()
 
 void FixContactsMN::init()
 {
-  int count = 0;
-  for (int k = 0; k < modify->nfix; k++)
-    if (utils::strmatch(modify->fix[k]->style, "^contacts/mn")) count++;
-  if (count > 1) error->all(FLERR, "Only one fix contacts/mn may be defined");
+  if (granmn::fixes_by_style(modify, "^contacts/mn").size() > 1)
+    error->all(FLERR, "Only one fix contacts/mn may be defined");
   if (!force->pair_match("gran/mn", 1) && !granmn::first_fix(modify, "^wall/gran/mn"))
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");

@@ -1,16 +1,24 @@
 /* -*- c++ -*- ----------------------------------------------------------
    The LAMMPS API differences between the generations the plugin builds against, in one place,
    keyed on LAMMPS_VERSION_NUMBER (yyyymmdd of src/version.h; CMakeLists.txt defines it).
-   Tested: 29 Sep 2021 (Debian 12) and 4 Feb 2025 (Debian trixie). The cut-offs are the
-   releases that changed each API (doc/src/Developer_updating.rst of current LAMMPS).
+   Tested: 29 Sep 2021 (Debian 12), 4 Feb 2025 (Debian trixie) and 4 Jul 2026 (Debian sid).
+   The cut-offs are the releases that changed each API (doc/src/Developer_updating.rst of
+   current LAMMPS); where that names none, a release known to have the change or the first
+   tested one, as said at each.
 ------------------------------------------------------------------------- */
 
 #ifndef GRANMN_COMPAT_H
 #define GRANMN_COMPAT_H
 
 #include "comm.h"
+#include "fix.h"
+#include "modify.h"
 #include "neigh_request.h"
 #include "neighbor.h"
+#include "utils.h"
+
+#include <string>
+#include <vector>
 
 #ifndef LAMMPS_VERSION_NUMBER
 #error "LAMMPS_VERSION_NUMBER (yyyymmdd) must be defined: CMakeLists.txt reads it from src/version.h"
@@ -44,6 +52,34 @@ inline void request_size_list(LAMMPS_NS::Neighbor *neighbor, LAMMPS_NS::Pair *pa
 #endif
 }
 
+// Modify's fix look-ups: get_fix_by_id() and get_fix_by_style() (lammps/lammps PR #3001, late
+// 2021; not in the 29 Sep 2021 stable line) replace find_fix(), deprecated in 4 Jul 2026's
+// modify.h, and the arrays fix[]/nfix, which upstream means to make private (issue #2870).
+// The cut-off errs late, at a later release that has them; the arrays serve every one before.
+inline LAMMPS_NS::Fix *fix_by_id(LAMMPS_NS::Modify *modify, const std::string &id)
+{
+#if LAMMPS_VERSION_NUMBER >= 20220324
+  return modify->get_fix_by_id(id);
+#else
+  const int ifix = modify->find_fix(id);
+  return ifix >= 0 ? modify->fix[ifix] : nullptr;
+#endif
+}
+
+// The fixes whose style matches a regex (utils::strmatch), in the order they were defined.
+inline std::vector<LAMMPS_NS::Fix *> fixes_by_style(LAMMPS_NS::Modify *modify,
+                                                    const std::string &style)
+{
+#if LAMMPS_VERSION_NUMBER >= 20220324
+  return modify->get_fix_by_style(style);
+#else
+  std::vector<LAMMPS_NS::Fix *> matches;
+  for (int k = 0; k < modify->nfix; k++)
+    if (LAMMPS_NS::utils::strmatch(modify->fix[k]->style, style)) matches.push_back(modify->fix[k]);
+  return matches;
+#endif
+}
+
 }    // namespace granmn
 
 // Pair::transfer_history gained the two atom types with the GranularModel refactor (early
@@ -53,6 +89,14 @@ inline void request_size_list(LAMMPS_NS::Neighbor *neighbor, LAMMPS_NS::Pair *pa
   transfer_history(double *source, double *target, int, int)
 #else
 #define GRANMN_TRANSFER_HISTORY(source, target) transfer_history(double *source, double *target)
+#endif
+
+// Pair::atom2cut() and Pair::radii2cut(), through which a finite-size pair style gave neighbor
+// multi its cutoffs, are gone by 4 Jul 2026 (dropped after 4 Feb 2025): LAMMPS takes 2 r and
+// r_i + r_j itself, the values gran/mn returned. The cut-off is the first tested release
+// without them.
+#if LAMMPS_VERSION_NUMBER < 20260704
+#define GRANMN_PAIR_HAS_ATOM2CUT 1
 #endif
 
 #endif

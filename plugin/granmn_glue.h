@@ -7,6 +7,7 @@
 
 #include "error.h"
 #include "fix_nve_sphere.h"
+#include "granmn_compat.h"
 #include "lammps.h"
 #include "modify.h"
 #include "update.h"
@@ -18,13 +19,11 @@
 
 namespace granmn {
 
-// The first fix whose style matches a regex (utils::strmatch), or nullptr: Modify's own look-ups
-// by style differ between LAMMPS generations, its list of fixes does not.
+// The first fix whose style matches a regex (utils::strmatch), or nullptr.
 inline LAMMPS_NS::Fix *first_fix(LAMMPS_NS::Modify *modify, const char *style)
 {
-  for (int k = 0; k < modify->nfix; k++)
-    if (LAMMPS_NS::utils::strmatch(modify->fix[k]->style, style)) return modify->fix[k];
-  return nullptr;
+  const std::vector<LAMMPS_NS::Fix *> matches = fixes_by_style(modify, style);
+  return matches.empty() ? nullptr : matches.front();
 }
 
 // The time over which a force evaluation advances u_t: none for the forces LAMMPS re-evaluates
@@ -54,14 +53,12 @@ struct NVESphereInertia : LAMMPS_NS::FixNVESphere {
 // 'disc' integrates the spins of spheres, and beta comes out wrong (0.661 for 0.7).
 inline void check_disc_integration(LAMMPS_NS::LAMMPS *lmp, const char *who)
 {
-  LAMMPS_NS::Modify *modify = lmp->modify;
-  for (int k = 0; k < modify->nfix; k++)
-    if (strcmp(modify->fix[k]->style, "nve/sphere") == 0 &&
-        NVESphereInertia::of(modify->fix[k]) != 0.5)
+  for (LAMMPS_NS::Fix *fix : fixes_by_style(lmp->modify, "^nve/sphere$"))
+    if (NVESphereInertia::of(fix) != 0.5)
       lmp->error->all(FLERR,
                       "{}: fix {} (nve/sphere) integrates spheres; the law is for disks: add "
                       "the keyword disc (fix {} ... nve/sphere disc)",
-                      who, modify->fix[k]->id, modify->fix[k]->id);
+                      who, fix->id, fix->id);
 }
 
 inline const char *integrator_name(mn::Integrator integrator)

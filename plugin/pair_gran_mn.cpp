@@ -56,7 +56,7 @@ PairGranMN::PairGranMN(LAMMPS *lmp) :
 
 PairGranMN::~PairGranMN()
 {
-  if (modify->find_fix("GRANMN_ATOM_IDS" + std::to_string(instance_me)) >= 0)
+  if (granmn::fix_by_id(modify, "GRANMN_ATOM_IDS" + std::to_string(instance_me)))
     modify->delete_fix("GRANMN_ATOM_IDS" + std::to_string(instance_me));
   // replaced by another pair style: the former wall types interact again (at exit the
   // neighbor class is already gone)
@@ -446,8 +446,9 @@ void PairGranMN::init_style()
   // the history is keyed by atom IDs: say when they have changed under it
   if (history) {
     const std::string ids = "GRANMN_ATOM_IDS" + std::to_string(instance_me);
-    if (modify->find_fix(ids) < 0) modify->add_fix(ids + " all GRANMN/ATOM_IDS");
-    const bigint changed = ((FixAtomIDs *) modify->fix[modify->find_fix(ids)])->renumbered();
+    Fix *atom_ids = granmn::fix_by_id(modify, ids);
+    if (!atom_ids) atom_ids = modify->add_fix(ids + " all GRANMN/ATOM_IDS");
+    const bigint changed = static_cast<FixAtomIDs *>(atom_ids)->renumbered();
     if (changed && comm->me == 0)
       error->warning(FLERR, "pair_style gran/mn: {} atoms have other IDs than in the last run "
                             "(delete_atoms compress yes?): their contacts lost their history "
@@ -613,6 +614,7 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
   return 0.0;
 }
 
+#ifdef GRANMN_PAIR_HAS_ATOM2CUT
 double PairGranMN::atom2cut(int i)
 {
   return 2.0 * atom->radius[i];
@@ -622,3 +624,4 @@ double PairGranMN::radii2cut(double r1, double r2)
 {
   return r1 + r2;
 }
+#endif

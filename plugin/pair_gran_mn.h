@@ -31,8 +31,10 @@ class PairGranMN : public Pair {
   void read_restart_settings(FILE *) override;
   double single(int, int, int, int, double, double, double, double &) override;
   void GRANMN_TRANSFER_HISTORY(, ) override;
+#ifdef GRANMN_PAIR_HAS_ATOM2CUT
   double atom2cut(int) override;
   double radii2cut(double, double) override;
+#endif
 
   // The law as derived for the current settings; the wall fix takes it from here.
   const mn::Law &contact_law() const { return law; }

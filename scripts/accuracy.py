@@ -2,7 +2,7 @@
 """What accuracy costs: dt/tau_c x integrator against the error of each observable and the
 wall time per unit of simulated time.
 
-    scripts/accuracy.py [--output results/accuracy] [--quick]
+    scripts/accuracy.py [--output results/accuracy] [--quick] [--build build]
 
 For dt/tau_c in {1/10, 1/20, 1/50, 1/100, 1/200} and both integrators it measures: the
 restitution e of a binary collision (against the requested e), the bouncing ball's bounce count,
@@ -25,8 +25,6 @@ from postprocess.study import analyse, fit_power    # scripts/postprocess links 
 
 ROOT = Path(__file__).resolve().parent.parent
 
-LMP = ROOT / "build" / "lammps" / "lmp"
-PLUGIN = ROOT / "build" / "plugin" / "granmnplugin.so"
 FRACTIONS = [0.1, 0.05, 0.02, 0.01, 0.005]
 INTEGRATORS = ["verlet", "ab2"]
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
@@ -36,9 +34,9 @@ SCENES = {    # scene: (kn, run_time, average_start)
 }
 
 
-def lmp(deck, variables):
-    command = [str(LMP), "-in", str(ROOT / "inputs" / deck), "-log", "none",
-               "-var", "plugin", str(PLUGIN)]
+def lmp(build, deck, variables):
+    command = [str(build / "lammps" / "lmp"), "-in", str(ROOT / "inputs" / deck), "-log", "none",
+               "-var", "plugin", str(build / "plugin" / "granmnplugin.so")]
     for name, value in variables.items():
         command += ["-var", name, str(value)]
     out = subprocess.run(command, capture_output=True, text=True, env=ENV)
@@ -47,15 +45,17 @@ def lmp(deck, variables):
     return out.stdout
 
 
-def deterministic():
+def deterministic(build):
     """e of a binary collision and the bouncing ball's bounces, per integrator and fraction."""
     rows = {}
     for integrator in INTEGRATORS:
         for fraction in FRACTIONS:
-            out = lmp("two_disk_collision.lmp", dict(dt_fraction=fraction, integrator=integrator))
+            out = lmp(build, "two_disk_collision.lmp",
+                      dict(dt_fraction=fraction, integrator=integrator))
             e = float(re.search(r"measured e = (\S+)", out).group(1))
-            out = lmp("bouncing_ball.lmp", dict(dt_fraction=fraction / 1.41,    # dt ~ tau_c fraction
-                                                integrator=integrator, kn=2e5))
+            out = lmp(build, "bouncing_ball.lmp",
+                      dict(dt_fraction=fraction / 1.41,    # dt ~ tau_c fraction
+                           integrator=integrator, kn=2e5))
             bounces = float(re.search(r"bounces (\S+)", out).group(1))
             rows[integrator, fraction] = dict(e=e, bounces=bounces)
             print(f"  {integrator} dt = tau_c*{fraction}: e = {e:.5f}, bounces {bounces:.0f}",
@@ -63,7 +63,7 @@ def deterministic():
     return rows
 
 
-def scene_sweep(output, quick):
+def scene_sweep(build, output, quick):
     config = output / "scenes.toml"
     lines = ['name = "accuracy"', "[defaults]", "dt_cap = 1.0"]
     for scene, (kn, run_time, average_start) in SCENES.items():
@@ -78,7 +78,7 @@ def scene_sweep(output, quick):
               "dt_fraction = 0.01", 'integrator = "verlet"']
     config.write_text("\n".join(lines) + "\n")
     subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"), str(config),
-                    "--output", str(output / "runs")], check=True, env=ENV)
+                    "--output", str(output / "runs"), "--build", str(build)], check=True, env=ENV)
     scenes, left_out, _, _ = analyse(output / "runs")
     for point, reason in left_out:
         print(f"left out {point}: {reason}")
@@ -96,12 +96,14 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--output", type=Path, default=ROOT / "results" / "accuracy")
     parser.add_argument("--quick", action="store_true", help="a third of the spans")
+    parser.add_argument("--build", type=Path, default=ROOT / "build",
+                        help="the build whose lmp and plugin run (build-2026/ for LAMMPS 2026)")
     args = parser.parse_args()
     args.output.mkdir(parents=True, exist_ok=True)
     print("binary collision and bouncing ball:")
-    det = deterministic()
+    det = deterministic(args.build)
     print("scenes:")
-    scenes = scene_sweep(args.output, args.quick)
+    scenes = scene_sweep(args.build, args.output, args.quick)
 
     md = ["# What accuracy costs", "",
           "Written by `scripts/accuracy.py`. Errors: e against the requested 0.7; bounces, E, N_w, "

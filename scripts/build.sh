@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs what is missing, then configures and builds LAMMPS, the plugin and the tests
 # (incremental after the first time).
-#   scripts/build.sh [--lammps debian12|2025] [cmake options for the first configure]
+#   scripts/build.sh [--lammps debian12|2025|2026] [cmake options for the first configure]
 # debian12 (default): Debian 12's LAMMPS (29 Sep 2021), in build/
 # 2025:               LAMMPS 4 Feb 2025 (Debian trixie's source), in build-2025/
+# 2026:               LAMMPS 4 Jul 2026 (Debian sid's source), in build-2026/
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 source "$root/scripts/lammps-generation.sh" "$@"

@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
 # Prints the path of an unpacked LAMMPS source tree from Debian's archive, fetching it with
 # `apt-get source` into a cache directory on first use.
-# Usage: get-lammps-source.sh CACHE_DIR [debian12|2025]
+# Usage: get-lammps-source.sh CACHE_DIR [debian12|2025|2026]
 #   debian12 (default): the LAMMPS Debian 12 packages (20220106, "29 Sep 2021 - Update 2")
 #   2025:               the LAMMPS of Debian's trixie suite (20250204, "4 Feb 2025")
+#   2026:               the LAMMPS of Debian's sid suite (20260704, "4 Jul 2026")
 set -euo pipefail
-cache=${1:?usage: get-lammps-source.sh CACHE_DIR [debian12|2025]}
+cache=${1:?usage: get-lammps-source.sh CACHE_DIR [debian12|2025|2026]}
 generation=${2:-debian12}
 case $generation in
   debian12) tree="$cache/lammps-src"; suite=""; version=20220106 ;;
   2025)     tree="$cache/lammps-2025-src"; suite=trixie; version=20250204 ;;
-  *) echo "get-lammps-source.sh: unknown LAMMPS generation '$generation' (debian12 or 2025)" >&2
+  2026)     tree="$cache/lammps-2026-src"; suite=sid; version=20260704 ;;
+  *) echo "get-lammps-source.sh: unknown LAMMPS generation '$generation' (debian12, 2025 or 2026)" >&2
      exit 2 ;;
 esac
 if [ -f "$tree/.unpacked" ]; then echo "$tree"; exit 0; fi
@@ -19,7 +21,7 @@ sudo=""
 [ "$(id -u)" -ne 0 ] && sudo="sudo"
 
 # Debian's deb entries for the main archive (not the security one); their deb-src twins are
-# derived from them, for this machine's suites or for trixie.
+# derived from them, for this machine's suites or for the generation's suite (trixie, sid).
 debian_sources=$(grep -l '^URIs:.*debian' /etc/apt/sources.list.d/*.sources 2>/dev/null || true)
 deb_src_entry() {  # $1: suite to name instead of the listed ones ("" keeps them all)
   if [ -n "$debian_sources" ]; then
@@ -51,13 +53,17 @@ mkdir -p "$cache"
 work=$(mktemp -d "$cache/fetch.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 # Debian's patches only touch packaging (potential paths, docs), so where the archive serves
-# the tarballs but not the .dsc (as it does for trixie) the upstream tarball is the same tree.
+# the tarballs but not the .dsc (as it does for trixie and sid) the upstream tarball is the same
+# tree.
 (cd "$work" && { apt-get source --download-only "lammps=$(source_version)" >&2 || true; }
  if ls ./*.dsc >/dev/null 2>&1; then
    dpkg-source -x ./*.dsc src >&2
  elif ls ./*.orig.tar.* >/dev/null 2>&1; then
    echo "get-lammps-source.sh: no .dsc from the archive (apt-get's error above): unpacking the upstream tarball" >&2
-   mkdir src && tar -xf ./*.orig.tar.* -C src --strip-components=1
+   # trixie's tarball holds one top directory, sid's (20260704) the tree itself
+   mkdir unpacked && tar -xf ./*.orig.tar.* -C unpacked
+   top=(unpacked/*)
+   if [ ${#top[@]} -eq 1 ] && [ -d "${top[0]}" ]; then mv "${top[0]}" src; else mv unpacked src; fi
  else
    echo "get-lammps-source.sh: apt-get source fetched no LAMMPS source" >&2; exit 1
  fi)

@@ -7,28 +7,32 @@
 #   scripts/main.sh --full          the paper's ranges (prints the CPU-hour estimate first)
 #   scripts/main.sh --transition    the transition study (docs/transition.md; estimate first)
 #   scripts/main.sh --config FILE   any sweep config
+#   --lammps debian12|2025|2026     against which LAMMPS (default debian12, in build/)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 configs=("$root/inputs/sweeps/quick.toml")
 output=""
+generation=debian12
 while [ $# -gt 0 ]; do
   case "$1" in
+    --lammps) generation=${2:-}; shift 2 || shift $# ;;
     --full) configs=("$root"/inputs/sweeps/paper_*.toml); shift ;;
     --transition) configs=("$root/inputs/sweeps/transition.toml"); shift ;;
     --config) configs=("$2"); shift 2 ;;
     --output) output="$2"; shift 2 ;;
-    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
     *) echo "main.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
-"$root/scripts/build.sh"
+source "$root/scripts/lammps-generation.sh" --lammps "$generation"
+"$root/scripts/build.sh" --lammps "$generation"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 echo "== two-disk collision (inputs/two_disk_collision.lmp)"
 demo="$root/results/demo"
 mkdir -p "$demo"
-(cd "$demo" && "$root/build/lammps/lmp" -in "$root/inputs/two_disk_collision.lmp" \
-   -var plugin "$root/build/plugin/granmnplugin.so" > lmp.out)
+(cd "$demo" && "$build/lammps/lmp" -in "$root/inputs/two_disk_collision.lmp" \
+   -var plugin "$build/plugin/granmnplugin.so" > lmp.out)
 grep -E '^(requested e|tau_c)' "$demo/lmp.out"
 
 status=0
@@ -36,7 +40,7 @@ for config in "${configs[@]}"; do
   name=$(basename "$config" .toml)
   out=${output:-$root/results/$name}
   echo "== sweep $name"
-  /usr/bin/python3 "$root/scripts/sweep.py" "$config" --output "$out" || status=1
+  /usr/bin/python3 "$root/scripts/sweep.py" "$config" --output "$out" --build "$build" || status=1
   echo "== post-processing $name"
   case "$name" in
     transition*) (cd "$root" && /usr/bin/python3 -m postprocess transition "$out") || status=1 ;;

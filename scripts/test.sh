@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The README's test command: build (installing what is missing) and run every test.
-#   scripts/test.sh [--lammps debian12|2025] [ctest options]
+#   scripts/test.sh [--lammps debian12|2025|2026] [ctest options]
 # debian12 (default) tests against Debian 12's LAMMPS in build/, 2025 against LAMMPS 4 Feb 2025
-# in build-2025/.
+# in build-2025/, 2026 against LAMMPS 4 Jul 2026 in build-2026/.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 source "$root/scripts/lammps-generation.sh" "$@"

@@ -2,13 +2,18 @@
 import re
 import subprocess
 import sys
+from pathlib import Path
 
-from granmn_run import ROOT
+from granmn_run import PLUGIN, ROOT
+
+# the build under test (build-2026/ for LAMMPS 2026), not build/
+BUILD = Path(PLUGIN).resolve().parents[1]
 
 
 def test_accuracy_study_writes_its_tables_and_figure(tmp_path):
     proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "accuracy.py"), "--quick",
-                           "--output", str(tmp_path)], capture_output=True, text=True)
+                           "--output", str(tmp_path), "--build", str(BUILD)],
+                          capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     report = (tmp_path / "accuracy.md").read_text()
     for section in ("## Binary collision and bouncing ball", "## single_disk", "## collisional_flow",
