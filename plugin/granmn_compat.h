@@ -80,6 +80,16 @@ inline std::vector<LAMMPS_NS::Fix *> fixes_by_style(LAMMPS_NS::Modify *modify,
 #endif
 }
 
+// Every fix, in the order they were defined (get_fix_list() came with the look-ups above).
+inline std::vector<LAMMPS_NS::Fix *> all_fixes(LAMMPS_NS::Modify *modify)
+{
+#if LAMMPS_VERSION_NUMBER >= 20220324
+  return modify->get_fix_list();
+#else
+  return std::vector<LAMMPS_NS::Fix *>(modify->fix, modify->fix + modify->nfix);
+#endif
+}
+
 }    // namespace granmn
 
 // Pair::transfer_history gained the two atom types with the GranularModel refactor (early

@@ -336,8 +336,7 @@ void PairGranMN::check_wall_types_not_integrated()
 {
   if (wall_types.empty()) return;
   const int *type = atom->type, *mask = atom->mask;
-  for (int k = 0; k < modify->nfix; k++) {
-    const Fix *fix = modify->fix[k];
+  for (const Fix *fix : granmn::all_fixes(modify)) {
     if (!fix->time_integrate) continue;
     bigint integrated = 0;
     for (int i = 0; i < atom->nlocal; i++)
