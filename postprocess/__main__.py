@@ -29,7 +29,7 @@ import sys
 from pathlib import Path
 
 from . import figures, limit
-from .io import DataError
+from .io import DataError, read_energy, read_params, read_rows
 from .reference import accepted, evaluate
 from .report import fmt, write_report, write_transition_report
 from .selection import Selection
@@ -115,6 +115,21 @@ def main(argv=None):
     return 1 if failed or not passed + failed else 0
 
 
+def contact_splits(runs):
+    """[(kn, {3.0: split, 10.0: split})] of the runs whose raw outputs have contact rows."""
+    out = []
+    for o in runs:
+        point = Path(o.get("point", ""))
+        rows_time = float(o.get("variables", {}).get("rows_time", 0) or 0)
+        if not (point / "contacts.txt").exists() or rows_time <= 1.0:
+            continue
+        params = read_params(point)
+        energy, rows = read_energy(point, params), read_rows(point)
+        out.append((o["kn"], {lasting: limit.run_split(point, params, energy, rows, rows_time,
+                                                        lasting) for lasting in (3.0, 10.0)}))
+    return out
+
+
 def write_limit(sweep, scenes, out, selection):
     """The limit command: limit.md and a figure per series in out (the main series first, then
     each variant with enough k_n); the verdicts on the terminal."""
@@ -140,6 +155,16 @@ def write_limit(sweep, scenes, out, selection):
             figure = f"limit{number}.png"
             figures.limit_figure([d for d in decisions if d.fits], out / figure)
             lines += [f"![the rule's data and fits]({figure})", ""]
+        splits = contact_splits(runs)
+        if splits:
+            lines += ["### What the time with two or more contacts is made of", "",
+                      "Per disk and unit time over each run's contact-rows window (the span's "
+                      "first rows_time, less 0.5 at its end), the mean over the runs with rows: "
+                      "the part during which one of the contacts lasts more than 3 (or 10) "
+                      "binary durations, and the part made of short contacts only (bursts); "
+                      "`unseen`: the counters' time not in the rows (contacts longer than the "
+                      "rows window, lasting ones).", ""]
+            lines += limit.split_lines(splits)
         for d in decisions:
             print(f"{title}: {limit.NAMES[d.quantity]}: {d.verdict}" +
                   (f" ({d.why})" if d.why else ""))

@@ -284,3 +284,91 @@ def report_lines(decisions, levels):
         lines.append(f"| {NAMES[quantity]} | " + " | ".join(
             by_level[n].verdict for n in LEVELS) + " |")
     return lines + [""]
+
+
+# ---- what the multiple-contact time is made of (docs/hard_sphere_limit.md)
+
+LASTING = 3.0    # a contact lasting more than this many binary durations is a lasting one
+
+
+def multiple_contact_split(rows, tau_c, tau_w, start, stop, n_disks, lasting=LASTING):
+    """From contact rows (io.read_rows: id_i, id_j, kind 1 disk / 2 boundary, start, duration): per
+    disk and unit time over [start, stop], the time with two or more contacts, split into the
+    part during which at least one of the contacts is a lasting one (longer than `lasting`
+    times tau_c, or tau_w against the boundary) and the part made only of short ones (bursts of
+    overlapping collisions); and the share of all contact time in lasting contacts.
+    Rows are those of the contacts that ended within the rows window: choose [start, stop] so
+    that no contact overlapping it can end after the window (stop <= window end - the longest
+    duration of interest)."""
+    if not stop > start:
+        raise ValueError(f"an empty window [{start:g}, {stop:g}]")
+    kind = rows["kind"].astype(int)
+    begin = rows["start"]
+    end = begin + rows["duration"]
+    unit = np.where(kind == 1, tau_c, tau_w)
+    long = rows["duration"] > lasting * unit
+    # each contact belongs to disk i, and a disk-disk contact to disk j as well
+    owner = np.concatenate([rows["id_i"], rows["id_j"][kind == 1]]).astype(int)
+    b = np.concatenate([begin, begin[kind == 1]])
+    e = np.concatenate([end, end[kind == 1]])
+    is_long = np.concatenate([long, long[kind == 1]])
+    b, e = np.clip(b, start, stop), np.clip(e, start, stop)
+    keep = e > b
+    owner, b, e, is_long = owner[keep], b[keep], e[keep], is_long[keep]
+    multiple = lasting_part = 0.0
+    for disk in np.unique(owner):
+        mine = owner == disk
+        times = np.concatenate([b[mine], e[mine]])
+        step = np.concatenate([np.ones(mine.sum()), -np.ones(mine.sum())])
+        long_step = np.concatenate([is_long[mine], -1.0 * is_long[mine]])
+        order = np.lexsort((step, times))    # at equal times an end before a start
+        times, count, long_count = times[order], np.cumsum(step[order]), \
+            np.cumsum(long_step[order])
+        spans = np.diff(times)
+        several = count[:-1] >= 2
+        multiple += spans[several].sum()
+        lasting_part += spans[several & (long_count[:-1] >= 1)].sum()
+    length = n_disks * (stop - start)
+    durations = np.clip(end, start, stop) - np.clip(begin, start, stop)
+    total = durations.sum() + durations[kind == 1].sum()
+    return {"t_multiple_rows": multiple / length, "lasting": lasting_part / length,
+            "bursts": (multiple - lasting_part) / length,
+            "lasting_share_of_contact_time":
+                (durations[long].sum() + durations[long & (kind == 1)].sum()) / total
+                if total > 0 else np.nan}
+
+
+def run_split(point, params, energy, rows, rows_time, lasting=LASTING, margin=0.5):
+    """multiple_contact_split over a run's rows window, [average_start, average_start +
+    rows_time - margin] (a contact overlapping it that ends after the rows window lasts longer
+    than `margin`: such contacts have no row and their part, `unseen`, is the counters' time
+    with two or more contacts over the window minus the rows': lasting by construction)."""
+    start = params["average_start"]
+    stop = start + rows_time - margin
+    if not stop > start + margin:
+        raise ValueError(f"{point}: no rows window longer than {2 * margin:g} (rows_time)")
+    split = multiple_contact_split(rows, params["tau_c"], params["tau_w"], start, stop,
+                                   params["n_mobile"], lasting)
+    t = energy["time"]
+    a, b = np.argmin(np.abs(t - start)), np.argmin(np.abs(t - stop))
+    counted = (energy["time_multiple"][b] - energy["time_multiple"][a]) / (
+        params["n_mobile"] * (t[b] - t[a]))
+    split["t_multiple_counters"] = counted
+    split["unseen"] = max(counted - split["t_multiple_rows"], 0.0)
+    return split
+
+
+def split_lines(splits):
+    """Markdown: per k_n the mean over runs of the split (splits: [(kn, {threshold: split})])."""
+    lines = ["| k_n | runs | >= 2 contacts (counters) | from rows | lasting (> 3 tau) | "
+             "bursts (<= 3 tau) | lasting (> 10 tau) | bursts (<= 10 tau) | unseen (> window) | "
+             "contact time in > 3 tau contacts |", "|---|" + "---|" * 9]
+    for k in sorted({kn for kn, _ in splits}):
+        mine = [s for kn, s in splits if kn == k]
+        mean = lambda threshold, name: np.mean([s[threshold][name] for s in mine])
+        lines.append(f"| {k:.4g} | {len(mine)} | {mean(3.0, 't_multiple_counters'):.4f} | "
+                     f"{mean(3.0, 't_multiple_rows'):.4f} | {mean(3.0, 'lasting'):.4f} | "
+                     f"{mean(3.0, 'bursts'):.4f} | {mean(10.0, 'lasting'):.4f} | "
+                     f"{mean(10.0, 'bursts'):.4f} | {mean(3.0, 'unseen'):.4f} | "
+                     f"{mean(3.0, 'lasting_share_of_contact_time'):.3f} |")
+    return lines + [""]

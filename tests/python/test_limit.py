@@ -127,3 +127,30 @@ def test_limit_command_writes_the_verdicts_and_the_figure(tmp_path, capsys):
     assert "time with two or more contacts: **vanishing**" in text
     assert (tmp_path / "limit" / "limit0.png").stat().st_size > 10000
     assert "limit report:" in capsys.readouterr().out
+
+
+def rows_of(contacts):
+    """Contact rows from (i, j, kind, start, duration) tuples."""
+    data = np.array(contacts, dtype=float)
+    return {"id_i": data[:, 0], "id_j": data[:, 1], "kind": data[:, 2], "start": data[:, 3],
+            "duration": data[:, 4]}
+
+
+def test_split_of_the_multiple_contact_time():
+    tau = 0.01
+    rows = rows_of([
+        (1, 2, 1, 0.0, 1.0),        # a lasting contact of disks 1 and 2 over [0, 1]
+        (1, 3, 1, 0.2, 0.01),       # a collision of 1 with 3 during it: lasting part, 0.01
+        (4, 5, 1, 0.5, 0.01),       # two short collisions of disk 4 overlapping by 0.005:
+        (4, 6, 1, 0.505, 0.01),     #   a burst
+        (7, 0, 2, 0.0, 1.0),        # disk 7 resting on the floor, alone: no multiple contact
+    ])
+    split = limit.multiple_contact_split(rows, tau, tau, 0.0, 1.0, n_disks=10)
+    assert split["lasting"] == pytest.approx(0.01 / 10)
+    assert split["bursts"] == pytest.approx(0.005 / 10)
+    assert split["t_multiple_rows"] == pytest.approx(0.015 / 10)
+    # contact time: 2 + 0.02 + 0.04 + 1 (each disk-disk contact counts for both disks)
+    assert split["lasting_share_of_contact_time"] == pytest.approx(3.0 / 3.06)
+    # the window clips: over [0.3, 1.0] only the burst is left
+    clipped = limit.multiple_contact_split(rows, tau, tau, 0.3, 1.0, n_disks=10)
+    assert clipped["lasting"] == 0.0 and clipped["bursts"] == pytest.approx(0.005 / 7)
