@@ -4,22 +4,11 @@ steady part, one without, a failed point), and each summary is a few kB."""
 import csv
 
 from postprocess.__main__ import main
+from test_main_job import TINY as MAIN_JOB_TINY
 from test_sweep import sweep
 
-TINY = """
-name = "tiny"
-[defaults]
-run_time = 12
-average_start = 2
-[[grid]]
-scene = "single_disk"
-kn = [5e4, 2e5]
-[[grid]]
-scene = "collisional_flow"
-kn = [1.25e4, 5e4]
-[[grid]]
-scene = "frictional_flow"
-kn = [1.25e4]
+# the main job's tiny sweep, and a frictional run long enough to keep a steady part
+TINY = MAIN_JOB_TINY + """
 [[grid]]
 scene = "frictional_flow"
 kn = [1.25e4]
