@@ -165,13 +165,18 @@ void FixNVEDiscMN::initial_integrate(int)
   const Factors *c = factors.data();
 
   if (integrator == mn::Integrator::VelocityVerlet) {
+    // the new velocity in a local: x[i], v[i] and f[i] could alias for the compiler, which
+    // would store and reload it
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
-      v[i][0] += c[i].per_mass * (f[i][0] + c[i].weight_x);
-      v[i][1] += c[i].per_mass * (f[i][1] + c[i].weight_y);
-      x[i][0] += dtv * v[i][0];
-      x[i][1] += dtv * v[i][1];
-      omega[i][2] += c[i].per_inertia * torque[i][2];
+      const double vx = v[i][0] + c[i].per_mass * (f[i][0] + c[i].weight_x);
+      const double vy = v[i][1] + c[i].per_mass * (f[i][1] + c[i].weight_y);
+      const double wz = omega[i][2] + c[i].per_inertia * torque[i][2];
+      v[i][0] = vx;
+      v[i][1] = vy;
+      omega[i][2] = wz;
+      x[i][0] += dtv * vx;
+      x[i][1] += dtv * vy;
     }
     return;
   }
@@ -209,9 +214,12 @@ void FixNVEDiscMN::final_integrate()
   const Factors *c = factors.data();
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    v[i][0] += c[i].per_mass * (f[i][0] + c[i].weight_x);
-    v[i][1] += c[i].per_mass * (f[i][1] + c[i].weight_y);
-    omega[i][2] += c[i].per_inertia * torque[i][2];
+    const double vx = v[i][0] + c[i].per_mass * (f[i][0] + c[i].weight_x);
+    const double vy = v[i][1] + c[i].per_mass * (f[i][1] + c[i].weight_y);
+    const double wz = omega[i][2] + c[i].per_inertia * torque[i][2];
+    v[i][0] = vx;
+    v[i][1] = vy;
+    omega[i][2] = wz;
   }
 }
 
