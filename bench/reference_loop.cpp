@@ -4,7 +4,8 @@
 //   reference-loop frictional|collisional KN DT_FRACTION WARMUP_TIME MEASURED_STEPS [SEED]
 //
 // The scenes are built as the decks build them (same sizes, start, slope, wall or bumps); the
-// step is velocity Verlet as fix nve/sphere disc does it (forces see the half-step velocity);
+// step is velocity Verlet as fix nve/disc/mn does it (forces see the half-step velocity, gravity
+// is added to the force sum, the mass factors are computed once);
 // the neighbour list is a binned half list with a 0.2 skin, rebuilt when a disk has moved
 // half the skin, carrying each contact's u_t over. It keeps no counters and writes no output:
 // it prints CPU us/step over MEASURED_STEPS after WARMUP_TIME, with the mean contacts per step
@@ -101,6 +102,12 @@ class Loop {
     s.wall_ut.assign(s.n, 0.0);
     gx = s.sin_theta;
     gy = -std::sqrt(1.0 - s.sin_theta * s.sin_theta);
+    // 1/m and r^2/2 once (fix nve/disc/mn keeps its factors too); the same values as
+    // computed at every step before, so the same trajectory
+    for (int i = 0; i < s.n_mobile; i++) {
+      inv_mass.push_back(1.0 / s.mass[i]);
+      half_r2.push_back(0.5 * s.radius[i] * s.radius[i]);
+    }
     rebuild();
     forces();
   }
@@ -109,20 +116,18 @@ class Loop {
   {
     const double half = 0.5 * dt;
     for (int i = 0; i < s.n_mobile; i++) {
-      const double inv_m = 1.0 / s.mass[i];
-      s.vx[i] += half * s.fx[i] * inv_m;
-      s.vy[i] += half * s.fy[i] * inv_m;
-      s.w[i] += half * s.torque[i] * inv_m / (0.5 * s.radius[i] * s.radius[i]);
+      s.vx[i] += half * s.fx[i] * inv_mass[i];
+      s.vy[i] += half * s.fy[i] * inv_mass[i];
+      s.w[i] += half * s.torque[i] * inv_mass[i] / half_r2[i];
       s.x[i] += dt * s.vx[i];
       s.y[i] += dt * s.vy[i];
     }
     if (moved_half_skin()) rebuild();
     forces();
     for (int i = 0; i < s.n_mobile; i++) {
-      const double inv_m = 1.0 / s.mass[i];
-      s.vx[i] += half * s.fx[i] * inv_m;
-      s.vy[i] += half * s.fy[i] * inv_m;
-      s.w[i] += half * s.torque[i] * inv_m / (0.5 * s.radius[i] * s.radius[i]);
+      s.vx[i] += half * s.fx[i] * inv_mass[i];
+      s.vy[i] += half * s.fy[i] * inv_mass[i];
+      s.w[i] += half * s.torque[i] * inv_mass[i] / half_r2[i];
     }
   }
 
@@ -142,6 +147,7 @@ class Loop {
   Scene s;
   mn::Law law;
   double dt, gx, gy;
+  std::vector<double> inv_mass, half_r2;    // per mobile disk
   std::vector<Pair> pairs;
   std::vector<double> x_built, y_built;
 

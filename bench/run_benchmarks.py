@@ -130,11 +130,11 @@ def run(command, deck, work):
     return loop, (float(memory.group(1)) if memory else float("nan")), wall
 
 
-def scene_run(source, scene, counters, timer, dt_fraction, warmup, span, work):
+def scene_run(source, scene, counters, timer, integration, dt_fraction, warmup, span, work):
     """One scene deck of `source` (a checkout with build/plugin): CPU us/step over the span after
     the warm-up (the deck's second run), its timer breakdown (% of the loop; None unless the
     deck's timer is normal or full), mean E per disk over the span."""
-    out = work / f"{scene}-{counters}-{timer}"
+    out = work / f"{scene}-{counters}-{timer}-{integration}"
     out.mkdir(exist_ok=True)
     command = [str(LMP), "-in", str(source / "inputs" / f"{scene}.lmp"), "-log", "none",
                "-var", "plugin", str(source / "build" / "plugin" / "granmnplugin.so"),
@@ -146,6 +146,8 @@ def scene_run(source, scene, counters, timer, dt_fraction, warmup, span, work):
         command += ["-var", "counters", counters]
     if timer is not None:
         command += ["-var", "timer", timer]
+    if integration is not None:
+        command += ["-var", "integration", integration]
     proc = subprocess.run(command, cwd=work, capture_output=True, text=True, errors="replace",
                           env=ENV)
     if proc.returncode != 0:
@@ -166,11 +168,11 @@ def scene_run(source, scene, counters, timer, dt_fraction, warmup, span, work):
     return 1e6 * seconds / steps, breakdown, sum(in_span) / len(in_span)
 
 
-def reference_run(scene, dt_fraction, warmup, span):
+def reference_run(scene, dt_fraction, warmup, span, loop=REFERENCE_LOOP):
     """The reference loop on the same scene, time step and span: CPU us/step, E per disk,
     contacts per step."""
     dt = min(dt_fraction * law()["tau_c"], 1e-4)    # as the decks (dt_cap 1e-4)
-    proc = subprocess.run([str(REFERENCE_LOOP), SCENES[scene], repr(KN), repr(dt_fraction),
+    proc = subprocess.run([str(loop), SCENES[scene], repr(KN), repr(dt_fraction),
                            repr(warmup), str(int(span / dt))],
                           capture_output=True, text=True, check=True)
     fields = proc.stdout.split()
@@ -184,11 +186,15 @@ def scene_comparison(args, work):
     the variants interleaved, best of --repeat."""
     # The decks run LAMMPS's timer at `loop` (the total only); the breakdown comes from the same
     # run with the timer at `normal`, which costs a few % more.
-    variants = {"LAMMPS, counters + outputs": (ROOT, "yes", None),
-                "LAMMPS, counters off": (ROOT, "no", None),
-                "LAMMPS, counters + outputs, timer": (ROOT, "yes", "normal")}
+    # (source, counters, timer, integration); None: the deck's default
+    variants = {"LAMMPS, counters + outputs": (ROOT, "yes", None, None),
+                "LAMMPS, counters off": (ROOT, "no", None, None),
+                "LAMMPS, counters + outputs, timer": (ROOT, "yes", "normal", None),
+                "LAMMPS, fix nve/sphere + gravity": (ROOT, "yes", None, "separate")}
     if args.baseline:
-        variants["baseline, counters + outputs"] = (Path(args.baseline).resolve(), None, None)
+        baseline = Path(args.baseline).resolve()
+        variants["baseline, counters + outputs"] = (baseline, None, None, None)
+        variants["baseline, counters off"] = (baseline, "no", None, None)
     print(f"Scenes at kn = {KN:g}, dt = tau_c x {args.dt_fraction:g}, {args.span:g} time units "
           f"after a {args.warmup:g} warm-up, best of {args.repeat}; CPU us per step:")
     print(f"{'scene':<17} {'variant':<34} {'us/step':>8} {'vs reference':>13} {'E/disk':>7}  "
@@ -196,15 +202,20 @@ def scene_comparison(args, work):
     for scene in SCENES:
         best = {}
         for _ in range(args.repeat):
-            for name, (source, counters, timer) in variants.items():
-                result = scene_run(source, scene, counters, timer, args.dt_fraction, args.warmup,
-                                   args.span, work)
+            for name, (source, counters, timer, integration) in variants.items():
+                result = scene_run(source, scene, counters, timer, integration, args.dt_fraction,
+                                   args.warmup, args.span, work)
                 if name not in best or result[0] < best[name][0]:
                     best[name] = result
-            reference = reference_run(scene, args.dt_fraction, args.warmup, args.span)
-            if "reference" not in best or reference[0] < best["reference"][0]:
-                best["reference"] = reference
+            loops = {"reference": REFERENCE_LOOP}
+            if args.baseline:
+                loops["baseline reference"] = baseline / "build" / "bench" / "reference-loop"
+            for key, loop in loops.items():
+                reference = reference_run(scene, args.dt_fraction, args.warmup, args.span, loop)
+                if key not in best or reference[0] < best[key][0]:
+                    best[key] = reference
         base, ref_energy, ref_contacts = best.pop("reference")
+        baseline_loop = best.pop("baseline reference", None)
         for name, (us, breakdown, energy) in best.items():
             print(f"{scene:<17} {name:<34} {us:8.3f} {us / base:13.2f} {energy:7.3f}  "
                   + " ".join(f"{breakdown[s]:6.1f}" if breakdown else f"{'-':>6}"
@@ -212,7 +223,12 @@ def scene_comparison(args, work):
         print(f"{scene:<17} {'reference loop (no counters)':<34} {base:8.3f} {1:13.2f} "
               f"{ref_energy:7.3f}  ({ref_contacts:.1f} contacts per step)")
         if args.baseline:
-            print(f"{scene:<17} baseline / this tree: "
+            old_base = baseline_loop[0]
+            print(f"{scene:<17} {'baseline reference loop':<34} {old_base:8.3f} "
+                  f"{old_base / base:13.2f} {baseline_loop[1]:7.3f}  (the baseline's own loop)")
+            print(f"{scene:<17} baseline against its own loop: counters + outputs "
+                  f"{best['baseline, counters + outputs'][0] / old_base:.2f}, counters off "
+                  f"{best['baseline, counters off'][0] / old_base:.2f}; baseline / this tree: "
                   f"{best['baseline, counters + outputs'][0] / best['LAMMPS, counters + outputs'][0]:.2f}")
 
 

@@ -13,6 +13,7 @@
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
+#include "neighbor.h"
 #include "update.h"
 
 #include <cstring>
@@ -121,6 +122,10 @@ void FixContactsMN::grow_step_arrays()
   memory->create(step_boundary, nmax_step, "contacts/mn:step_boundary");
   memory->create(begun_particle, nmax_step, "contacts/mn:begun_particle");
   memory->create(begun_boundary, nmax_step, "contacts/mn:begun_boundary");
+  // zero once: collect zeroes what the tallies wrote (one process), or pre_force all of it
+  for (int i = 0; i < nmax_step; i++)
+    step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
+  touched.clear();
 }
 
 // No time passes between runs: the step a run starts at is the clock's, also after
@@ -131,14 +136,18 @@ void FixContactsMN::setup_pre_force(int vflag)
   pre_force(vflag);
 }
 
-// Zero this step's tallies before the pair style and the wall fix fill them.
+// This step's tallies are zero before the pair style and the wall fix fill them: on one
+// process collect zeroed the entries it visited; else zero them all here.
 void FixContactsMN::pre_force(int)
 {
   advance_clock();
   grow_step_arrays();
-  const int n = fold_ghosts ? atom->nlocal : atom->nlocal + atom->nghost;
-  for (int i = 0; i < n; i++)
-    step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
+  if (!fold_ghosts) {
+    const int n = atom->nlocal + atom->nghost;
+    for (int i = 0; i < n; i++)
+      step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
+    touched.clear();
+  }
   drop_handed_rows();
 }
 
@@ -166,24 +175,51 @@ void FixContactsMN::ended(const double *record, double tag_i, double tag_j, doub
 
 /* ---------------------------------------------------------------------- */
 
-// Bring ghost tallies home, then add this step to each atom's counts and times.
+// Add this step to atom i's counts and times.
+static inline void add_step(double *p, double begun_particle, double begun_boundary,
+                            double step_particle, double step_boundary, bool accumulate_time,
+                            double dt)
+{
+  p[FixContactsMN::BEGUN_PARTICLE] += begun_particle;
+  p[FixContactsMN::BEGUN_BOUNDARY] += begun_boundary;
+  p[FixContactsMN::NOW] = step_particle + step_boundary;
+  if (accumulate_time) {
+    if (step_particle > 0.0) p[FixContactsMN::TIME_PARTICLE] += dt;
+    if (step_boundary > 0.0) p[FixContactsMN::TIME_BOUNDARY] += dt;
+    if (p[FixContactsMN::NOW] >= 2.0) p[FixContactsMN::TIME_MULTIPLE] += dt;
+  }
+}
+
+// Bring ghost tallies home, then add this step to each atom's counts and times. An atom with
+// no contact at this step gains nothing but NOW = 0.
 void FixContactsMN::collect(bool accumulate_time)
 {
-  if (force->newton_pair && !fold_ghosts) granmn::reverse_comm(comm, this);
   const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
   const double dt = update->dt;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    double *p = state[i];
-    p[BEGUN_PARTICLE] += begun_particle[i];
-    p[BEGUN_BOUNDARY] += begun_boundary[i];
-    p[NOW] = step_particle[i] + step_boundary[i];
-    if (accumulate_time) {
-      if (step_particle[i] > 0.0) p[TIME_PARTICLE] += dt;
-      if (step_boundary[i] > 0.0) p[TIME_BOUNDARY] += dt;
-      if (p[NOW] >= 2.0) p[TIME_MULTIPLE] += dt;
-    }
+  if (!fold_ghosts) {
+    if (force->newton_pair) granmn::reverse_comm(comm, this);
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit)
+        add_step(state[i], begun_particle[i], begun_boundary[i], step_particle[i],
+                 step_boundary[i], accumulate_time, dt);
+    return;
   }
+  // the atoms of the last step's list keep their indices unless LAMMPS re-sorted or exchanged
+  // them at this step (a neighbour-list build, or a run's setup)
+  if (update->setupflag || neighbor->lastcall == update->ntimestep) {
+    for (int i = 0; i < nlocal; i++) state[i][NOW] = 0.0;
+  } else {
+    for (int i : touched_before) state[i][NOW] = 0.0;
+  }
+  for (int i : touched) {
+    if (mask[i] & groupbit)
+      add_step(state[i], begun_particle[i], begun_boundary[i], step_particle[i],
+               step_boundary[i], accumulate_time, dt);
+    step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
+  }
+  touched.swap(touched_before);
+  touched.clear();
 }
 
 // Contacts that exist when a run starts are counted once, at its setup.

@@ -64,8 +64,12 @@ class FixContactsMN : public FixPerAtomState {
   double *begun_particle, *begun_boundary;  // contacts begun at this step, owned + ghost
   int nmax_step;
   // One process: a ghost's tallies go straight to the disk it images (atom->map), so nothing
-  // is exchanged and only owned disks are cleared; else they travel by reverse communication.
+  // is exchanged; only the disks in contact are visited: `touched` lists those of this step
+  // (tallied, then zeroed by collect), `touched_before` those of the last step (their NOW is
+  // zeroed first). The work per step scales with the disks in contact, not with all disks.
+  // Else the tallies travel by reverse communication and every disk is visited.
   bool fold_ghosts;
+  std::vector<int> touched, touched_before;
   // The fix's own clock: the time of the current step, the sum of the time steps actually
   // taken (a timestep changed between runs counts from then on; LAMMPS's time restarts at
   // zero after read_restart in this version, this clock does not).
@@ -86,6 +90,7 @@ class FixContactsMN : public FixPerAtomState {
   void advance_clock();
   void drop_handed_rows();
   void touching(double *record, bool began, double delta, double vn);
+  void tally(int i, bool boundary, bool began);
   void ended(const double *record, double tag_i, double tag_j, double kind, double vn_end);
   void collect(bool accumulate_time);
   void grow_step_arrays();
@@ -104,17 +109,23 @@ inline void FixContactsMN::touching(double *record, bool began, double delta, do
   }
 }
 
+// One contact of atom i at this step (with a boundary or not; begun at this step or not).
+inline void FixContactsMN::tally(int i, bool boundary, bool began)
+{
+  if (step_particle[i] == 0.0 && step_boundary[i] == 0.0) touched.push_back(i);
+  (boundary ? step_boundary : step_particle)[i] += 1.0;
+  if (began) (boundary ? begun_boundary : begun_particle)[i] += 1.0;
+}
+
 inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary,
                                          double *record, bool began, double delta, double vn,
                                          bool tally_j)
 {
   touching(record, began, delta, vn);
-  (j_is_boundary ? step_boundary : step_particle)[i] += 1.0;
-  if (began) (j_is_boundary ? begun_boundary : begun_particle)[i] += 1.0;
+  tally(i, j_is_boundary, began);
   if (tally_j) {
     if (fold_ghosts && j >= atom->nlocal) j = atom->map(atom->tag[j]);
-    (i_is_boundary ? step_boundary : step_particle)[j] += 1.0;
-    if (began) (i_is_boundary ? begun_boundary : begun_particle)[j] += 1.0;
+    tally(j, i_is_boundary, began);
   }
 }
 
@@ -126,7 +137,7 @@ inline void FixContactsMN::wall_state(int i, double *w, bool in_contact, double 
     w[WALL_TOUCHING] = 1.0;
     // owned atom: counted directly, so that the order of fix setups does not matter
     if (began && (atom->mask[i] & groupbit)) state[i][BEGUN_BOUNDARY] += 1.0;
-    step_boundary[i] += 1.0;
+    tally(i, true, false);
   } else if (w[WALL_TOUCHING] != 0.0) {
     w[WALL_TOUCHING] = 0.0;
     if (atom->mask[i] & groupbit) ended(w, atom->tag[i], 0, 2, vn);

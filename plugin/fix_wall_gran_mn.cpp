@@ -170,8 +170,10 @@ void FixWallGranMN::post_force(int)
         tally->wall_state(i, &history[i][UT_COLUMNS + FixContactsMN::WALL_SLOTS * side],
                           touching, radius[i] - dist, normal * v[i][axis]);
       if (!touching) {
-        if (use_history) history[i][side] = 0.0;
-        if (vt_column >= 0) history[i][vt_column + side] = 0.0;
+        // only a contact that has just ended has any history to clear (as in the pair style)
+        if (use_history && history[i][side] != 0.0) history[i][side] = 0.0;
+        if (vt_column >= 0 && history[i][vt_column + side] != 0.0)
+          history[i][vt_column + side] = 0.0;
         continue;
       }
       if (dist <= 0.0)

@@ -6,6 +6,7 @@
 #define LMP_GRANMN_GLUE_H
 
 #include "error.h"
+#include "fix_nve_disc_mn.h"
 #include "fix_nve_sphere.h"
 #include "granmn_compat.h"
 #include "lammps.h"
@@ -33,11 +34,16 @@ inline double history_dt(LAMMPS_NS::Update *update)
   return update->setupflag ? 0.0 : update->dt;
 }
 
-// The paper's integrator (fix nve/ab2) if a deck uses it, else LAMMPS's velocity Verlet.
+// The paper's integrator if a deck uses it (fix nve/ab2, fix nve/disc/mn scheme ab2), else
+// velocity Verlet (LAMMPS's fix nve/sphere, fix nve/disc/mn's default).
 inline mn::Integrator integrator_in_use(LAMMPS_NS::Modify *modify)
 {
-  return first_fix(modify, "^nve/ab2") ? mn::Integrator::AdamsBashforth2
-                                        : mn::Integrator::VelocityVerlet;
+  for (LAMMPS_NS::Fix *fix : all_fixes(modify)) {
+    const auto *disc = dynamic_cast<const LAMMPS_NS::FixNVEDiscMN *>(fix);
+    if (disc && disc->scheme() == mn::Integrator::AdamsBashforth2)
+      return mn::Integrator::AdamsBashforth2;
+  }
+  return mn::Integrator::VelocityVerlet;
 }
 
 // FixNVESphere keeps its moment-of-inertia prefactor (2/5 sphere, 1/2 disc) protected; a

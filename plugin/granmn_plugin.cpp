@@ -8,8 +8,8 @@
 
 #include "fix_checkpoint_mn.h"
 #include "fix_contacts_mn.h"
+#include "fix_nve_disc_mn.h"
 #include "fix_per_atom_state.h"
-#include "fix_nve_ab2.h"
 #include "fix_wall_gran_mn.h"
 #include "pair_gran_mn.h"
 
@@ -49,7 +49,9 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
       {"contacts/mn", "Per-contact counters for the gran/mn styles",
        (lammpsplugin_factory2 *) &fix_creator<FixContactsMN>},
       {"nve/ab2", "Adams-Bashforth 2 / trapezoidal integrator for disks (Mitarai-Nakanishi)",
-       (lammpsplugin_factory2 *) &fix_creator<FixNVEAB2>},
+       (lammpsplugin_factory2 *) &fix_creator<FixNVEDiscMN>},
+      {"nve/disc/mn", "Velocity Verlet or Adams-Bashforth 2 for 2D disks, with gravity, in one pass",
+       (lammpsplugin_factory2 *) &fix_creator<FixNVEDiscMN>},
       {"checkpoint/mn", "A run's identity in its restart files, checked on resuming",
        (lammpsplugin_factory2 *) &fix_creator<FixCheckpointMN>},
       {"GRANMN/ATOM_IDS", "internal to pair_style gran/mn: each atom's ID, carried with it",

@@ -420,8 +420,8 @@ void PairGranMN::init_style()
   const int needed = layout.size;
   if (fix_history && needed != size_history)
     error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
-                      "mu, fix contacts/mn or integrator (fix nve/ab2 keeps one more value per "
-                      "contact when mu > 0); define fix contacts/mn, mu and the integrator "
+                      "mu, fix contacts/mn or integrator (Adams-Bashforth 2, fix nve/ab2 or fix "
+                      "nve/disc/mn scheme ab2, keeps one more value per contact when mu > 0); define fix contacts/mn, mu and the integrator "
                       "before the first run");
   // LAMMPS restores per-pair history with the size of the new run: a different size would
   // misread every partner, so the run must keep mu > 0 (or not), fix contacts/mn (or not) and
@@ -429,7 +429,7 @@ void PairGranMN::init_style()
   if (!fix_history && restart_history_size >= 0 && needed != restart_history_size)
     error->all(FLERR, "pair_style gran/mn: the restart file holds {} history values per contact, "
                       "this run needs {}: keep mu zero or non-zero, define fix contacts/mn "
-                      "(or not) and use the integrator (fix nve/ab2 or not) as in the run that "
+                      "(or not) and use the scheme (Adams-Bashforth 2 or not) as in the run that "
                       "wrote it", restart_history_size, needed);
   size_history = needed;
   history = size_history > 0 ? 1 : 0;

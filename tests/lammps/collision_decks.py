@@ -8,7 +8,9 @@ from granmn_run import law, run_lammps
 DISC_DENSITY = 4 / math.pi    # mass = diameter^2: unit disk has unit mass (docs/model.md section 1)
 
 
-INTEGRATORS = {"verlet": "nve/sphere disc", "ab2": "nve/ab2"}
+# the integrator's name: its scheme (verlet or ab2), with the fix that runs it
+INTEGRATORS = {"verlet": "nve/sphere disc", "ab2": "nve/ab2",
+               "disc/mn verlet": "nve/disc/mn", "disc/mn ab2": "nve/disc/mn scheme ab2"}
 
 
 def _common(material, dt, extra_styles="", integrator="verlet"):

@@ -13,7 +13,7 @@ TINY = MAIN_JOB_TINY + """
 scene = "frictional_flow"
 kn = [1.25e4]
 run_time = 700
-seed = 1
+seed = 2
 dt_fraction = 0.05
 dt_cap = 1
 average_start = 100
@@ -51,8 +51,10 @@ def test_a_real_sweeps_report_from_summaries_matches_the_report_from_its_outputs
     # the failed point: crashed, with lmp's error, from both sources
     crashed = [line for line in said.splitlines() if "crashed (exit status 1; ERROR:" in line]
     assert len(crashed) == 2 and "timer = fast" in crashed[0], said
-    # the frictional run of 700 (seed 1, dt = tau_c/20: ~4 s of CPU) flows with a steady part
-    # kept at resolution 1 (measured: E ~ 0.6), so observables_frictional_flow.csv above has
-    # its row and the selection's path is compared; the run of 12 time units has no steady
+    # the frictional run of 700 (seed 2, dt = tau_c/20: ~4 s of CPU) flows with a steady part
+    # kept at resolution 1, so observables_frictional_flow.csv above has its row and the
+    # selection's path is compared (which seed has one is chance: the trajectory is chaotic,
+    # and seed 1 lost its steady part when the decks' integrator became fix nve/disc/mn, the
+    # same trajectory to rounding only); the run of 12 time units has no steady
     # part: left out, from both sources
     assert said.count("no steady part with mean energy") == 2

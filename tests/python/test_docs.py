@@ -3,6 +3,7 @@ from pathlib import Path
 
 import test_bad_input
 import test_counters
+import test_nve_disc_mn
 import test_scenes
 import test_sweep
 
@@ -12,7 +13,7 @@ DOC = (ROOT / "docs" / "bad_input.md").read_text()
 
 
 def test_every_bad_input_case_is_in_the_table():
-    tables = [test_bad_input.ERRORS, test_counters.BAD, test_scenes.BAD_VARIABLES,
+    tables = [test_bad_input.ERRORS, test_counters.BAD, test_nve_disc_mn.BAD, test_scenes.BAD_VARIABLES,
               test_scenes.BAD_FRICTIONAL_VARIABLES, test_scenes.BAD_SINGLE_DISK_VARIABLES,
               test_sweep.BAD_CONFIGS]
     for table in tables:

@@ -1,0 +1,57 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   fix nve/disc/mn: one pass per half step over the disks of a 2D scene, for x, y and omega_z
+   only, under velocity Verlet (as fix nve/sphere disc) or the paper's Adams-Bashforth 2
+   (Mitarai & Nakanishi 2003), with an optional uniform body force (gravity) in the same pass.
+   fix nve/ab2 is this fix with scheme ab2 and no gravity.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_FIX_NVE_DISC_MN_H
+#define LMP_FIX_NVE_DISC_MN_H
+
+#include "fix_per_atom_state.h"
+
+#include "mn_contact.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixNVEDiscMN : public FixPerAtomState {
+ public:
+  FixNVEDiscMN(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void initial_integrate(int) override;
+  void final_integrate() override;
+  void reset_dt() override;
+  double memory_usage() override;
+
+  mn::Integrator scheme() const { return integrator; }
+
+ private:
+  // Adams-Bashforth 2, per atom: the accelerations of the previous step (a_x, a_y, alpha_z),
+  // and 1 once they exist.
+  enum { AX, AY, ALPHA, HAS_PREVIOUS, NSTATE };
+  // Per local atom, from its mass and radius, recomputed only when they may have changed (a run's
+  // setup, a new dt, atoms re-sorted at a neighbour-list build, a fix adapt in the run):
+  // velocity Verlet: dt/2 / m and dt/2 / (m r^2/2) (times ftm2v), as fix nve/sphere disc;
+  // Adams-Bashforth 2: 1/m and 1/(m r^2/2) (times ftm2v); and the body force m g.
+  struct Factors {
+    double per_mass, per_inertia, weight_x, weight_y;
+  };
+  std::vector<Factors> factors;
+  mn::Integrator integrator;
+  bool has_gravity;
+  double gravity[2];          // the acceleration, as fix gravity's vector style makes it
+  double dtv, dtf;
+  bool factors_every_step;    // a fix adapt may change masses or radii at any step
+  bigint factors_lastcall;    // the neighbour-list build the factors were computed after
+
+  void compute_factors();
+  void check_other_fixes();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

@@ -1,0 +1,205 @@
+"""fix nve/disc/mn: the 2D disk integrator with gravity in one pass, against LAMMPS's fix
+nve/sphere disc + fix gravity (and fix nve/ab2 + fix gravity), against the analytic motion of
+a falling and a rolling disk, and its bad inputs."""
+import math
+
+import numpy as np
+import pytest
+
+from granmn_run import HEADER, PLUGIN, law, run_lammps
+from pile_decks import KN, E, BETA, PILE
+
+TILT = (0.3, -1.0)    # the pile's gravity direction (magnitude 1)
+
+
+def pile_deck(integration, steps, wall_first):
+    """The 48-disk pile of pile_decks (fixed bumps, a floor and a ceiling, mu = 0.5) falling
+    and starting to flow under tilted gravity, `steps` steps of tau_c/50, the state dumped at
+    full precision. `integration`: the integrator fix (and `gravity` for fix gravity)."""
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    fixes = {"gravity": f"fix gravity mobile gravity 1.0 vector {TILT[0]} {TILT[1]} 0",
+             "floor": "fix floor mobile wall/gran/mn yplane 0.0 11.5"}
+    lines = [f"fix integrate mobile {integration[0]}"]
+    order = ["floor", "gravity"] if wall_first else ["gravity", "floor"]
+    lines += [fixes[name] for name in order if name in integration[1:] or name == "floor"]
+    return PILE + f"""
+pair_style gran/mn kn {KN} e {E} beta {BETA} mu 0.5 wall_types 2
+pair_coeff * *
+timestep {dt!r}
+{chr(10).join(lines)}
+run {steps}
+write_dump all custom final.txt id x y vx vy omegaz modify sort id format float %.17g
+"""
+
+
+GRAVITY = f"gravity 1.0 {TILT[0]} {TILT[1]}"
+
+
+def final_state(tmp_path, name, integration, steps=3000, wall_first=True):
+    run = run_lammps(pile_deck(integration, steps, wall_first), tmp_path / name)
+    a = run.atoms()
+    return np.column_stack([a[k] for k in ("x", "y", "vx", "vy", "omegaz")])
+
+
+def test_fused_verlet_is_nve_sphere_disc_plus_gravity_to_the_bit(tmp_path):
+    """The same floating-point operations in the same order: velocity Verlet's half kicks with
+    dt/2m and dt/(2 I) (computed once, as fix nve/sphere disc computes them at every step), the
+    body force m g added to the step's force sum. With the wall's force summed before gravity
+    (fix floor defined first), 3000 steps of a flowing pile (~1700 contacts made) end in the
+    same state to the last bit; any other operation (a kick missing or doubled, z or a factor
+    rounded otherwise) would show in the last digits at once and grow in the pile."""
+    separate = final_state(tmp_path, "separate", ("nve/sphere disc", "gravity"))
+    fused = final_state(tmp_path, "fused", (f"nve/disc/mn {GRAVITY}",))
+    assert np.array_equal(separate, fused), np.abs(separate - fused).max()
+
+
+def test_fused_verlet_differs_only_by_the_order_of_the_force_sum(tmp_path):
+    """With fix gravity defined before the wall (as the decks did), LAMMPS sums
+    (pair + m g) + wall, the fused fix (pair + wall) + m g: one rounding apart for the disks on
+    the wall, which the flow then amplifies. Over 500 steps (a few contacts with the floor
+    made) the states agree to 1e-12 of their scale, far below any error of the scheme
+    (dt^2 a ~ 1e-9 per step here)."""
+    separate = final_state(tmp_path, "separate", ("nve/sphere disc", "gravity"), 500, False)
+    fused = final_state(tmp_path, "fused", (f"nve/disc/mn {GRAVITY}",), 500, False)
+    scale = np.abs(separate).max(axis=0)
+    assert np.all(np.abs(separate - fused) <= 1e-12 * scale), np.abs(separate - fused).max(axis=0)
+
+
+def test_fused_ab2_is_nve_ab2_plus_gravity_to_rounding(tmp_path):
+    """fix nve/ab2 is this fix's ab2 scheme without gravity; with gravity fused the
+    acceleration is (F + m g) / m instead of F / m with m g in F: a rounding apart. The pair
+    takes Adams-Bashforth 2's u_t rule under either (a first-order u_t would differ by
+    v_t dt / 2 per step, ~1e-6 of u_t here). 500 steps: 1e-11 of the scale."""
+    separate = final_state(tmp_path, "separate", ("nve/ab2", "gravity"), 500)
+    fused = final_state(tmp_path, "fused", (f"nve/disc/mn scheme ab2 {GRAVITY}",), 500)
+    scale = np.abs(separate).max(axis=0)
+    assert np.all(np.abs(separate - fused) <= 1e-11 * scale), np.abs(separate - fused).max(axis=0)
+
+
+def one_disk(fix, steps, dt, y0, wall="", mu=0.5):
+    """A unit disk (mass 1) at (1, y0) at rest under fix `fix`, `steps` steps of dt."""
+    return f"""
+region box block -50 50 -50 50 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 1.0 {y0!r} 0
+set type 1 diameter 1.0
+set type 1 density/disc {4 / math.pi!r}
+group mobile type 1
+pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu {mu}
+pair_coeff * *
+timestep {dt!r}
+fix integrate mobile {fix}
+{wall}
+run {steps}
+write_dump all custom final.txt id x y vx vy omegaz modify sort id format float %.17g
+"""
+
+
+@pytest.mark.parametrize("scheme", ["verlet", "ab2"])
+def test_a_falling_disk_follows_the_parabola(tmp_path, scheme):
+    """Under constant acceleration both schemes are exact: x = x0 + g t^2/2 along the
+    normalised direction (0.6, -0.8) at g = 2.5, v = g t. To 1e-12 relative (rounding over
+    1000 steps); a wrong normalisation, magnitude or a half kick lost would be off by O(1)."""
+    dt, steps, g = 1e-3, 1000, 2.5
+    run = run_lammps(one_disk(f"nve/disc/mn scheme {scheme} gravity {g} 3 -4", steps, dt, 10.0),
+                     tmp_path)
+    a = run.atoms()
+    t = steps * dt
+    expected = {"x": 1.0 + 0.6 * g * t * t / 2, "y": 10.0 - 0.8 * g * t * t / 2,
+                "vx": 0.6 * g * t, "vy": -0.8 * g * t, "omegaz": 0.0}
+    for name, value in expected.items():
+        assert a[name][0] == pytest.approx(value, rel=1e-12, abs=1e-12), name
+
+
+@pytest.mark.parametrize("scheme", ["verlet", "ab2"])
+def test_a_disk_rolls_down_the_slope_at_two_thirds_of_g_sin_theta(tmp_path, scheme):
+    """A disk on a flat wall (fix wall/gran/mn, mu = 0.5) under gravity tilted by sin(theta) =
+    0.2 rolls without slipping (it needs a friction of g sin/3 < mu g cos): its centre
+    accelerates at g sin(theta) / (1 + I/(m r^2)) = 2/3 g sin(theta) for a disk, so at t = 2
+    it has moved g sin(theta) t^2 / 3 = 0.26667 and spins at omega = -v/r. The overlap
+    (m g cos/kn = 5e-6 of the radius) and the tangential spring's stretch (~1e-6) bound the
+    deviation to 1e-4 relative; a sphere's inertia (5/7 g sin) would be 7 % off, sliding
+    (g sin) 50 %."""
+    sin_theta = 0.2
+    cos_theta = math.sqrt(1 - sin_theta ** 2)
+    dt = law(2e5, 0.7, 0.7)["tau_c"] / 50
+    steps = round(2.0 / dt)
+    t = steps * dt
+    run = run_lammps(one_disk(f"nve/disc/mn scheme {scheme} gravity 1.0 {sin_theta} "
+                              f"{-cos_theta}", steps, dt, 0.5,
+                              wall="fix floor mobile wall/gran/mn yplane 0.0 NULL"), tmp_path)
+    a = run.atoms()
+    acceleration = 2 / 3 * sin_theta
+    assert a["x"][0] - 1.0 == pytest.approx(acceleration * t * t / 2, rel=1e-4)
+    assert a["vx"][0] == pytest.approx(acceleration * t, rel=1e-4)
+    assert a["omegaz"][0] == pytest.approx(-a["vx"][0] / 0.5, rel=1e-4)
+
+
+def bad_deck(fix, dimension="dimension 2", atom_style="atom_style sphere", extra="",
+             pair_extra="", diameter="1.0"):
+    """Two disks and a bump (type 2) under `fix`."""
+    header = (HEADER.format(plugin=PLUGIN).replace("dimension 2", dimension)
+              .replace("atom_style sphere", atom_style))
+    density = "density/disc 1.2732395447351628" if dimension == "dimension 2" else "density 1.9"
+    mass = ("mass * 1.0" if atom_style == "atom_style atomic"
+            else f"set type * diameter {diameter}\nset type * {density}")
+    z = "-0.5 0.5" if dimension == "dimension 2" else "-3 3"
+    return header + f"""
+region box block -3 3 -3 3 {z}
+create_box 2 box
+create_atoms 1 single 0 0.5 0
+create_atoms 1 single 1.2 0.5 0
+create_atoms 2 single -1.5 -1.5 0
+{mass}
+group mobile type 1
+pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5 wall_types 2 {pair_extra}
+pair_coeff * *
+timestep 5e-5
+fix integrate mobile {fix}
+{extra}
+run 10
+"""
+
+
+BAD = {
+    "nve/disc/mn in three dimensions": (
+        bad_deck("nve/disc/mn", dimension="dimension 3"),
+        "Fix nve/disc/mn integrates disks: it requires dimension 2"),
+    "nve/disc/mn without disk attributes": (
+        bad_deck("nve/disc/mn", atom_style="atom_style atomic"),
+        "Fix nve/disc/mn requires atom attributes radius, rmass, omega, torque"),
+    "nve/disc/mn on point particles": (
+        bad_deck("nve/disc/mn", diameter="0.0"),
+        "Fix nve/disc/mn integrates disks: 2 atoms of its group have diameter 0"),
+    "nve/disc/mn on a group with fixed bumps": (
+        bad_deck("nve/disc/mn", extra="fix all_of_them all nve/disc/mn") .replace(
+            "fix integrate mobile nve/disc/mn\n", ""),
+        "fix all_of_them (nve/disc/mn) integrates 1 atoms of wall_types"),
+    "a second integrator on the same atoms": (
+        bad_deck("nve/disc/mn", extra="fix again mobile nve/sphere disc"),
+        "Fix integrate (nve/disc/mn): fix again (nve/sphere) integrates 2 atoms of its group "
+        "too; an atom takes one integrator"),
+    "gravity in nve/disc/mn and fix gravity": (
+        bad_deck("nve/disc/mn gravity 1.0 0 -1", extra="fix gravity all gravity 1.0 vector 0 -1 0"),
+        "Fix integrate (nve/disc/mn) applies gravity, and fix gravity (gravity) pulls 2 atoms of "
+        "its group too: gravity would act twice"),
+    "nve/disc/mn unknown scheme": (bad_deck("nve/disc/mn scheme rk4"),
+                                   "scheme must be verlet or ab2, not rk4"),
+    "nve/disc/mn scheme without value": (bad_deck("nve/disc/mn scheme"),
+                                         "scheme needs verlet or ab2"),
+    "nve/disc/mn gravity short of values": (bad_deck("nve/disc/mn gravity 1.0 0"),
+                                            "gravity needs G X Y"),
+    "nve/disc/mn gravity without direction": (bad_deck("nve/disc/mn gravity 1.0 0 0"),
+                                              "gravity direction 0 0 has no length"),
+    "nve/disc/mn unknown keyword": (bad_deck("nve/disc/mn disc"), "unknown keyword disc"),
+    "nve/ab2 with arguments": (bad_deck("nve/ab2 scheme verlet"), "it takes no arguments"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_input_stops_with_a_named_error(tmp_path, case):
+    text, message = BAD[case]
+    run = run_lammps(text, tmp_path, header=False, check=False)
+    assert run.returncode != 0, run.output[-2000:]
+    assert "ERROR" in run.output
+    assert message in run.output, run.output[-2000:]
