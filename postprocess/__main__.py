@@ -28,12 +28,14 @@ import argparse
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from . import figures, limit
 from .io import DataError, read_energy, read_params, read_rows
 from .reference import accepted, evaluate
 from .report import fmt, write_report, write_transition_report
 from .selection import Selection
-from .study import analyse, main_series
+from .study import analyse, label, main_series, varying_variables
 from .summary import write_summaries
 from .transition import analyse_transition
 
@@ -97,7 +99,8 @@ def main(argv=None):
     for point, reason in left_out:
         print(f"left out {point}: {reason}", file=sys.stderr)
     if args.command == "limit":
-        return write_limit(args.sweep, scenes, args.output or args.sweep / "limit", selection)
+        return write_limit(args.sweep, scenes, args.output or args.sweep / "limit", selection,
+                           completed.get("frictional_flow", []))
     if args.command == "report":
         path, results = write_report(args.sweep, scenes, left_out, completed,
                                      args.output or args.sweep / "report", runs, selection)
@@ -130,9 +133,30 @@ def contact_splits(runs):
     return out
 
 
-def write_limit(sweep, scenes, out, selection):
+def runaway_lines(records):
+    """Markdown: per series and k_n, the completed runs, those with a runaway event (limit.
+    runaway_events on E(t) over windows of one time unit) and the events' times."""
+    varying = varying_variables([r.variables for r in records])
+    table = {}
+    for r in records:
+        e = r.energy
+        t = e["t0"] + e["window"] * np.arange(len(e["E"]))
+        events = limit.runaway_events(t, e["E"])
+        row = table.setdefault((label(r.variables, varying), r.params["kn"]), [0, 0, []])
+        row[0] += 1
+        row[1] += bool(events)
+        row[2] += [f"{x:g}" for x in events]
+    lines = ["| series | k_n | completed runs | runs with a runaway | events at t = |",
+             "|---|---|---|---|---|"]
+    for (name, kn), (runs, hit, times) in sorted(table.items()):
+        lines.append(f"| {name or '-'} | {kn:.4g} | {runs} | {hit} | {', '.join(times)} |")
+    return lines + [""]
+
+
+def write_limit(sweep, scenes, out, selection, records=()):
     """The limit command: limit.md and a figure per series in out (the main series first, then
-    each variant with enough k_n); the verdicts on the terminal."""
+    each variant with enough k_n); the verdicts on the terminal. records: the completed
+    frictional runs (RunRecords), for the runaway events."""
     rows = scenes.get("frictional_flow", [])
     if not rows:
         print(f"postprocess: {sweep}: no usable frictional points", file=sys.stderr)
@@ -168,6 +192,12 @@ def write_limit(sweep, scenes, out, selection):
         for d in decisions:
             print(f"{title}: {limit.NAMES[d.quantity]}: {d.verdict}" +
                   (f" ({d.why})" if d.why else ""))
+    if records:
+        lines += ["## Runaway events", "",
+                  f"E(t), averaged over windows of one time unit, above {limit.RUNAWAY_FACTOR:g} "
+                  f"times the run's median and above {limit.RUNAWAY_ENERGY:g} after t = "
+                  f"{limit.SETTLED:g}, in every completed run (selected or not):", ""]
+        lines += runaway_lines(records)
     (out / "limit.md").write_text("\n".join(lines))
     print(f"limit report: {out / 'limit.md'}")
     return 0

@@ -372,3 +372,28 @@ def split_lines(splits):
                      f"{mean(10.0, 'bursts'):.4f} | {mean(3.0, 'unseen'):.4f} | "
                      f"{mean(3.0, 'lasting_share_of_contact_time'):.3f} |")
     return lines + [""]
+
+
+# ---- runaway events of the literal law (docs/hard_sphere_limit.md)
+
+RUNAWAY_FACTOR = 3.0   # E over windows of 1 above this many times the run's median ...
+RUNAWAY_ENERGY = 2.0   # ... and above this (per disk: the steady levels reach ~1.6): an event
+SETTLED = 30.0         # the first collapse is over by then
+
+
+def runaway_events(t, energy, factor=RUNAWAY_FACTOR, settled=SETTLED):
+    """Start times of the stretches where E(t), averaged over windows of one time unit, exceeds
+    `factor` times its median after `settled` and RUNAWAY_ENERGY: a flowing pile's E wanders
+    between its levels (0.4-1.6) by less than that; a runaway throws it up by 4-40
+    (docs/hard_sphere_limit.md); a pile that stopped has no median to compare with."""
+    t, energy = np.asarray(t, dtype=float), np.asarray(energy, dtype=float)
+    late = t >= settled
+    if late.sum() < 2:
+        return []
+    edges = np.arange(np.floor(t[late][0]), t[late][-1] + 1.0)
+    which = np.digitize(t[late], edges)
+    means = np.array([energy[late][which == k].mean() for k in np.unique(which)])
+    starts = edges[np.unique(which) - 1]
+    above = (means > factor * np.median(means)) & (means > RUNAWAY_ENERGY)
+    rising = above & ~np.concatenate([[False], above[:-1]])
+    return [float(s) for s in starts[rising]]

@@ -154,3 +154,13 @@ def test_split_of_the_multiple_contact_time():
     # the window clips: over [0.3, 1.0] only the burst is left
     clipped = limit.multiple_contact_split(rows, tau, tau, 0.3, 1.0, n_disks=10)
     assert clipped["lasting"] == 0.0 and clipped["bursts"] == pytest.approx(0.005 / 7)
+
+
+def test_runaway_events_are_found_and_level_changes_are_not():
+    t = np.arange(0.0, 400.0, 0.1)
+    e = np.where(t < 10, 7.0, 0.6) + 0.05 * np.sin(t)      # the first collapse, then a flow
+    e[(t > 150) & (t < 250)] = 1.0                           # a change of level: no event
+    assert limit.runaway_events(t, e) == []
+    e[(t >= 62) & (t < 70)] = 25.0 * np.exp(-(t[(t >= 62) & (t < 70)] - 62))   # a runaway
+    e[(t >= 300) & (t < 301.5)] = 4.0                                       # and a smaller one
+    assert limit.runaway_events(t, e) == [62.0, 300.0]
