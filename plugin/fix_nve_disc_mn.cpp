@@ -152,6 +152,19 @@ void FixNVEDiscMN::compute_factors()
   factors_lastcall = neighbor->lastcall;
 }
 
+// Velocity Verlet's half step of one disk's velocity and spin. The new values are computed
+// into locals first: v, f and omega could alias for the compiler, which would store and reload.
+static inline void half_kick(const FixNVEDiscMN::Factors &c, const double *f,
+                             const double *torque, double *v, double *omega)
+{
+  const double vx = v[0] + c.per_mass * (f[0] + c.weight_x);
+  const double vy = v[1] + c.per_mass * (f[1] + c.weight_y);
+  const double wz = omega[2] + c.per_inertia * torque[2];
+  v[0] = vx;
+  v[1] = vy;
+  omega[2] = wz;
+}
+
 void FixNVEDiscMN::initial_integrate(int)
 {
   if (factors_every_step || neighbor->lastcall != factors_lastcall) compute_factors();
@@ -165,18 +178,11 @@ void FixNVEDiscMN::initial_integrate(int)
   const Factors *c = factors.data();
 
   if (integrator == mn::Integrator::VelocityVerlet) {
-    // the new velocity in a local: x[i], v[i] and f[i] could alias for the compiler, which
-    // would store and reload it
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
-      const double vx = v[i][0] + c[i].per_mass * (f[i][0] + c[i].weight_x);
-      const double vy = v[i][1] + c[i].per_mass * (f[i][1] + c[i].weight_y);
-      const double wz = omega[i][2] + c[i].per_inertia * torque[i][2];
-      v[i][0] = vx;
-      v[i][1] = vy;
-      omega[i][2] = wz;
-      x[i][0] += dtv * vx;
-      x[i][1] += dtv * vy;
+      half_kick(c[i], f[i], torque[i], v[i], omega[i]);
+      x[i][0] += dtv * v[i][0];
+      x[i][1] += dtv * v[i][1];
     }
     return;
   }
@@ -212,15 +218,8 @@ void FixNVEDiscMN::final_integrate()
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const Factors *c = factors.data();
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    const double vx = v[i][0] + c[i].per_mass * (f[i][0] + c[i].weight_x);
-    const double vy = v[i][1] + c[i].per_mass * (f[i][1] + c[i].weight_y);
-    const double wz = omega[i][2] + c[i].per_inertia * torque[i][2];
-    v[i][0] = vx;
-    v[i][1] = vy;
-    omega[i][2] = wz;
-  }
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit) half_kick(c[i], f[i], torque[i], v[i], omega[i]);
 }
 
 double FixNVEDiscMN::memory_usage()

@@ -29,6 +29,11 @@ class FixNVEDiscMN : public FixPerAtomState {
 
   mn::Integrator scheme() const { return integrator; }
 
+  // one atom's factors (the member factors below says what they are)
+  struct Factors {
+    double per_mass, per_inertia, weight_x, weight_y;
+  };
+
  private:
   // Adams-Bashforth 2, per atom: the accelerations of the previous step (a_x, a_y, alpha_z),
   // and 1 once they exist.
@@ -37,9 +42,6 @@ class FixNVEDiscMN : public FixPerAtomState {
   // setup, a new dt, atoms re-sorted at a neighbour-list build, a fix adapt in the run):
   // velocity Verlet: dt/2 / m and dt/2 / (m r^2/2) (times ftm2v), as fix nve/sphere disc;
   // Adams-Bashforth 2: 1/m and 1/(m r^2/2) (times ftm2v); and the body force m g.
-  struct Factors {
-    double per_mass, per_inertia, weight_x, weight_y;
-  };
   std::vector<Factors> factors;
   mn::Integrator integrator;
   bool has_gravity;
