@@ -165,9 +165,16 @@ static inline void half_kick(const FixNVEDiscMN::Factors &c, const double *f,
   omega[2] = wz;
 }
 
-void FixNVEDiscMN::initial_integrate(int)
+// The factors follow the atoms: recomputed after a neighbour-list build (atoms re-sorted or
+// exchanged) or at every step under a fix adapt.
+void FixNVEDiscMN::refresh_factors()
 {
   if (factors_every_step || neighbor->lastcall != factors_lastcall) compute_factors();
+}
+
+void FixNVEDiscMN::initial_integrate(int)
+{
+  refresh_factors();
   double **x = atom->x;
   double **v = atom->v;
   double **f = atom->f;
@@ -210,7 +217,7 @@ void FixNVEDiscMN::initial_integrate(int)
 // velocity Verlet's second half (the atoms may have been re-sorted since the first)
 void FixNVEDiscMN::final_integrate()
 {
-  if (factors_every_step || neighbor->lastcall != factors_lastcall) compute_factors();
+  refresh_factors();
   double **v = atom->v;
   double **f = atom->f;
   double **omega = atom->omega;

@@ -51,6 +51,7 @@ class FixNVEDiscMN : public FixPerAtomState {
   bigint factors_lastcall;    // the neighbour-list build the factors were computed after
 
   void compute_factors();
+  void refresh_factors();
   void check_other_fixes();
 };
 
