@@ -283,6 +283,14 @@ def report_lines(decisions, levels):
     for quantity, by_level in levels.items():
         lines.append(f"| {NAMES[quantity]} | " + " | ".join(
             by_level[n].verdict for n in LEVELS) + " |")
+    lines.append("")
+    for quantity, by_level in levels.items():
+        for n, d in by_level.items():
+            if d.fits:
+                s = d.series
+                lines.append(f"- {NAMES[quantity]}, {n} level: **{d.verdict}** ({d.why}); "
+                             + ", ".join(f"{k:.3g}: {v:.4g} ({int(r)} runs)"
+                                         for k, v, r in zip(s.kn, s.value, s.runs)))
     return lines + [""]
 
 
