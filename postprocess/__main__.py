@@ -3,8 +3,10 @@
 python3 -m postprocess summarize RESULTS_DIR [--to DIR]
 
 report      tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
-compare     the comparison table on the terminal; exit status 1 if a claim fails or none
-            could be evaluated
+compare     the comparison table on the terminal: each claim of the paper passes, differs
+            (the data contradict it: a finding) or FAILs (the data cannot tell the paper's
+            physics from the alternative the claim names); exit status 1 if a claim fails or
+            none could be evaluated
 transition  a transition sweep (inputs/sweeps/transition.toml, docs/transition.md): per base
             and inclination, how the runs ended, the stiffness exponents, the multiple
             contacts and P(tau), with figures, in DIR (default SWEEP_DIR/transition)
@@ -32,8 +34,8 @@ import numpy as np
 
 from . import figures, limit
 from .io import DataError, read_energy, read_params, read_rows
-from .reference import accepted, evaluate
-from .report import fmt, write_report, write_transition_report
+from .reference import accepted, evaluate, tally
+from .report import comparison_line, fmt, write_report, write_transition_report
 from .selection import Selection
 from .study import analyse, label, main_series, varying_variables
 from .summary import write_summaries
@@ -111,11 +113,9 @@ def main(argv=None):
     for claim, value, error, status in results:
         print(f"{claim['id']:<{width}}  {fmt(value, error):>18}  "
               f"{accepted(claim)}  {status}")
-    failed = sum(status.startswith("FAIL") for *_, status in results)
-    passed = sum(status.startswith("pass") for *_, status in results)
-    print(f"comparison: {passed} pass, {failed} FAIL, {len(results) - passed - failed} not "
-          f"evaluated{'' if passed + failed else ': nothing could be evaluated'}")
-    return 1 if failed or not passed + failed else 0
+    print(comparison_line(results))
+    counts = tally(results)
+    return 1 if counts["FAIL"] or counts["not evaluated"] == len(results) else 0
 
 
 def contact_splits(runs):

@@ -179,19 +179,21 @@ def snapshot_figure(scene, point, path):
     plt.close(fig)
 
 
-STATE_COLOURS = {"flowing": None, "stopped": "0.8", "accelerating": "mistyrose"}
+STATE_COLOURS = {"flowing": None, "stopped": "0.8", "accelerating": "mistyrose",
+                 "drifting": "lightyellow"}
 
 
 def _state_regions(ax, rows):
     """Shade each inclination by the state of most of its runs; the counts
-    flowing/stopped/accelerating at the bottom."""
+    flowing/stopped/accelerating/drifting at the bottom."""
     s = np.array([r["sin_theta"] for r in rows])
     edges = np.r_[s[0] - 0.025, 0.5 * (s[1:] + s[:-1]), s[-1] + 0.025] if len(s) > 1 else \
         np.array([s[0] - 0.025, s[0] + 0.025])
     for r, a, b in zip(rows, edges[:-1], edges[1:]):
         if STATE_COLOURS[r["state"]]:
             ax.axvspan(a, b, color=STATE_COLOURS[r["state"]], lw=0)
-        ax.text(r["sin_theta"], 0.02, f"{r['flowing']}/{r['stopped']}/{r['accelerating']}",
+        ax.text(r["sin_theta"], 0.02,
+                f"{r['flowing']}/{r['stopped']}/{r['accelerating']}/{r['drifting']}",
                 transform=ax.get_xaxis_transform(), ha="center", fontsize=6)
 
 
@@ -199,8 +201,9 @@ def transition_figure(table, path):
     """Per base (columns): (top) the stiffness exponents of N_c and N_w against sin theta,
     with the paper's 0 (collisional) and 0.4 (frictional); (bottom) at the stiffest flowing
     k_n, the multiple-contact fraction (t_c - N_c tau_c)/t_c, the time with two or more
-    contacts (boundary contacts included), and the fraction of disk contacts longer than 2 tau_c. Inclinations
-    where most runs stopped are grey, where most accelerated pink."""
+    contacts (boundary contacts included), and the fraction of disk contacts longer than 2 tau_c.
+    Inclinations where most runs stopped are grey, where most accelerated pink, where most
+    drifted yellow."""
     scenes = sorted({r["scene"] for r in table})
     fig, axes = plt.subplots(2, len(scenes), figsize=(5.5 * len(scenes), 7.5), sharex=True,
                              squeeze=False)
@@ -230,7 +233,8 @@ def transition_figure(table, path):
             ax.grid(alpha=0.3)
             ax.legend(fontsize=7)
     fig.suptitle("collisional-frictional transition; grey: most runs stopped, pink: most "
-                 "accelerated; counts flowing/stopped/accelerating", fontsize=10)
+                 "accelerated, yellow: most drifted; counts flowing/stopped/accelerating/"
+                 "drifting", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)

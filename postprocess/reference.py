@@ -1,26 +1,54 @@
-"""The reference claims (claims.csv: one row per claim, the stiffness range it is about, its
-source and its tolerance) and their evaluation on a study."""
+"""The reference claims (claims.csv: one row per claim of the paper, the stiffness range it is
+about, the measure that tests it, the range of that measure the paper's physics gives, the
+nearest physics the paper rules out and the value the measure takes under it) and their
+evaluation on a study.
+
+A claim's verdict, from the measured value v and its standard error:
+  pass      v lies inside the accepted range [low, high] (the paper's physics) and the
+            alternative's value lies outside v's 2-sigma interval [v - 2 err, v + 2 err]
+  differs   the 2-sigma interval lies wholly outside the range: the data contradict the paper
+  FAIL      neither: the data cannot tell the paper's physics from the alternative
+A measure without an error bar (a maximum over points) is compared as it is. The
+hard-sphere-limit decision maps finite / vanishing / undecided to pass / differs / FAIL."""
 import csv
 from pathlib import Path
 
 import numpy as np
 
 from . import limit
-from .study import fit_log, fit_power, main_series, ratio_with_error, series
+from .study import fit_log, fit_log_bend, fit_power, main_series, ratio_with_error, series
 
 CLAIMS = Path(__file__).with_name("claims.csv")
-MEASURES = ("max_abs_deviation", "power_exponent", "log_slope", "log_r2", "ratio_at_stiffest",
+MEASURES = ("max_abs_deviation", "power_exponent", "log_slope", "log_bend", "ratio_at_stiffest",
             "limit_decision")
+NUMBERS = ("kn_min", "kn_max", "low", "high", "reference", "expected", "alternative_value")
+SIGMAS = 2.0    # the width, in standard errors, of the interval a verdict compares
 
 
 def load_claims(path=CLAIMS):
+    """The claims, each checked to be able to fail: its alternative's value lies outside the
+    accepted range (or on an end of it) and the paper's expected value inside it."""
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     for row in rows:
-        for key in ("kn_min", "kn_max", "low", "high"):
-            row[key] = float(row[key])
+        where = f"{path}: claim {row['id']}"
+        for key in NUMBERS:
+            row[key] = float(row[key]) if row[key] not in ("", None) else np.nan
         if row["measure"] not in MEASURES:
-            raise ValueError(f"{path}: claim {row['id']}: unknown measure {row['measure']}")
+            raise ValueError(f"{where}: unknown measure {row['measure']}")
+        if not row.get("alternative"):
+            raise ValueError(f"{where}: names no alternative physics")
+        if row["measure"] == "limit_decision":
+            continue
+        if not row["low"] <= row["expected"] <= row["high"]:
+            raise ValueError(f"{where}: the paper's value {row['expected']:g} is outside "
+                             f"[{row['low']:g}, {row['high']:g}]")
+        # on an end of the range it cannot pass either: a 2-sigma interval around it sticks out
+        if row["low"] < row["alternative_value"] < row["high"]:
+            raise ValueError(f"{where}: the alternative's value {row['alternative_value']:g} "
+                             f"passes [{row['low']:g}, {row['high']:g}]: the claim cannot fail")
+        if row["measure"] == "max_abs_deviation" and not np.isfinite(row["reference"]):
+            raise ValueError(f"{where}: max_abs_deviation needs a reference value")
     return rows
 
 
@@ -36,15 +64,23 @@ def measure(claim, rows):
         if not rows:
             return np.nan, np.nan, f"no point with {where}"
         return (*ratio_with_error(rows[-1], *quantity.split("/")), "")
-    if len(rows) < 2:
-        return np.nan, np.nan, f"needs at least 2 points with {where}, has {len(rows)}"
-    kn, values, errors = series(rows, quantity)
+    # a fit's error bar needs one point more than its parameters
+    needed = {"max_abs_deviation": 2, "log_bend": 4}.get(kind, 3)
+    if len(rows) < needed:
+        return np.nan, np.nan, f"needs at least {needed} points with {where}, has {len(rows)}"
+    kn, values, _ = series(rows, quantity)
     if kind == "max_abs_deviation":
-        return float(np.max(np.abs(values - 4.0))), np.nan, ""
+        return float(np.max(np.abs(values - claim["reference"]))), np.nan, ""
     if kind == "power_exponent":
+        if np.any(values <= 0):
+            return np.nan, np.nan, (f"{quantity} <= 0 at k_n = "
+                                    f"{', '.join(f'{k:g}' for k in kn[values <= 0])}: "
+                                    "no power law to fit")
         return (*fit_power(kn, values), "")
-    slope, error, r2 = fit_log(kn, values)
-    return (slope, error, "") if kind == "log_slope" else (r2, np.nan, "")
+    if kind == "log_bend":
+        return (*fit_log_bend(kn, values), "")
+    slope, error, _ = fit_log(kn, values)
+    return slope, error, ""
 
 
 def limit_measure(rows, quantity):
@@ -67,14 +103,21 @@ class LimitValue(float):
         return self
 
 
-def status_of(claim, value):
-    """pass or FAIL: a range claim passes inside [low, high]; a limit decision passes if the
-    rule says "finite", and fails on "vanishing" and on "undecided" (the claim is then not
-    supported by the data)."""
+LIMIT_VERDICTS = {"finite": "pass (finite)", "vanishing": "differs (vanishing)",
+                  "undecided": "FAIL (undecided)"}
+
+
+def status_of(claim, value, error=np.nan):
+    """pass, differs or FAIL (module docstring)."""
     if claim["measure"] == "limit_decision":
-        verdict = value.decision.verdict
-        return "pass (finite)" if verdict == "finite" else f"FAIL ({verdict})"
-    return "pass" if claim["low"] <= value <= claim["high"] else "FAIL"
+        return LIMIT_VERDICTS[value.decision.verdict]
+    spread = SIGMAS * error if np.isfinite(error) else 0.0
+    lo, hi = value - spread, value + spread
+    if claim["low"] <= value <= claim["high"] and not lo <= claim["alternative_value"] <= hi:
+        return "pass"
+    if hi < claim["low"] or lo > claim["high"]:
+        return "differs"
+    return "FAIL"
 
 
 def accepted(claim):
@@ -85,8 +128,8 @@ def accepted(claim):
 
 
 def evaluate(scenes, claims=None):
-    """[(claim, measured, error, status)] with status pass, FAIL or 'not evaluated: why', on
-    each scene's main series."""
+    """[(claim, measured, error, status)] with status pass, differs, FAIL or 'not evaluated:
+    why', on each scene's main series."""
     results = []
     for claim in claims or load_claims():
         rows = main_series(scenes.get(claim["scene"], []))
@@ -98,5 +141,13 @@ def evaluate(scenes, claims=None):
         if not np.isfinite(value):
             results.append((claim, value, error, f"not evaluated: {reason or 'no value'}"))
         else:
-            results.append((claim, value, error, status_of(claim, value)))
+            results.append((claim, value, error, status_of(claim, value, error)))
     return results
+
+
+def tally(results):
+    """{'pass': n, 'differs': n, 'FAIL': n, 'not evaluated': n} of evaluate's results."""
+    counts = {"pass": 0, "differs": 0, "FAIL": 0, "not evaluated": 0}
+    for *_, status in results:
+        counts[next(k for k in counts if status.startswith(k))] += 1
+    return counts

@@ -7,7 +7,7 @@ import numpy as np
 
 from . import figures, transition
 from .io import DataError, read_trajectory
-from .reference import accepted, evaluate
+from .reference import accepted, evaluate, tally
 from .runs import energy_curve
 from .scenes import scene as scene_of
 from .selection import Selection
@@ -130,13 +130,25 @@ def write_runs(runs, path):
                             [r["kept"][k] for k in resolutions] + [r["point"]])
 
 
+def comparison_line(results):
+    """The one-line tally of a comparison."""
+    counts = tally(results)
+    nothing = counts["not evaluated"] == len(results)
+    return (f"comparison: {counts['pass']} pass, {counts['differs']} differ from the paper, "
+            f"{counts['FAIL']} FAIL, {counts['not evaluated']} not evaluated"
+            f"{': nothing could be evaluated' if nothing else ''}")
+
+
 def comparison_lines(results):
-    lines = ["| claim | quantity | k_n range | measured | accepted range | status | source |",
-             "|---|---|---|---|---|---|---|"]
+    lines = ["| claim | quantity | k_n range | measured | accepted range | alternative (value) | "
+             "verdict | source |", "|---|---|---|---|---|---|---|---|"]
     for claim, value, error, status in results:
+        alternative = claim["alternative"]
+        if np.isfinite(claim["alternative_value"]):
+            alternative += f" ({claim['alternative_value']:g})"
         lines.append(f"| {claim['id']} | {claim['quantity']} ({claim['measure']}) | "
                      f"[{claim['kn_min']:g}, {claim['kn_max']:g}] | {fmt(value, error)} | "
-                     f"{accepted(claim)} | {status} | {claim['source']} |")
+                     f"{accepted(claim)} | {alternative} | {status} | {claim['source']} |")
     return lines
 
 
@@ -150,11 +162,13 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
     with open(out / "comparison.csv", "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(["id", "scene", "quantity", "measure", "kn_min", "kn_max", "measured",
-                         "error", "low", "high", "status", "source", "why"])
+                         "error", "low", "high", "alternative", "alternative_value", "status",
+                         "source", "why"])
         for claim, value, error, status in results:
             writer.writerow([claim["id"], claim["scene"], claim["quantity"], claim["measure"],
                              claim["kn_min"], claim["kn_max"], value, error, claim["low"],
-                             claim["high"], status, claim["source"], claim["why"]])
+                             claim["high"], claim["alternative"], claim["alternative_value"],
+                             status, claim["source"], claim["why"]])
 
     lines = [f"# Stiffness study: {sweep_dir}", "",
              f"Written {datetime.datetime.now():%Y-%m-%d %H:%M} by `python3 -m postprocess "
@@ -198,7 +212,11 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
             lines += [f"![{caption}]({name})", ""]
     lines += ["## Comparison with the references", "",
               "Exponents are least-squares fits in log-log over the points in the claim's k_n "
-              "range (errors: the fit's standard error).", ""]
+              "range (errors: the fit's standard error). Each claim names the nearest physics "
+              "the paper rules out and the value its measure would take under it. Verdict: "
+              "**pass** if the measured value's 2-sigma interval lies inside the accepted "
+              "range (the alternative excluded), **differs** if it lies wholly outside (the "
+              "data contradict the paper), **FAIL** otherwise (the data cannot tell).", ""]
     lines += comparison_lines(results)
     lines += ["", "The table is also in `comparison.csv`, with the reason for each tolerance.", ""]
     if left_out or problems:
@@ -216,7 +234,8 @@ def write_transition_report(sweep_dir, runs, groups, left_out, out):
     ended). Returns the path of transition.md."""
     out.mkdir(parents=True, exist_ok=True)
     table = transition.transition_table(runs, groups)
-    columns = ["scene", "sin_theta", "runs", "flowing", "stopped", "accelerating", "state",
+    columns = ["scene", "sin_theta", "runs", "flowing", "stopped", "accelerating", "drifting",
+               "state",
                "exponent_N_c", "exponent_N_c_err", "exponent_N_w", "exponent_N_w_err",
                "kn_stiffest", "mc_fraction", "mc_fraction_err", "t_c", "t_c_err", "t_multiple",
                "t_multiple_err", "z", "z_err", "E_total", "E_total_err", "tail_disk",
@@ -248,7 +267,9 @@ def write_transition_report(sweep_dir, runs, groups, left_out, out):
              "transition` (docs/transition.md says how to read it). A run is *stopped* if its "
              "pile came to rest, *accelerating* if E per disk over the last fifth of its "
              f"averaging span exceeds {transition.GROWTH_LIMIT:g} times E over the first "
-             "fifth, else *flowing*; only flowing runs are averaged, over their whole span "
+             "fifth, *drifting* if a straight line fitted to E(t) over the span changes by "
+             "more than E's standard deviation about it, else *flowing*; only flowing runs "
+             "are averaged, over their whole span "
              "after the transient. Exponents: least-squares fits of N ~ k_n^a over the k_n "
              "with flowing runs (error: the fit's). At the stiffest of those k_n: the "
              "multiple-contact fraction (t_c - N_c tau_c)/t_c, the fraction of time with two "
@@ -267,7 +288,7 @@ def write_transition_report(sweep_dir, runs, groups, left_out, out):
             made.append((caption, name))
     for scene in sorted({row["scene"] for row in table}):
         lines += [f"## {scene_of(scene).base} (`{scene}`)", "",
-                  "| sin theta | runs: flowing / stopped / accelerating | k_n flowing | "
+                  "| sin theta | runs: flowing / stopped / accelerating / drifting | k_n flowing | "
                   "N_c exponent | N_w exponent | stiffest k_n | (t_c - N_c tau_c)/t_c | "
                   "t_multiple | z | E | disk > 2 tau_c | boundary > 2 tau_w |",
                   "|---|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -277,7 +298,7 @@ def write_transition_report(sweep_dir, runs, groups, left_out, out):
             kn = row["kn_flowing"]
             lines.append(
                 f"| {row['sin_theta']:g} | {row['flowing']} / {row['stopped']} / "
-                f"{row['accelerating']} ({row['state']}) | "
+                f"{row['accelerating']} / {row['drifting']} ({row['state']}) | "
                 f"{f'{kn[0]:g} ... {kn[-1]:g} ({len(kn)})' if kn else '-'} | "
                 f"{cell('exponent_N_c')} | {cell('exponent_N_w')} | "
                 f"{fmt(row.get('kn_stiffest', np.nan))} | {cell('mc_fraction')} | "

@@ -195,6 +195,20 @@ def fit_log(kn, values):
     return coefficients[0], np.sqrt(covariance[0, 0]), r2
 
 
+def fit_log_bend(kn, values):
+    """How far values bend away from a straight line in ln kn, as the exponent p of the power
+    law that bends as much: with values = a + b x + c x^2 (x = ln kn - its mean), p = 2c/b
+    (a power law A kn^p has exactly this p; a logarithm has 0). (p, standard error from the
+    fit's covariance; nan where values have no slope)."""
+    x = np.log(kn) - np.log(kn).mean()
+    (c, b, _), covariance = np.polyfit(x, values, 2, cov=True)
+    if b == 0:
+        return np.nan, np.nan      # no slope, nothing that bends
+    p = 2 * c / b
+    gradient = np.array([2 / b, -2 * c / b ** 2])     # d p / d (c, b)
+    return p, float(np.sqrt(gradient @ covariance[:2, :2] @ gradient))
+
+
 def profiles(rows):
     out = []
     for o in rows:

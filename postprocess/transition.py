@@ -21,6 +21,10 @@ from .study import combine_seeds, fit_power, ratio_with_error
 #   accelerating  E per disk, averaged over the last fifth of the averaging span, is more than
 #                 GROWTH_LIMIT times its average over the first fifth: no steady state within
 #                 the run (E of a flow gaining speed freely grows like t^2);
+#   drifting      not accelerating, but E per disk changes over the averaging span by more
+#                 than it fluctuates: a straight line fitted to E(t) over the span changes by
+#                 more than the standard deviation of E(t) about that line (a flow still
+#                 settling, slowing down or changing level is not a steady flow to average);
 #   flowing       otherwise: averaged.
 # Why 2: the steady frictional flows at sin theta = 0.20 wander within the selection's width
 # 0.45 at E ~ 0.6 (a factor below 2 between any two stretches of a steady part), while a flow
@@ -28,7 +32,7 @@ from .study import combine_seeds, fit_power, ratio_with_error
 # k_n 5e4: a factor ~3.4 between t = 100 and 300, measured).
 GROWTH_LIMIT = 2.0
 STATE_BLOCKS = 5
-STATES = ("flowing", "stopped", "accelerating")
+STATES = ("flowing", "stopped", "accelerating", "drifting")
 # P(tau): log bins of tau/tau_c (tau/tau_w for boundary contacts), ten per decade; the tail
 # beyond TAIL_CUT binary durations holds the lasting contacts (a binary collision lasts 1).
 DURATION_EDGES = np.logspace(-1, 4, 51)
@@ -51,7 +55,12 @@ def flow_state(t, energy, average_start, stopped_at=None):
     end = span_t[-1] + 0.5 * (span_t[-1] - span_t[-2])
     _, means = block_means(span_t, energy[inside], span_t[0], end, STATE_BLOCKS)
     growth = means[-1] / means[0] if means[0] > 0 else np.inf
-    return ("accelerating" if growth > GROWTH_LIMIT else "flowing"), growth
+    if growth > GROWTH_LIMIT:
+        return "accelerating", growth
+    line = np.polyfit(span_t, energy[inside], 1)
+    drift = abs(line[0]) * (span_t[-1] - span_t[0])
+    fluctuation = np.std(energy[inside] - np.polyval(line, span_t))
+    return ("drifting" if drift > fluctuation else "flowing"), growth
 
 
 def contact_durations(rows, tau_c, tau_w, since):

@@ -296,48 +296,6 @@ def synthetic_rows(kn, label="", **laws):
     return rows
 
 
-def test_claims_measure_known_exponents_slopes_and_ratios():
-    from postprocess.reference import evaluate, load_claims
-    kn = 1e5 * 2.0 ** np.arange(-3, 8)
-    frictional = synthetic_rows(kn, N_c=lambda k: 0.1 * k ** 0.4, N_w=lambda k: k ** 0.3,
-                                t_c=lambda k: k ** -0.1, mc_c=lambda k: 0.6 * k ** -0.1,
-                                t_w=lambda k: 1.0, mc_w=lambda k: 0.2)
-    results = {c["id"]: (v, status) for c, v, _, status in
-               evaluate({"frictional_flow": frictional}, load_claims())}
-    assert results["frictional-Nc"] == (pytest.approx(0.4), "pass")
-    assert results["frictional-Nw"] == (pytest.approx(0.3), "pass")
-    assert results["frictional-tc-falls"] == (pytest.approx(-0.1), "pass")
-    assert results["frictional-mc"] == (pytest.approx(0.6), "pass")
-    assert results["frictional-mw"] == (pytest.approx(0.2), "FAIL")         # below 0.3
-    assert results["collisional-tc"][1].startswith("not evaluated")
-
-    # a flat N_c is not the paper's power law
-    flat = synthetic_rows(kn, N_c=lambda k: 2.0)
-    results = {c["id"]: (v, s) for c, v, _, s in evaluate({"frictional_flow": flat})}
-    assert results["frictional-Nc"] == (pytest.approx(0.0, abs=1e-12), "FAIL")
-
-
-def test_claims_use_their_stiffness_range_and_the_log_law():
-    from postprocess.reference import evaluate
-    kn = 1e5 * 2.0 ** np.arange(-7, 18)
-    # E falls as kn^-0.05 up to 1e7, then flat: only the soft-region claim sees the fall
-    single = synthetic_rows(kn, E_total=lambda k: min(k, 1e7) ** -0.05,
-                            N_w=lambda k: 1.0 + 0.47 * np.log(k), bump_time=lambda k: 4.2,
-                            t_w=lambda k: 0.09 + 0.5 * k ** -0.5,
-                            mc_w=lambda k: 0.09)
-    results = {c["id"]: (v, s) for c, v, _, s in evaluate({"single_disk": single})}
-    assert results["single-E-soft"] == (pytest.approx(-0.05), "pass")
-    assert results["single-E-hard"] == (pytest.approx(0.0, abs=1e-12), "pass")
-    assert results["single-Nw-log"] == (pytest.approx(0.47), "pass")
-    assert results["single-Nw-linear"] == (pytest.approx(1.0), "pass")
-    assert results["single-period"] == (pytest.approx(0.2), "pass")
-    assert results["single-tw-level"][1] == "pass"
-    # a power law N_w ~ kn^0.4 over the same range is far from a straight line in ln kn
-    power = synthetic_rows(kn, N_w=lambda k: k ** 0.4)
-    results = {c["id"]: (v, s) for c, v, _, s in evaluate({"single_disk": power})}
-    assert results["single-Nw-linear"][1] == "FAIL"
-
-
 def test_claims_are_evaluated_on_the_main_series_only():
     from postprocess.reference import evaluate
     from postprocess.study import main_series, variant_differences
@@ -427,16 +385,6 @@ def test_params_that_are_not_positive_numbers_are_refused(tmp_path, name, value)
     (point / "params.txt").write_text("\n".join(lines) + "\n")
     with pytest.raises(DataError, match=f"{name} = .* must be a finite number > 0"):
         point_observables(point)
-
-
-def test_claims_on_a_quantity_without_errors():
-    """A single run's v_y period has no error bar (one value per run): the claims still work."""
-    from postprocess.reference import evaluate
-    rows = synthetic_rows(1e5 * 2.0 ** np.arange(0, 4), bump_time=lambda k: 4.1)
-    for o in rows:
-        del o["bump_time_err"]
-    results = {c["id"]: (v, s) for c, v, _, s in evaluate({"single_disk": rows})}
-    assert results["single-period"] == (pytest.approx(0.1), "pass")
 
 
 def test_a_run_that_came_to_rest_has_no_steady_motion_to_average(tmp_path):
@@ -541,5 +489,5 @@ def test_compare_fails_when_nothing_could_be_evaluated(tmp_path, capsys):
     from postprocess.__main__ import main
     sweep = sweep_of(tmp_path, {("collisional_flow", "p1"): crashed})
     assert main(["compare", str(sweep)]) == 1
-    assert "comparison: 0 pass, 0 FAIL, 20 not evaluated: nothing could be evaluated" in \
-        capsys.readouterr().out
+    assert ("comparison: 0 pass, 0 differ from the paper, 0 FAIL, 20 not evaluated: nothing "
+            "could be evaluated") in capsys.readouterr().out

@@ -65,14 +65,28 @@ def test_flow_state_of_a_steady_an_accelerating_and_a_stopped_run():
     assert flow_state(t[t < 300], noisy(t[t < 300], 0.6), 100.0, stopped_at=300.0)[0] == \
         "stopped"
     # just below and just above the limit: E rising linearly so that the fifths differ by
-    # 0.9 and 1.1 times GROWTH_LIMIT
-    span = t[t >= 100]
-    for factor, expected in ((0.9, "flowing"), (1.1, "accelerating")):
+    # 0.9 and 1.1 times GROWTH_LIMIT (below it, a line without noise drifts)
+    for factor, expected in ((0.9, "drifting"), (1.1, "accelerating")):
         g = factor * GROWTH_LIMIT
         # means of the first and last fifth of a line a + b t over [100, 600): a + 150 b and
         # a + 550 b
         b = (g - 1) / (550 - 150 * g)
         assert flow_state(t, 1 + b * t, 100.0)[0] == expected
+
+
+def test_a_flow_whose_energy_drifts_by_more_than_it_fluctuates_is_not_averaged():
+    """E rising by half over the span, or jumping to another level in its middle: neither
+    grows by GROWTH_LIMIT, and neither is a steady flow; the same flow without the drift is."""
+    t = np.arange(0, 600, 0.1)
+    steady = noisy(t, 0.6)
+    rising = steady * (1 + 0.5 * np.clip((t - 100) / 500, 0, 1))
+    jumping = steady * np.where(t < 350, 1.0, 1.6)
+    assert flow_state(t, steady, 100.0)[0] == "flowing"
+    for energy in (rising, jumping):
+        state, growth = flow_state(t, energy, 100.0)
+        assert state == "drifting" and growth < GROWTH_LIMIT
+    # a drift smaller than the fluctuation (E's sd about its line is ~0.14 of E here)
+    assert flow_state(t, steady * (1 + 0.05 * (t - 100) / 500), 100.0)[0] == "flowing"
 
 
 def run(scene, sin_theta, kn, seed, state, **observables):
