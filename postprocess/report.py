@@ -11,8 +11,8 @@ from .reference import accepted, evaluate, tally
 from .runs import energy_curve
 from .scenes import scene as scene_of
 from .selection import Selection
-from .study import (QUANTITIES, VARIANT_QUANTITIES, main_series, run_summary, same_series,
-                    variant_differences)
+from .study import (CROSSOVER_SIGMAS, QUANTITIES, VARIANT_QUANTITIES, crossover, main_series,
+                    run_summary, same_series, series, variant_differences)
 
 
 def fmt(value, error=None):
@@ -117,6 +117,21 @@ def variant_lines(rows):
     return lines + [""]
 
 
+def crossover_note(rows, stiff_from):
+    """Where E reaches its stiff value along the main series (study.crossover), as a line."""
+    try:
+        c = crossover(*series(rows, "E_total"), stiff_from)
+    except ValueError as error:
+        return f"E crossover: not measured ({error})"
+    low, high = c["bracket"]
+    differs = (f"; the stiffest point that differs: k_n = {low:g}" if low is not None else
+               ": the softest point already agrees")
+    return (f"E crossover: E agrees with its stiff value {fmt(c['stiff'], c['stiff_err'])} (the "
+            f"mean over the {c['n_stiff']} points at k_n >= {stiff_from:g}) within "
+            f"{CROSSOVER_SIGMAS:g} combined errors from k_n = {high:g} on (1/k_n = "
+            f"{1 / high:.2g}){differs}")
+
+
 def write_runs(runs, path):
     """One row per run that the selection looked at: how it ended, what was kept."""
     resolutions = sorted(runs[0]["kept"])
@@ -207,6 +222,8 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
                          "motion repeats every second or third bump): " +
                          ", ".join(f"{o['kn']:g}: {fmt(o['period'])}"
                                                       for o in rows))
+        if what.stiff_from and rows:
+            notes.append(crossover_note(main_series(rows), what.stiff_from))
         lines += [""] + [f"- {n}" for n in notes] + [""]
         for caption, name in made.get(scene, []):
             lines += [f"![{caption}]({name})", ""]

@@ -29,13 +29,17 @@ class Scene:
     # collision rates against ln kn (a log law) rather than log-log
     rates_log_law: bool = False
     guides: tuple = ()
+    # E's stiff value: its mean over kn >= stiff_from (the single disk: the paper's 1/k_n <
+    # 1e-7); the report says from which kn E reaches it (study.crossover). 0: not measured.
+    stiff_from: float = 0.0
     notes: tuple = ()
     # the slope and the system, as the transition study (docs/transition.md) names the scene
     base: str = ""
 
 
 SCENES = {s.name: s for s in (
-    Scene("single_disk", "single disk on a bumpy slope", has_period=True, rates_log_law=True),
+    Scene("single_disk", "single disk on a bumpy slope", has_period=True, rates_log_law=True,
+          stiff_from=1e7),
     Scene("collisional_flow", "collisional flow",
           guides=(Guide("times", "t_c", -0.5, "k_n^-1/2 guide"),),
           base="bumpy base, 50 disks"),

@@ -209,6 +209,37 @@ def fit_log_bend(kn, values):
     return p, float(np.sqrt(gradient @ covariance[:2, :2] @ gradient))
 
 
+# "Within its error" for the crossover: a point agrees with the stiff value when it lies within
+# CROSSOVER_SIGMAS combined standard errors of it. One sigma would put a dozen flat stiff points
+# out of agreement by chance (each has a 1 in 3 chance); two let ~1 in 20 out.
+CROSSOVER_SIGMAS = 2.0
+
+
+def crossover(kn, values, errors, stiff_from, sigmas=CROSSOVER_SIGMAS):
+    """Where a series reaches its stiff value. The stiff value is the mean of the values at
+    kn >= stiff_from, with its standard error (their scatter over sqrt(n)); the crossover is
+    the smallest kn from which on every point agrees with it within `sigmas` combined errors
+    (the point's and the stiff value's). A dict: kn (the crossover), bracket (the stiffest kn
+    that differs, or None where the softest point already agrees; the crossover: the curve
+    reaches the stiff value between them), stiff, stiff_err, n_stiff."""
+    order = np.argsort(kn)
+    kn, values, errors = (np.asarray(a, dtype=float)[order] for a in (kn, values, errors))
+    stiff = kn >= stiff_from
+    if stiff.sum() < 2:
+        raise ValueError(f"the stiff value needs two or more points at k_n >= {stiff_from:g}, "
+                         f"found {stiff.sum()}")
+    level = values[stiff].mean()
+    level_err = values[stiff].std(ddof=1) / np.sqrt(stiff.sum())
+    differs = np.abs(values - level) > sigmas * np.hypot(errors, level_err)
+    last = np.flatnonzero(differs)
+    if len(last) and last[-1] == len(kn) - 1:
+        raise ValueError(f"the stiffest point (k_n = {kn[-1]:g}) differs from the stiff value")
+    first = last[-1] + 1 if len(last) else 0
+    return {"kn": float(kn[first]), "bracket": (float(kn[first - 1]) if first else None,
+                                                float(kn[first])),
+            "stiff": float(level), "stiff_err": float(level_err), "n_stiff": int(stiff.sum())}
+
+
 def profiles(rows):
     out = []
     for o in rows:
