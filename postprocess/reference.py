@@ -16,11 +16,13 @@ from pathlib import Path
 import numpy as np
 
 from . import limit
-from .study import fit_log, fit_log_bend, fit_power, main_series, ratio_with_error, series
+from .scenes import scene
+from .study import (crossover, fit_log, fit_log_bend, fit_power, main_series, ratio_with_error,
+                    series)
 
 CLAIMS = Path(__file__).with_name("claims.csv")
 MEASURES = ("max_abs_deviation", "power_exponent", "log_slope", "log_bend", "ratio_at_stiffest",
-            "limit_decision")
+            "crossover_kn", "limit_decision")
 NUMBERS = ("kn_min", "kn_max", "low", "high", "reference", "expected", "alternative_value")
 SIGMAS = 2.0    # the width, in standard errors, of the interval a verdict compares
 
@@ -68,7 +70,9 @@ def measure(claim, rows):
     needed = {"max_abs_deviation": 2, "log_bend": 4}.get(kind, 3)
     if len(rows) < needed:
         return np.nan, np.nan, f"needs at least {needed} points with {where}, has {len(rows)}"
-    kn, values, _ = series(rows, quantity)
+    kn, values, errors = series(rows, quantity)
+    if kind == "crossover_kn":
+        return crossover_measure(kn, values, errors, scene(claim["scene"]).stiff_from)
     if kind == "max_abs_deviation":
         return float(np.max(np.abs(values - claim["reference"]))), np.nan, ""
     if kind == "power_exponent":
@@ -81,6 +85,20 @@ def measure(claim, rows):
         return (*fit_log_bend(kn, values), "")
     slope, error, _ = fit_log(kn, values)
     return slope, error, ""
+
+
+def crossover_measure(kn, values, errors, stiff_from):
+    """log10 of the k_n from which the series agrees with its stiff value (study.crossover),
+    with half its bracket's width in log10 as the error; (nan, nan, why) where there is none."""
+    try:
+        c = crossover(kn, values, errors, stiff_from)
+    except ValueError as error:
+        return np.nan, np.nan, str(error)
+    softer, at = c["bracket"]
+    if softer is None:
+        return np.nan, np.nan, (f"the softest point (k_n = {at:g}) already agrees: the "
+                                "crossover lies below the points")
+    return np.log10(at), 0.5 * np.log10(at / softer), ""
 
 
 def limit_measure(rows, quantity):

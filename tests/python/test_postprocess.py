@@ -489,5 +489,5 @@ def test_compare_fails_when_nothing_could_be_evaluated(tmp_path, capsys):
     from postprocess.__main__ import main
     sweep = sweep_of(tmp_path, {("collisional_flow", "p1"): crashed})
     assert main(["compare", str(sweep)]) == 1
-    assert ("comparison: 0 pass, 0 differ from the paper, 0 FAIL, 20 not evaluated: nothing "
+    assert ("comparison: 0 pass, 0 differ from the paper, 0 FAIL, 21 not evaluated: nothing "
             "could be evaluated") in capsys.readouterr().out
