@@ -11,7 +11,7 @@ from .io import (DataError, read_ending, read_energy, read_params, read_rows, re
 from .observables import point_observables, relative, rest_time
 from .runs import unfinished_reason
 from .scenes import SCENES, transition_scene
-from .signals import block_means
+from .signals import block_means, trend
 from .study import combine_seeds, fit_power, ratio_with_error
 
 # The flow-state rule, the one place it is stated (docs/transition.md):
@@ -22,15 +22,19 @@ from .study import combine_seeds, fit_power, ratio_with_error
 #                 GROWTH_LIMIT times its average over the first fifth: no steady state within
 #                 the run (E of a flow gaining speed freely grows like t^2);
 #   drifting      not accelerating, but E per disk changes over the averaging span by more
-#                 than it fluctuates: a straight line fitted to E(t) over the span changes by
-#                 more than the standard deviation of E(t) about that line (a flow still
-#                 settling, slowing down or changing level is not a steady flow to average);
+#                 than it fluctuates: the trend of E(t) over the span (a line through the means
+#                 of DRIFT_BLOCKS blocks) changes by more than the standard deviation of E(t)
+#                 about it, and the trend is significant (its slope more than DRIFT_SIGMAS
+#                 standard errors from 0: a steady flow whose E wanders slowly has a slope of
+#                 ~1 standard error). A flow still settling, slowing down or changing level is
+#                 not a steady flow to average;
 #   flowing       otherwise: averaged.
 # Why 2: the steady frictional flows at sin theta = 0.20 wander within the selection's width
 # 0.45 at E ~ 0.6 (a factor below 2 between any two stretches of a steady part), while a flow
 # that accelerates from rest over the span grows by far more than 2 (flat base, sin theta 0.45,
 # k_n 5e4: a factor ~3.4 between t = 100 and 300, measured).
 GROWTH_LIMIT = 2.0
+DRIFT_BLOCKS, DRIFT_SIGMAS = 10, 3.0
 STATE_BLOCKS = 5
 STATES = ("flowing", "stopped", "accelerating", "drifting")
 # P(tau): log bins of tau/tau_c (tau/tau_w for boundary contacts), ten per decade; the tail
@@ -57,10 +61,11 @@ def flow_state(t, energy, average_start, stopped_at=None):
     growth = means[-1] / means[0] if means[0] > 0 else np.inf
     if growth > GROWTH_LIMIT:
         return "accelerating", growth
-    line = np.polyfit(span_t, energy[inside], 1)
-    drift = abs(line[0]) * (span_t[-1] - span_t[0])
-    fluctuation = np.std(energy[inside] - np.polyval(line, span_t))
-    return ("drifting" if drift > fluctuation else "flowing"), growth
+    slope, slope_err = trend(span_t, energy[inside], span_t[0], end, DRIFT_BLOCKS)
+    fluctuation = np.std(energy[inside] - slope * span_t)     # about the trend
+    drifts = (abs(slope) * (end - span_t[0]) > fluctuation and
+              abs(slope) > DRIFT_SIGMAS * slope_err)
+    return ("drifting" if drifts else "flowing"), growth
 
 
 def contact_durations(rows, tau_c, tau_w, since):
