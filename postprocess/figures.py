@@ -8,7 +8,7 @@ import numpy as np  # noqa: E402
 from .io import DataError  # noqa: E402
 from .scenes import scene as scene_of  # noqa: E402
 from .selection import Selection, select_steady, window_means  # noqa: E402
-from .study import profiles, series  # noqa: E402
+from .study import series  # noqa: E402
 
 
 
@@ -68,9 +68,16 @@ def stiffness(scene, rows, path, variants=()):
 
 
 def profile_figure(scene, rows, path):
-    data = profiles(rows)
+    """Density and flow velocity against height of the points `rows` (raw outputs); returns
+    the problems: the profiles that could not be read, and why."""
+    data, problems = [], []
+    for o in rows:
+        try:
+            data.append((o["kn"], o["outputs"].profile))
+        except DataError as error:
+            problems.append(str(error))
     if not data:
-        raise DataError(f"{scene}: no profile.txt could be read")
+        raise DataError(f"{scene}: no profile could be read ({'; '.join(problems)})")
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4.5), sharey=True)
     for kn, p in data:
         occupied = p["count"] > 0
@@ -87,6 +94,7 @@ def profile_figure(scene, rows, path):
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
+    return problems
 
 
 def vy_figure(rows, trajectories, path):

@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 
 from . import figures, transition
-from .io import DataError, read_trajectory
+from .io import DataError
 from .reference import accepted, evaluate, tally
 from .runs import energy_curve
 from .scenes import scene as scene_of
@@ -37,10 +37,10 @@ def write_tables(scenes, out):
 
 
 def make_figures(scenes, completed, out, selection):
-    """{scene: [(caption, file name)]}, and problems met. Time series and snapshots of every
-    completed run (completed: {scene: [RunRecord]}); the stiffness dependences and profiles of
-    the usable ones. From summaries: no snapshots, profiles or v_y(t) (only the raw outputs
-    hold them)."""
+    """{scene: [(caption, file name)]}, and problems met (a figure not drawn, or drawn without a
+    point whose file could not be read). Time series and snapshots of every completed run
+    (completed: {scene: [RunRecord]}); the stiffness dependences and profiles of the usable
+    ones. From summaries: no snapshots, profiles or v_y(t) (only the raw outputs hold them)."""
     made, problems = {}, []
     for scene, points in completed.items():
         raw = all(r.source == "raw" for r in points)
@@ -67,13 +67,13 @@ def make_figures(scenes, completed, out, selection):
             def vy(p, r=rows):
                 trajectories = {}
                 for o in (r[0], r[-1]):
-                    t = read_trajectory(o["point"])
+                    t = o["outputs"].trajectory
                     trajectories[o["kn"]] = (t["time"], t["vy"])
                 figures.vy_figure(r, trajectories, p)
             jobs.append(("v_y(t) at the softest and the stiffest point", "vy_single_disk.png", vy))
         for caption, name, job in jobs:
             try:
-                job(out / name)
+                problems += [f"{name}: {problem}" for problem in job(out / name) or ()]
                 items.append((caption, name))
             except DataError as error:
                 problems.append(f"{name}: {error}")
