@@ -104,7 +104,7 @@ def main(argv=None):
         return write_limit(args.sweep, scenes, args.output or args.sweep / "limit", selection,
                            completed.get("frictional_flow", []))
     if args.command == "report":
-        path, results = write_report(args.sweep, scenes, left_out, completed,
+        path = write_report(args.sweep, scenes, left_out, completed,
                                      args.output or args.sweep / "report", runs, selection)
         print(f"report: {path}")
         return 0

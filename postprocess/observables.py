@@ -14,7 +14,11 @@ RESOLUTIONS = (0.1, 1.0, 5.0)
 # The pieces an averaged span is cut into for its block-average errors.
 N_BLOCKS = 5
 # A run has come to rest when its kinetic energy per disk stays below REST_ENERGY over its last
-# REST_TIME time units (the frictional deck's stop_energy and stop_time).
+# REST_TIME time units. The analysis's own rule, not the run's stop_energy and stop_time:
+# params.txt does not carry them, the rule applies as well to runs whose deck never stops
+# early (the collisional deck's default stop_energy 0; the single disk has no stop rule), and
+# it asks every sample to stay below where inputs/lib/stop.lmp tests a running mean. The
+# values are the frictional deck's defaults.
 REST_ENERGY, REST_TIME = 1e-5, 10.0
 
 COUNTERS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary", "time_multiple")

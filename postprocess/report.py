@@ -7,6 +7,7 @@ import numpy as np
 
 from . import figures, transition
 from .io import DataError
+from .observables import N_BLOCKS
 from .reference import accepted, evaluate, tally
 from .runs import energy_curve
 from .scenes import scene as scene_of
@@ -173,15 +174,15 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
     lines = [f"# Stiffness study: {sweep_dir}", "",
              f"Written {datetime.datetime.now():%Y-%m-%d %H:%M} by `python3 -m postprocess "
              f"report`. Errors are standard errors of block averages within each run "
-             f"(5 blocks per averaging span), or across seeds where a point has several. "
+             f"({N_BLOCKS} blocks per averaging span), or across seeds where a point has several. "
              f"Frictional steady parts: {selection.describe()}.", ""]
     if any(r.source == "summary" for points in completed.values() for r in points):
         lines += ["From the runs' summaries (docs/sweeps.md): E(t) is drawn from its means over "
                   "windows of 1; snapshots, profiles and v_y(t) need the raw outputs.", ""]
     for scene in completed:
         rows = scenes.get(scene, [])
-        what = scene_of(scene)
-        lines += [f"## {what.title}", ""]
+        scene_def = scene_of(scene)
+        lines += [f"## {scene_def.title}", ""]
         if not rows:
             lines += ["No usable point (see Left out).", ""]
         lines += [
@@ -195,13 +196,13 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
                                      "t_multiple")] + [f"{o['span']:g}", o["label"]]) + " |")
         notes = [f"k_n = {o['kn']:g}{' (' + o['label'] + ')' if o['label'] else ''}: {o['notes']}"
                  for o in rows if o["notes"]]
-        if what.selects_steady_parts:
+        if scene_def.selects_steady_parts:
             lines += run_table(runs, selection)
         lines += variant_lines(rows)
         if rows:
-            notes += list(what.notes)
-        if what.has_period and rows:
-            notes.append("time to pass one bump (1.002 / mean v_x): " +
+            notes += list(scene_def.notes)
+        if scene_def.has_period and rows:
+            notes.append(f"time to pass one bump ({scene_def.bump_spacing:g} / mean v_x): " +
                          ", ".join(f"{o['kn']:g}: {fmt(o['bump_time'])}" for o in rows))
             notes.append("v_y periods (autocorrelation; a multiple of the bump time where the "
                          "motion repeats every second or third bump): " +
@@ -225,7 +226,7 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
         lines += [f"- figure {p}" for p in problems]
         lines.append("")
     (out / "report.md").write_text("\n".join(lines))
-    return out / "report.md", results
+    return out / "report.md"
 
 
 def write_transition_report(sweep_dir, runs, groups, left_out, out):

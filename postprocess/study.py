@@ -169,7 +169,7 @@ def ratio_with_error(o, top, bottom):
     return ratio, np.hypot(o[top + "_err"], ratio * o[bottom + "_err"]) / abs(o[bottom])
 
 
-def fit_power(kn, values, errors=None):
+def fit_power(kn, values):
     """Exponent of values ~ kn^a by least squares in log-log (positive values only):
     (a, standard error)."""
     good = values > 0
