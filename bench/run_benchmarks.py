@@ -28,7 +28,7 @@ import time
 from pathlib import Path
 
 from equivalent_laws import LIGGGHTS_FLOOR, hooke_history_contacts, liggghts_contacts
-from postprocess.law import derived    # bench/postprocess links the package
+from mn_law import derived    # bench/mn_law.py links scripts/mn_law.py
 
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = ROOT / "build"

@@ -1,1 +1,2 @@
-"""Post-processing of the scenes' outputs: pure numpy functions (see the modules)."""
+"""Post-processing of the scenes' outputs: readers, observables, the comparison with the
+paper (numpy), figures (matplotlib) and the report (see the modules)."""

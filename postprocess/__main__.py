@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from . import figures, limit
-from .io import DataError, read_energy, read_params, read_rows
+from .io import DataError
 from .reference import accepted, evaluate, tally
 from .report import comparison_line, fmt, write_report, write_transition_report
 from .selection import Selection
@@ -104,7 +104,7 @@ def main(argv=None):
         return write_limit(args.sweep, scenes, args.output or args.sweep / "limit", selection,
                            completed.get("frictional_flow", []))
     if args.command == "report":
-        path, results = write_report(args.sweep, scenes, left_out, completed,
+        path = write_report(args.sweep, scenes, left_out, completed,
                                      args.output or args.sweep / "report", runs, selection)
         print(f"report: {path}")
         return 0
@@ -126,10 +126,8 @@ def contact_splits(runs):
         rows_time = float(o.get("variables", {}).get("rows_time", 0) or 0)
         if not (point / "contacts.txt").exists() or rows_time <= 1.0:
             continue
-        params = read_params(point)
-        energy, rows = read_energy(point, params), read_rows(point)
-        out.append((o["kn"], {lasting: limit.run_split(point, params, energy, rows, rows_time,
-                                                        lasting) for lasting in (3.0, 10.0)}))
+        out.append((o["kn"], {lasting: limit.run_split(o["outputs"], rows_time, lasting)
+                              for lasting in (3.0, 10.0)}))
     return out
 
 

@@ -8,11 +8,10 @@ import numpy as np  # noqa: E402
 from .io import DataError  # noqa: E402
 from .scenes import scene as scene_of  # noqa: E402
 from .selection import Selection, select_steady, window_means  # noqa: E402
-from .study import profiles, series  # noqa: E402
+from .study import series  # noqa: E402
 
 
-
-def _errorbar(ax, kn, quantity, rows, label, x=None, **style):
+def _errorbar(ax, quantity, rows, label, x=None, **style):
     k, v, e = series(rows, quantity)
     style = {"marker": "o", "ms": 4, "capsize": 2, **style}
     ax.errorbar(k if x is None else x(k), v, yerr=np.nan_to_num(e), label=label, **style)
@@ -26,27 +25,27 @@ def stiffness(scene, rows, path, variants=()):
     a, b, c, d = axes.flat
     inverse = lambda k: 1.0 / k
     for q, label in (("E_total", "E"), ("E_trans", "translational"), ("E_rot", "rotational")):
-        _errorbar(a, None, q, rows, label, x=inverse)
+        _errorbar(a, q, rows, label, x=inverse)
     a.set(xscale="log", xlabel="1/k_n", ylabel="E per disk", title="(a) kinetic energy")
     for q, label in (("N_c", "N_c (disks)"), ("N_w", "N_w (boundary)")):
-        _errorbar(b, None, q, rows, label)
+        _errorbar(b, q, rows, label)
     kn = np.array([o["kn"] for o in rows])
-    what = scene_of(scene)
-    if what.rates_log_law:
+    scene_def = scene_of(scene)
+    if scene_def.rates_log_law:
         b.set(xscale="log", yscale="linear", title="(b) collision rates (N_w ~ ln k_n)")
     else:
         b.set(xscale="log", yscale="log", title="(b) collision rates")
     b.set(xlabel="k_n", ylabel="collisions per disk per unit time")
     for q, label in (("t_c", "t_c"), ("t_w", "t_w"), ("t_multiple", "two or more contacts")):
-        _errorbar(c, None, q, rows, label)
-    for guide in what.guides if len(kn) > 1 else ():
+        _errorbar(c, q, rows, label)
+    for guide in scene_def.guides if len(kn) > 1 else ():
         values = series(rows, guide.quantity)[1]
         ax = b if guide.panel == "rates" else c
         ax.plot(kn, values[0] * (kn / kn[0]) ** guide.exponent, "k--", lw=1, label=guide.label)
     c.set(xscale="log", yscale="log", xlabel="k_n", ylabel="fraction of time",
           title="(c) contact-time fractions")
     for q, label in (("mc_c", "t_c - N_c tau_c"), ("mc_w", "t_w - N_w tau_w")):
-        _errorbar(d, None, q, rows, label)
+        _errorbar(d, q, rows, label)
     d.axhline(0, color="gray", lw=0.5)
     d.set(xscale="log", xlabel="k_n", ylabel="fraction of time",
           title="(d) multiple-contact estimates")
@@ -55,22 +54,29 @@ def stiffness(scene, rows, path, variants=()):
     rate, multiple = (("N_c", "mc_c") if any(o["N_c"] > 0 for o in rows) else ("N_w", "mc_w"))
     for (label, points), (marker, color) in zip(variants, looks * len(variants)):
         style = dict(mfc="none", ls=":", color=color, marker=marker)
-        _errorbar(a, None, "E_total", points, f"E ({label})", x=inverse, **style)
-        _errorbar(b, None, rate, points, f"{rate} ({label})", **style)
-        _errorbar(d, None, multiple, points, f"{multiple} ({label})", **style)
+        _errorbar(a, "E_total", points, f"E ({label})", x=inverse, **style)
+        _errorbar(b, rate, points, f"{rate} ({label})", **style)
+        _errorbar(d, multiple, points, f"{multiple} ({label})", **style)
     for ax in axes.flat:
         ax.legend(fontsize=6 if variants else 8)
         ax.grid(alpha=0.3, which="both")
-    fig.suptitle(f"{what.title}: stiffness dependence")
+    fig.suptitle(f"{scene_def.title}: stiffness dependence")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
 
 
 def profile_figure(scene, rows, path):
-    data = profiles(rows)
+    """Density and flow velocity against height of the points `rows` (raw outputs); returns
+    the problems: the profiles that could not be read, and why."""
+    data, problems = [], []
+    for o in rows:
+        try:
+            data.append((o["kn"], o["outputs"].profile))
+        except DataError as error:
+            problems.append(str(error))
     if not data:
-        raise DataError(f"{scene}: no profile.txt could be read")
+        raise DataError(f"{scene}: no profile could be read ({'; '.join(problems)})")
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4.5), sharey=True)
     for kn, p in data:
         occupied = p["count"] > 0
@@ -87,6 +93,7 @@ def profile_figure(scene, rows, path):
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
+    return problems
 
 
 def vy_figure(rows, trajectories, path):
@@ -167,8 +174,9 @@ def snapshot_figure(scene, point, path):
     except (StopIteration, ValueError, IndexError):
         raise DataError(f"{point}/snapshots.lammpstrj: the last frame is truncated")
     fig, ax = plt.subplots(figsize=(10, 3.2))
-    for _, kind, x, y, *_, radius in atoms:
-        ax.add_patch(plt.Circle((x, y), radius, color="0.6" if kind == 2 else "tab:blue",
+    for _, atom_type, x, y, *_, radius in atoms:
+        # atom type 2: the bumps (inputs/*.lmp)
+        ax.add_patch(plt.Circle((x, y), radius, color="0.6" if atom_type == 2 else "tab:blue",
                                 alpha=0.8))
     ax.set_xlim(*bounds)
     ax.set_ylim(-1, max(atoms[:, 3].max() + 1, 3))

@@ -1,6 +1,7 @@
 """Reading a point's output files (docs/scenes.md). Every problem raises DataError naming the
 file and what is wrong: nothing broken is averaged silently."""
 import json
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,9 @@ ENERGY_COLUMNS = ("step", "e_trans", "e_rot", "e_total", "begun_disk", "begun_bo
 COUNTER_COLUMNS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary",
                    "time_multiple", "contacts_now")
 ROW_COLUMNS = ("id_i", "id_j", "kind", "start", "duration", "vn_start", "vn_end", "peak")
+# the codes of contacts.txt's kind column: a contact between two disks, of a disk with the
+# boundary (docs/fix_contacts_mn.rst)
+CONTACT_KINDS = {"disk": 1, "boundary": 2}
 
 
 def read_params(point):
@@ -276,3 +280,22 @@ def read_ending(point):
         if errors:
             break
     return "failed", "; ".join(([lines[0].strip()] if lines else []) + errors[-1:])
+
+
+class Point:
+    """A point directory's outputs, each file read once, when first asked for (the large
+    optional ones, rows, trajectory and profile, only then); a file that cannot be read raises
+    its DataError each time it is asked for."""
+
+    def __init__(self, directory):
+        self.directory = Path(directory)
+
+    ending = cached_property(lambda self: read_ending(self.directory))
+    variables = cached_property(lambda self: read_variables(self.directory))
+    params = cached_property(lambda self: read_params(self.directory))
+    stopped_at = cached_property(lambda self: read_stopped(self.directory))
+    energy = cached_property(lambda self: read_energy(self.directory, self.params))
+    counts = cached_property(lambda self: read_counts(self.directory))
+    rows = cached_property(lambda self: read_rows(self.directory))
+    trajectory = cached_property(lambda self: read_trajectory(self.directory))
+    profile = cached_property(lambda self: read_profile(self.directory))

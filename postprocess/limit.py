@@ -5,6 +5,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .io import CONTACT_KINDS
+
 # The quantities the rule decides on: the paper's two multiple-contact times and the directly
 # measured fraction of time with two or more contacts.
 QUANTITIES = ("mc_c", "mc_w", "t_multiple")
@@ -300,7 +302,7 @@ LASTING = 3.0    # a contact lasting more than this many binary durations is a l
 
 
 def multiple_contact_split(rows, tau_c, tau_w, start, stop, n_disks, lasting=LASTING):
-    """From contact rows (io.read_rows: id_i, id_j, kind 1 disk / 2 boundary, start, duration): per
+    """From contact rows (io.read_rows: id_i, id_j, kind, start, duration): per
     disk and unit time over [start, stop], the time with two or more contacts, split into the
     part during which at least one of the contacts is a lasting one (longer than `lasting`
     times tau_c, or tau_w against the boundary) and the part made only of short ones (bursts of
@@ -310,16 +312,16 @@ def multiple_contact_split(rows, tau_c, tau_w, start, stop, n_disks, lasting=LAS
     duration of interest)."""
     if not stop > start:
         raise ValueError(f"an empty window [{start:g}, {stop:g}]")
-    kind = rows["kind"].astype(int)
+    with_disk = rows["kind"] == CONTACT_KINDS["disk"]
     begin = rows["start"]
     end = begin + rows["duration"]
-    unit = np.where(kind == 1, tau_c, tau_w)
+    unit = np.where(with_disk, tau_c, tau_w)
     long = rows["duration"] > lasting * unit
     # each contact belongs to disk i, and a disk-disk contact to disk j as well
-    owner = np.concatenate([rows["id_i"], rows["id_j"][kind == 1]]).astype(int)
-    b = np.concatenate([begin, begin[kind == 1]])
-    e = np.concatenate([end, end[kind == 1]])
-    is_long = np.concatenate([long, long[kind == 1]])
+    owner = np.concatenate([rows["id_i"], rows["id_j"][with_disk]]).astype(int)
+    b = np.concatenate([begin, begin[with_disk]])
+    e = np.concatenate([end, end[with_disk]])
+    is_long = np.concatenate([long, long[with_disk]])
     b, e = np.clip(b, start, stop), np.clip(e, start, stop)
     keep = e > b
     owner, b, e, is_long = owner[keep], b[keep], e[keep], is_long[keep]
@@ -338,24 +340,27 @@ def multiple_contact_split(rows, tau_c, tau_w, start, stop, n_disks, lasting=LAS
         lasting_part += spans[several & (long_count[:-1] >= 1)].sum()
     length = n_disks * (stop - start)
     durations = np.clip(end, start, stop) - np.clip(begin, start, stop)
-    total = durations.sum() + durations[kind == 1].sum()
+    total = durations.sum() + durations[with_disk].sum()
     return {"t_multiple_rows": multiple / length, "lasting": lasting_part / length,
             "bursts": (multiple - lasting_part) / length,
             "lasting_share_of_contact_time":
-                (durations[long].sum() + durations[long & (kind == 1)].sum()) / total
+                (durations[long].sum() + durations[long & with_disk].sum()) / total
                 if total > 0 else np.nan}
 
 
-def run_split(point, params, energy, rows, rows_time, lasting=LASTING, margin=0.5):
-    """multiple_contact_split over a run's rows window, [average_start, average_start +
-    rows_time - margin] (a contact overlapping it that ends after the rows window lasts longer
-    than `margin`: such contacts have no row and their part, `unseen`, is the counters' time
-    with two or more contacts over the window minus the rows': lasting by construction)."""
+def run_split(point, rows_time, lasting=LASTING, margin=0.5):
+    """multiple_contact_split over the rows window of a run (an io.Point), [average_start,
+    average_start + rows_time - margin] (a contact overlapping it that ends after the rows
+    window lasts longer than `margin`: such contacts have no row and their part, `unseen`, is
+    the counters' time with two or more contacts over the window minus the rows': lasting by
+    construction)."""
+    params, energy = point.params, point.energy
     start = params["average_start"]
     stop = start + rows_time - margin
     if not stop > start + margin:
-        raise ValueError(f"{point}: no rows window longer than {2 * margin:g} (rows_time)")
-    split = multiple_contact_split(rows, params["tau_c"], params["tau_w"], start, stop,
+        raise ValueError(f"{point.directory}: no rows window longer than {2 * margin:g} "
+                         "(rows_time)")
+    split = multiple_contact_split(point.rows, params["tau_c"], params["tau_w"], start, stop,
                                    params["n_mobile"], lasting)
     t = energy["time"]
     a, b = np.argmin(np.abs(t - start)), np.argmin(np.abs(t - stop))

@@ -3,7 +3,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .io import DataError, read_counts, read_energy, read_params, read_stopped, read_trajectory
+from .io import DataError, Point
 from .scenes import SCENES, scene
 from .selection import Selection, in_energy_range, steady_parts
 from .signals import dominant_period
@@ -11,8 +11,14 @@ from .signals import dominant_period
 # The time resolutions (time units) at which the report counts the steady parts kept, so that
 # the reader sees what the choice of resolution does (docs/model.md section 5).
 RESOLUTIONS = (0.1, 1.0, 5.0)
+# The pieces an averaged span is cut into for its block-average errors.
+N_BLOCKS = 5
 # A run has come to rest when its kinetic energy per disk stays below REST_ENERGY over its last
-# REST_TIME time units (the frictional deck's stop_energy and stop_time).
+# REST_TIME time units. The analysis's own rule, not the run's stop_energy and stop_time:
+# params.txt does not carry them, the rule applies as well to runs whose deck never stops
+# early (the collisional deck's default stop_energy 0; the single disk has no stop rule), and
+# it asks every sample to stay below where inputs/lib/stop.lmp tests a running mean. The
+# values are the frictional deck's defaults.
 REST_ENERGY, REST_TIME = 1e-5, 10.0
 
 COUNTERS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary", "time_multiple")
@@ -68,13 +74,6 @@ def rest_time(t, energy):
     return t[first_at_rest]
 
 
-def run_state(point):
-    """How a completed run ended: ('flowing', None) if it went on to run_time, ('stopped', t) if
-    its pile stopped at time t and the run ended early (inputs/lib/stop.lmp)."""
-    stopped_at = read_stopped(point)
-    return ("flowing", None) if stopped_at is None else ("stopped", stopped_at)
-
-
 def contacts_per_disk(contacts_now, n_disks):
     """Mean number of contacts a disk has, boundary contacts included (docs/model.md section
     6), from samples of the sum over the disks of their current contacts: a disk-disk contact
@@ -112,27 +111,26 @@ def span_blocks(energy, a, b, params, n_boundary, n_blocks):
     return {"span": float(energy["time"][b - 1] - energy["time"][a]), "blocks": blocks}
 
 
-def single_disk_period(point, params, what):
+def single_disk_period(point, scene_def):
     """The single disk's v_y period and the time to pass one bump, from trajectory.txt after
-    average_start."""
-    trajectory = read_trajectory(point)
+    average_start (point: an io.Point)."""
+    trajectory, params = point.trajectory, point.params
     late = trajectory["time"] > params["average_start"]
     if np.count_nonzero(late) < 4:
-        raise DataError(f"{point}/trajectory.txt: {np.count_nonzero(late)} samples after "
+        raise DataError(f"trajectory.txt: {np.count_nonzero(late)} samples after "
                         f"average_start {params['average_start']:g}, the v_y period needs at "
                         "least 4")
     try:
         period, _ = dominant_period(trajectory["time"][late], trajectory["vy"][late],
                                     max_period=20.0)
     except ValueError as error:
-        raise DataError(f"{point}/trajectory.txt: {error}")
-    return float(period), float(what.bump_spacing / trajectory["vx"][late].mean())
+        raise DataError(f"trajectory.txt: {error}")
+    return float(period), float(scene_def.bump_spacing / trajectory["vx"][late].mean())
 
 
-def measure(point, params, energy, stopped_at, resolutions=(), selection=Selection(),
-            n_blocks=5):
-    """What the averages of a completed run are made of, before any choice of what to average
-    (docs/model.md sections 5-6). A dict:
+def measure(point, resolutions=(), selection=Selection()):
+    """What the averages of a completed run (an io.Point) are made of, before any choice of
+    what to average (docs/model.md sections 5-6). A dict:
       problem       why the run cannot be averaged at all (None if it can); then the parts
                     in `steady` have only start, stop and mean, and nothing else follows
       steady        {resolution: [steady part]} for each of `resolutions`: the parts the
@@ -145,7 +143,8 @@ def measure(point, params, energy, stopped_at, resolutions=(), selection=Selecti
       n_boundary    the disks the boundary rates are per (all, or the bottom layer)
       period, bump_time, period_problem   (scenes with has_period) the v_y period and the
                     time to pass a bump, or why there are none
-    where blocks is {quantity: [value in each of n_blocks pieces]} (BLOCK_QUANTITIES)."""
+    where blocks is {quantity: [value in each of N_BLOCKS pieces]} (BLOCK_QUANTITIES)."""
+    params, energy, stopped_at = point.params, point.energy, point.stopped_at
     inside = averaging_rows(energy, params)
     first = int(np.argmax(inside))
     # inside is the rows after the counters' restart: all rows from `first` on
@@ -154,41 +153,41 @@ def measure(point, params, energy, stopped_at, resolutions=(), selection=Selecti
              for r in resolutions}
     measured = {"problem": None, "steady": {}}
     try:
-        counts = read_counts(point)
+        counts = point.counts
         n = params["n_mobile"]
         end = params["run_time"] if stopped_at is None else stopped_at
         if len(counts["id"]) != n:
-            raise DataError(f"{point}/counts.txt: {len(counts['id'])} disks, params.txt says "
+            raise DataError(f"counts.txt: {len(counts['id'])} disks, params.txt says "
                             f"{n:g}")
         if stopped_at is not None and stopped_at <= params["average_start"]:
-            raise DataError(f"{point}: the pile stopped at t = {stopped_at:g}, before the "
+            raise DataError(f"the pile stopped at t = {stopped_at:g}, before the "
                             f"averaging span (average_start {params['average_start']:g})")
         if not inside.any():
-            raise DataError(f"{point}/energy.txt: no samples after average_start "
+            raise DataError(f"energy.txt: no samples after average_start "
                             f"{params['average_start']:g}: the run did not reach its averaging "
                             "span")
         if energy["time"][-1] < end - 1.5 * (energy["time"][1] - energy["time"][0]):
-            raise DataError(f"{point}/energy.txt: ends at t = {energy['time'][-1]:g}, before "
+            raise DataError(f"energy.txt: ends at t = {energy['time'][-1]:g}, before "
                             f"{'its stop' if stopped_at is not None else 'run_time'} {end:g}: "
                             "truncated?")
         try:
-            what = scene(params["scene"])
+            scene_def = scene(params["scene"])
         except KeyError as error:
-            raise DataError(f"{point}/params.txt: {error.args[0]}")
+            raise DataError(f"params.txt: {error.args[0]}")
     except DataError as error:
-        measured["problem"] = relative(error, point)
+        measured["problem"] = relative(error, point.directory)
         measured["steady"] = {r: [dict(start=float(energy["time"][a + first]),
                                        stop=float(energy["time"][b + first - 1]), mean=mean)
                                   for a, b, mean in parts] for r, parts in found.items()}
         return measured
 
-    n_boundary = bottom_layer(counts) if what.boundary_per_bottom_layer else int(n)
+    n_boundary = bottom_layer(counts) if scene_def.boundary_per_bottom_layer else int(n)
 
     def part(a, b):
         if n_boundary == 0:     # no rates per boundary disk: observables() says so
             return {"span": float(energy["time"][b - 1] - energy["time"][a]),
                     "blocks": {q: [] for q in BLOCK_QUANTITIES}}
-        return span_blocks(energy, a, b, params, n_boundary, n_blocks)
+        return span_blocks(energy, a, b, params, n_boundary, N_BLOCKS)
 
     def located(a, b):
         return {"start": float(energy["time"][a]), "stop": float(energy["time"][b - 1]),
@@ -203,28 +202,29 @@ def measure(point, params, energy, stopped_at, resolutions=(), selection=Selecti
                     rest_at=rest_time(energy["time"], energy["e_total"]))
     if measured["rest_at"] is not None:
         measured["rest_at"] = float(measured["rest_at"])
-    if what.has_period:
+    if scene_def.has_period:
         try:
-            measured["period"], measured["bump_time"] = single_disk_period(point, params, what)
+            measured["period"], measured["bump_time"] = single_disk_period(point, scene_def)
             measured["period_problem"] = None
         except DataError as error:
-            measured.update(period=None, bump_time=None, period_problem=relative(error, point))
+            measured.update(period=None, bump_time=None,
+                            period_problem=relative(error, point.directory))
     return measured
 
 
-def observables(params, measured, stopped_at, selection=Selection(), what=None):
+def observables(params, measured, stopped_at, selection=Selection(), scene_def=None):
     """E, N_c, N_w, t_c, t_w, the multiple-contact estimates, the direct fraction of time with
     two or more contacts and the contacts per disk of one run (measure's result), averaged
     over its averaging window or, where the scene selects steady parts, over the parts the
     selection keeps, each with a block-average error; period and bump_time where the scene
-    has them. stopped_at: when the run's pile stopped (None: it ran to run_time). `what`: the
+    has them. stopped_at: when the run's pile stopped (None: it ran to run_time). scene_def: the
     Scene to average as (default: the run's own). A DataError says why the run has no such
     averages."""
     if measured["problem"]:
         raise DataError(measured["problem"])
-    what = what or scene(params["scene"])
+    scene_def = scene_def or scene(params["scene"])
     notes = [f"stopped at t = {stopped_at:g}"] if stopped_at is not None else []
-    if what.selects_steady_parts:
+    if scene_def.selects_steady_parts:
         if selection.resolution not in measured["steady"]:
             raise DataError(f"no steady parts at resolution {selection.resolution:g} here "
                             f"(only at {', '.join(f'{r:g}' for r in measured['steady'])})")
@@ -253,23 +253,21 @@ def observables(params, measured, stopped_at, selection=Selection(), what=None):
     result.update(kn=params["kn"], tau_c=params["tau_c"], tau_w=params["tau_w"],
                   scene=params["scene"], n_boundary=measured["n_boundary"],
                   span=sum(p["span"] for p in parts), notes="; ".join(notes))
-    if what.has_period:
+    if scene_def.has_period:
         if measured["period_problem"]:
             raise DataError(measured["period_problem"])
         result.update(period=measured["period"], bump_time=measured["bump_time"])
     return result
 
 
-def point_observables(point, n_blocks=5, selection=Selection(), what=None):
+def point_observables(directory, selection=Selection(), scene_def=None):
     """observables() of a point directory's outputs; a DataError names the point."""
-    params = read_params(point)
-    energy = read_energy(point, params)
-    stopped_at = read_stopped(point)
-    averaged_as = what or SCENES.get(params["scene"])
+    point = Point(directory)
+    averaged_as = scene_def or SCENES.get(point.params["scene"])
     resolutions = ((selection.resolution,) if averaged_as and averaged_as.selects_steady_parts
                    else ())
-    measured = measure(point, params, energy, stopped_at, resolutions, selection, n_blocks)
+    measured = measure(point, resolutions, selection)
     try:
-        return observables(params, measured, stopped_at, selection, what)
+        return observables(point.params, measured, point.stopped_at, selection, scene_def)
     except DataError as error:
-        raise DataError(f"{point}: {error}") from None
+        raise DataError(f"{directory}: {error}") from None

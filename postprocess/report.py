@@ -6,7 +6,8 @@ from pathlib import Path
 import numpy as np
 
 from . import figures, transition
-from .io import DataError, read_trajectory
+from .io import DataError
+from .observables import N_BLOCKS
 from .reference import accepted, evaluate, tally
 from .runs import energy_curve
 from .scenes import scene as scene_of
@@ -37,10 +38,10 @@ def write_tables(scenes, out):
 
 
 def make_figures(scenes, completed, out, selection):
-    """{scene: [(caption, file name)]}, and problems met. Time series and snapshots of every
-    completed run (completed: {scene: [RunRecord]}); the stiffness dependences and profiles of
-    the usable ones. From summaries: no snapshots, profiles or v_y(t) (only the raw outputs
-    hold them)."""
+    """{scene: [(caption, file name)]}, and problems met (a figure not drawn, or drawn without a
+    point whose file could not be read). Time series and snapshots of every completed run
+    (completed: {scene: [RunRecord]}); the stiffness dependences and profiles of the usable
+    ones. From summaries: no snapshots, profiles or v_y(t) (only the raw outputs hold them)."""
     made, problems = {}, []
     for scene, points in completed.items():
         raw = all(r.source == "raw" for r in points)
@@ -67,13 +68,13 @@ def make_figures(scenes, completed, out, selection):
             def vy(p, r=rows):
                 trajectories = {}
                 for o in (r[0], r[-1]):
-                    t = read_trajectory(o["point"])
+                    t = o["outputs"].trajectory
                     trajectories[o["kn"]] = (t["time"], t["vy"])
                 figures.vy_figure(r, trajectories, p)
             jobs.append(("v_y(t) at the softest and the stiffest point", "vy_single_disk.png", vy))
         for caption, name, job in jobs:
             try:
-                job(out / name)
+                problems += [f"{name}: {problem}" for problem in job(out / name) or ()]
                 items.append((caption, name))
             except DataError as error:
                 problems.append(f"{name}: {error}")
@@ -188,15 +189,15 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
     lines = [f"# Stiffness study: {sweep_dir}", "",
              f"Written {datetime.datetime.now():%Y-%m-%d %H:%M} by `python3 -m postprocess "
              f"report`. Errors are standard errors of block averages within each run "
-             f"(5 blocks per averaging span), or across seeds where a point has several. "
+             f"({N_BLOCKS} blocks per averaging span), or across seeds where a point has several. "
              f"Frictional steady parts: {selection.describe()}.", ""]
     if any(r.source == "summary" for points in completed.values() for r in points):
         lines += ["From the runs' summaries (docs/sweeps.md): E(t) is drawn from its means over "
                   "windows of 1; snapshots, profiles and v_y(t) need the raw outputs.", ""]
     for scene in completed:
         rows = scenes.get(scene, [])
-        what = scene_of(scene)
-        lines += [f"## {what.title}", ""]
+        scene_def = scene_of(scene)
+        lines += [f"## {scene_def.title}", ""]
         if not rows:
             lines += ["No usable point (see Left out).", ""]
         lines += [
@@ -210,20 +211,20 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
                                      "t_multiple")] + [f"{o['span']:g}", o["label"]]) + " |")
         notes = [f"k_n = {o['kn']:g}{' (' + o['label'] + ')' if o['label'] else ''}: {o['notes']}"
                  for o in rows if o["notes"]]
-        if what.selects_steady_parts:
+        if scene_def.selects_steady_parts:
             lines += run_table(runs, selection)
         lines += variant_lines(rows)
         if rows:
-            notes += list(what.notes)
-        if what.has_period and rows:
-            notes.append("time to pass one bump (1.002 / mean v_x): " +
+            notes += list(scene_def.notes)
+        if scene_def.has_period and rows:
+            notes.append(f"time to pass one bump ({scene_def.bump_spacing:g} / mean v_x): " +
                          ", ".join(f"{o['kn']:g}: {fmt(o['bump_time'])}" for o in rows))
             notes.append("v_y periods (autocorrelation; a multiple of the bump time where the "
                          "motion repeats every second or third bump): " +
                          ", ".join(f"{o['kn']:g}: {fmt(o['period'])}"
                                                       for o in rows))
-        if what.stiff_from and rows:
-            notes.append(crossover_note(main_series(rows), what.stiff_from))
+        if scene_def.stiff_from and rows:
+            notes.append(crossover_note(main_series(rows), scene_def.stiff_from))
         lines += [""] + [f"- {n}" for n in notes] + [""]
         for caption, name in made.get(scene, []):
             lines += [f"![{caption}]({name})", ""]
@@ -242,7 +243,7 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
         lines += [f"- figure {p}" for p in problems]
         lines.append("")
     (out / "report.md").write_text("\n".join(lines))
-    return out / "report.md", results
+    return out / "report.md"
 
 
 def write_transition_report(sweep_dir, runs, groups, left_out, out):

@@ -2,15 +2,14 @@
 directory (<scene>/<point>/, docs/scenes.md) or the compact summaries that `python3 -m
 postprocess summarize` writes of them (<scene>/<point>.json, docs/sweeps.md). The report,
 compare and any later analysis start from load_runs; read_run is the one place that reads a
-point directory."""
+point directory (through an io.Point, which reads each file once)."""
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from .io import (DataError, read_ending, read_energy, read_params, read_stopped,
-                 read_variables)
+from .io import DataError, Point
 from .observables import RESOLUTIONS, measure, observables, relative
 from .scenes import SCENES
 from .selection import Selection, in_energy_range, window_means
@@ -43,7 +42,8 @@ class RunRecord:
                  window is empty); E to 4 significant digits: for drawing
     cpu_seconds  what the run cost (timing.json), if known
     reason       why it has no observables (a DataError's text), else None
-    observables  (load_runs) observables.observables' result with load_runs' selection"""
+    observables  (load_runs) observables.observables' result with load_runs' selection
+    outputs      (raw) its io.Point: the files read so far, and the others when asked for"""
     point: Path
     scene: str
     source: str
@@ -57,6 +57,7 @@ class RunRecord:
     cpu_seconds: float = None
     reason: str = None
     observables: dict = None
+    outputs: Point = field(default=None, compare=False, repr=False)
 
     def kept(self, selection, resolutions):
         """{resolution: steady parts the selection keeps at it} (frictional runs)."""
@@ -76,8 +77,7 @@ def energy_curve(record):
     """(t, E per disk) of a completed run: every sample of energy.txt (raw), or the means over
     the windows of RunRecord.energy at their start times (summary)."""
     if record.source == "raw":
-        energy = read_energy(record.point, record.params)
-        return energy["time"], energy["e_total"]
+        return record.outputs.energy["time"], record.outputs.energy["e_total"]
     drawn = record.energy
     return drawn["t0"] + drawn["window"] * np.arange(len(drawn["E"])), np.array(drawn["E"])
 
@@ -101,32 +101,32 @@ def read_run(point, resolutions=RESOLUTIONS, selection=Selection()):
     frictional selection's steady parts at each of `resolutions` (selection's min_length and
     max_width). Never raises for broken outputs: `reason` says what is wrong."""
     point = Path(point)
+    outputs = Point(point)
     record = RunRecord(point=point, scene=point.parent.name, source="raw",
-                       cpu_seconds=read_cpu_seconds(point))
+                       cpu_seconds=read_cpu_seconds(point), outputs=outputs)
     if record.scene not in SCENES:
         record.reason = (f"unknown scene '{record.scene}' (expected one of "
                          f"{', '.join(SCENES)})")
         return record
-    ending, record.failure = read_ending(point)
+    ending, record.failure = outputs.ending
     if ending != "completed":
         record.ended = ending
         record.reason = unfinished_reason(ending, record.failure)
         try:
-            record.variables = read_variables(point)
+            record.variables = outputs.variables
         except DataError:
             pass        # the reason is the crash
         return record
     record.ended = "stopped" if (point / "stopped.txt").exists() else "flowing"
     try:
-        record.variables = read_variables(point)
-        record.params = read_params(point)
-        record.stopped_at = read_stopped(point)
-        energy = read_energy(point, record.params)
+        record.variables = outputs.variables
+        record.params = outputs.params
+        record.stopped_at = outputs.stopped_at
+        record.energy = drawn_energy(outputs.energy)
     except DataError as error:
         record.reason = relative(error, point)
         return record
-    record.energy = drawn_energy(energy)
-    record.measured = measure(point, record.params, energy, record.stopped_at,
+    record.measured = measure(outputs,
                               resolutions if SCENES[record.scene].selects_steady_parts else (),
                               selection)
     return record

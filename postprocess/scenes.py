@@ -23,9 +23,9 @@ class Scene:
     # N_w, t_w per disk that touched the boundary (the bottom layer), not per disk
     boundary_per_bottom_layer: bool = False
     # the single disk's v_y period and time to pass one bump (bump_spacing / mean v_x), from
-    # trajectory.txt
+    # trajectory.txt; bump_spacing: the deck's spacing of the bumps' centres
     has_period: bool = False
-    bump_spacing: float = 1.002
+    bump_spacing: float = None
     # collision rates against ln kn (a log law) rather than log-log
     rates_log_law: bool = False
     guides: tuple = ()
@@ -38,8 +38,8 @@ class Scene:
 
 
 SCENES = {s.name: s for s in (
-    Scene("single_disk", "single disk on a bumpy slope", has_period=True, rates_log_law=True,
-          stiff_from=1e7),
+    Scene("single_disk", "single disk on a bumpy slope", has_period=True, bump_spacing=1.002,
+          rates_log_law=True, stiff_from=1e7),
     Scene("collisional_flow", "collisional flow",
           guides=(Guide("times", "t_c", -0.5, "k_n^-1/2 guide"),),
           base="bumpy base, 50 disks"),

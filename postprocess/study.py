@@ -1,7 +1,6 @@
 """A sweep's points, analysed: per-scene tables of observables, and what was left out."""
 import numpy as np
 
-from .io import DataError, read_profile
 from .observables import RESOLUTIONS
 from .runs import load_runs
 from .scenes import SCENES
@@ -13,10 +12,11 @@ QUANTITIES = ("E_trans", "E_rot", "E_total", "N_c", "N_w", "t_c", "t_w", "mc_c",
 
 def analyse(source, selection=Selection()):
     """A sweep from its raw outputs or its summaries (runs.load_runs): {scene: [observables of
-    each usable run, seeds combined, sorted by kn]}, [(point, reason) left out], {scene:
+    each usable run, seeds combined, sorted by kn, with its point, variables and outputs (the
+    run's io.Point; None from summaries)]}, [(point, reason) left out], {scene:
     [RunRecord of each completed run]} (usable or not: their time series can still be shown),
     and [run records] of the frictional runs (how each ended, what the selection kept:
-    run_record). `selection`: the frictional steady-part rule (docs/model.md section 5)."""
+    frictional_run). `selection`: the frictional steady-part rule (docs/model.md section 5)."""
     scenes, left_out, completed, runs = {}, [], {}, []
     resolutions = sorted(set(RESOLUTIONS) | {selection.resolution})
     for record in load_runs(source, selection):
@@ -25,9 +25,10 @@ def analyse(source, selection=Selection()):
         if record.ended in ("flowing", "stopped") and record.energy is not None:
             completed.setdefault(record.scene, []).append(record)
         if record.measured is not None and SCENES[record.scene].selects_steady_parts:
-            runs.append(run_record(record, selection, resolutions))
+            runs.append(frictional_run(record, selection, resolutions))
         if record.observables is not None:
-            o = dict(record.observables, point=record.point, variables=record.variables)
+            o = dict(record.observables, point=record.point, variables=record.variables,
+                     outputs=record.outputs)
             scenes.setdefault(o["scene"], []).append(o)
     scenes = {scene: combine_seeds(rows) for scene, rows in scenes.items()}
     varying = varying_variables([r["variables"] for r in runs])
@@ -36,7 +37,7 @@ def analyse(source, selection=Selection()):
     return scenes, left_out, completed, runs
 
 
-def run_record(record, selection, resolutions):
+def frictional_run(record, selection, resolutions):
     """How one frictional run went: kn, seed, state ('flowing' to the end or 'stopped'), the
     stop time, the steady parts kept at each of `resolutions`, and whether any is kept at the
     analysis resolution."""
@@ -168,7 +169,7 @@ def ratio_with_error(o, top, bottom):
     return ratio, np.hypot(o[top + "_err"], ratio * o[bottom + "_err"]) / abs(o[bottom])
 
 
-def fit_power(kn, values, errors=None):
+def fit_power(kn, values):
     """Exponent of values ~ kn^a by least squares in log-log (positive values only):
     (a, standard error)."""
     good = values > 0
@@ -239,12 +240,3 @@ def crossover(kn, values, errors, stiff_from, sigmas=CROSSOVER_SIGMAS):
                                                 float(kn[first])),
             "stiff": float(level), "stiff_err": float(level_err), "n_stiff": int(stiff.sum())}
 
-
-def profiles(rows):
-    out = []
-    for o in rows:
-        try:
-            out.append((o["kn"], read_profile(o["point"])))
-        except DataError:
-            pass
-    return out

@@ -6,10 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .io import (DataError, read_ending, read_energy, read_params, read_rows, read_stopped,
-                 read_variables)
-from .observables import point_observables, relative, rest_time
-from .runs import unfinished_reason
+from .io import CONTACT_KINDS, DataError
+from .observables import observables, relative, rest_time
+from .runs import read_run
 from .scenes import SCENES, transition_scene
 from .signals import block_means, trend
 from .study import combine_seeds, fit_power, ratio_with_error
@@ -41,7 +40,6 @@ STATES = ("flowing", "stopped", "accelerating", "drifting")
 # beyond TAIL_CUT binary durations holds the lasting contacts (a binary collision lasts 1).
 DURATION_EDGES = np.logspace(-1, 4, 51)
 TAIL_CUT = 2.0
-KINDS = {"disk": 1, "boundary": 2}
 
 
 def flow_state(t, energy, average_start, stopped_at=None):
@@ -75,7 +73,7 @@ def contact_durations(rows, tau_c, tau_w, since):
     ended = rows["start"] + rows["duration"] >= since
     unit = {"disk": tau_c, "boundary": tau_w}
     return {kind: rows["duration"][ended & (rows["kind"] == code)] / unit[kind]
-            for kind, code in KINDS.items()}
+            for kind, code in CONTACT_KINDS.items()}
 
 
 def duration_density(scaled, edges=DURATION_EDGES):
@@ -94,29 +92,30 @@ def tail_fraction(scaled, cut=TAIL_CUT):
     return float(np.mean(scaled > cut)) if len(scaled) else np.nan
 
 
-def run_record(point):
-    """One run: its variables, state and growth, and (flowing runs) its observables averaged
-    as the transition study does and its contact durations (if it wrote rows)."""
-    params = read_params(point)
-    energy = read_energy(point, params)
+def transition_run(record):
+    """One completed run (a RunRecord read without steady parts) as the transition study sees
+    it: its variables, state and growth, and (flowing runs) its observables averaged as the
+    study does and its contact durations (if it wrote rows)."""
+    params, energy = record.params, record.outputs.energy
     state, growth = flow_state(energy["time"], energy["e_total"], params["average_start"],
-                               read_stopped(point))
-    record = {"point": point, "scene": params["scene"], "sin_theta": params["sin_theta"],
-              "kn": params["kn"], "seed": params["seed"], "state": state, "growth": growth,
-              "variables": read_variables(point)}
+                               record.stopped_at)
+    run = {"point": record.point, "scene": params["scene"], "sin_theta": params["sin_theta"],
+           "kn": params["kn"], "seed": params["seed"], "state": state, "growth": growth,
+           "variables": record.variables}
     if state == "flowing":
-        o = point_observables(point, what=transition_scene(params["scene"]))
-        o.update(point=point, variables=record["variables"])
-        record["observables"] = o
-        if (Path(point) / "contacts.txt").exists():
-            record["durations"] = contact_durations(read_rows(point), params["tau_c"],
-                                                    params["tau_w"], params["average_start"])
-    return record
+        o = observables(params, record.measured, record.stopped_at,
+                        scene_def=transition_scene(params["scene"]))
+        o.update(point=record.point, variables=record.variables)
+        run["observables"] = o
+        if (record.point / "contacts.txt").exists():
+            run["durations"] = contact_durations(record.outputs.rows, params["tau_c"],
+                                                 params["tau_w"], params["average_start"])
+    return run
 
 
 def analyse_transition(sweep_dir):
-    """[run records], {(scene, sin_theta): [observables per kn, seeds combined]}, [(point,
-    reason) left out] of a transition sweep."""
+    """[transition_run of each run], {(scene, sin_theta): [observables per kn, seeds
+    combined]}, [(point, reason) left out] of a transition sweep."""
     sweep_dir = Path(sweep_dir)
     points = sorted(p for p in sweep_dir.glob("*/*") if (p / "point.json").exists())
     if not points:
@@ -126,13 +125,15 @@ def analyse_transition(sweep_dir):
         if point.parent.name not in SCENES or not SCENES[point.parent.name].base:
             left_out.append((point, f"scene '{point.parent.name}' is not a base of the "
                                     "transition study"))
-        elif read_ending(point)[0] != "completed":
-            left_out.append((point, unfinished_reason(*read_ending(point))))
-        else:
-            try:
-                runs.append(run_record(point))
-            except DataError as error:
-                left_out.append((point, relative(error, point)))
+            continue
+        record = read_run(point, resolutions=())
+        if record.reason is not None:
+            left_out.append((point, record.reason))
+            continue
+        try:
+            runs.append(transition_run(record))
+        except DataError as error:
+            left_out.append((point, relative(error, point)))
     groups = {}
     for r in runs:
         if "observables" in r:
@@ -145,7 +146,7 @@ def pooled_durations(runs, scene, sin_theta, kn):
     chosen = [r["durations"] for r in runs if "durations" in r and r["scene"] == scene and
               r["sin_theta"] == sin_theta and r["kn"] == kn]
     return {kind: np.concatenate([d[kind] for d in chosen]) if chosen else np.array([])
-            for kind in KINDS}
+            for kind in CONTACT_KINDS}
 
 
 def transition_table(runs, groups):
@@ -175,7 +176,7 @@ def transition_table(runs, groups):
             for q in ("t_multiple", "z", "E_total", "t_c"):
                 row[q], row[q + "_err"] = top[q], top[q + "_err"]
             durations = pooled_durations(runs, scene, sin_theta, top["kn"])
-            for kind in KINDS:
+            for kind in CONTACT_KINDS:
                 row[f"tail_{kind}"] = tail_fraction(durations[kind])
                 row[f"contacts_{kind}"] = len(durations[kind])
         table.append(row)

@@ -62,7 +62,7 @@ from itertools import product
 from pathlib import Path
 
 import checkpoints
-from postprocess.law import LawError, derived    # scripts/postprocess links the package
+from mn_law import LawError, derived
 
 ROOT = Path(__file__).resolve().parent.parent
 LIB = ROOT / "inputs" / "lib"

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from postprocess.law import derived
+from mn_law import derived
 
 LMP = os.environ.get("GRANMN_LMP", "lmp")
 PLUGIN = os.environ.get("GRANMN_PLUGIN", "granmnplugin.so")

@@ -266,9 +266,9 @@ def test_a_pile_that_stops_ends_the_run_early_and_says_when(tmp_path):
     for name in ("counts.txt", "done.txt"):
         assert (tmp_path / name).stat().st_size > 0
 
-    from postprocess.io import DataError
-    from postprocess.observables import point_observables, run_state
-    assert run_state(tmp_path) == ("stopped", stopped_at)
+    from postprocess.io import DataError, read_stopped
+    from postprocess.observables import point_observables
+    assert read_stopped(tmp_path) == stopped_at
     with pytest.raises(DataError, match="stopped at t = .*before the averaging span"):
         point_observables(tmp_path)
 

@@ -1,4 +1,7 @@
 """postprocess on synthetic outputs with known answers."""
+from collections import Counter
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -187,6 +190,15 @@ def test_trend_of_noise_and_of_a_ramp():
     assert slope == pytest.approx(0.01, abs=4 * error)
 
 
+PROFILE_BINS = ["1 0.125 2 0.5 0.1 0.0", "2 0.375 1 0.25 0.2 0.0", "3 0.625 0 0 0 0"]
+
+
+def write_profile(point, bins=PROFILE_BINS):
+    """profile.txt as fix ave/chunk writes it: one block of 3 bins."""
+    (point / "profile.txt").write_text("# fix ave/chunk\n# header\n# columns\n1000 3 3\n" +
+                                       "\n".join(bins) + "\n")
+
+
 @pytest.mark.parametrize("damage,message", [
     ("word", r"profile.txt:\d+: not a number"),
     ("short", "does not have 6 columns"),
@@ -194,15 +206,14 @@ def test_trend_of_noise_and_of_a_ramp():
 ])
 def test_broken_profile_names_the_file_and_the_problem(tmp_path, damage, message):
     from postprocess.io import read_profile
-    bins = ["1 0.125 2 0.5 0.1 0.0", "2 0.375 1 0.25 0.2 0.0", "3 0.625 0 0 0 0"]
+    bins = list(PROFILE_BINS)
     if damage == "word":
         bins[1] = bins[1].replace("0.25", "x.25")
     if damage == "short":
         bins[1] = "2 0.375 1"
     if damage == "missing bin":
         bins = bins[:2]
-    (tmp_path / "profile.txt").write_text("# fix ave/chunk\n# header\n# columns\n1000 3 3\n" +
-                                          "\n".join(bins) + "\n")
+    write_profile(tmp_path, bins)
     with pytest.raises(DataError, match=message):
         read_profile(tmp_path)
 
@@ -464,6 +475,41 @@ def test_a_broken_point_json_beside_a_usable_point_is_a_left_out_line(tmp_path, 
     err = capsys.readouterr().err
     assert f"left out {sweep / 'collisional_flow' / 'p2'}: point.json: not valid JSON" in err
     assert "| 200000 |" in (sweep / "report" / "report.md").read_text()     # p1's row
+
+
+def test_a_profile_that_cannot_be_read_is_listed_not_dropped(tmp_path):
+    """The report draws the profiles it can read and lists the one it cannot, saying why (it
+    was dropped silently)."""
+    from postprocess.__main__ import main
+    sweep = sweep_of(tmp_path, {
+        ("collisional_flow", "p1"): lambda p: write_profile(write_point(p)),
+        ("collisional_flow", "p22"): lambda p: write_profile(write_point(p), PROFILE_BINS[:2])})
+    assert main(["report", str(sweep)]) == 0
+    report = (sweep / "report" / "report.md").read_text()
+    assert "![profiles](profiles_collisional_flow.png)" in report
+    assert (f"- figure profiles_collisional_flow.png: {sweep / 'collisional_flow' / 'p22'}/"
+            "profile.txt: 2 bins, the header says 3: truncated?") in report
+
+
+def test_the_report_reads_each_file_of_a_point_once(tmp_path, monkeypatch):
+    """A point is loaded once: the E(t) and v_y(t) figures take energy.txt and trajectory.txt
+    from the run's record (they read them again)."""
+    from postprocess.__main__ import main
+
+    def disk(point):
+        write_point(point, scene="single_disk")
+        single_disk_trajectory(point, 100.0)
+    sweep = sweep_of(tmp_path, {("single_disk", "p1"): disk, ("single_disk", "p22"): disk})
+    reads, read_text = [], Path.read_text
+    monkeypatch.setattr(Path, "read_text",
+                        lambda self, *a, **k: reads.append(self) or read_text(self, *a, **k))
+    assert main(["report", str(sweep)]) == 0
+    assert "![v_y(t) at the softest and the stiffest point]" in \
+        (sweep / "report" / "report.md").read_text()
+    counts = Counter(p.relative_to(sweep) for p in reads if sweep / "single_disk" in p.parents)
+    assert Path("single_disk/p1/trajectory.txt") in counts
+    # energy.txt twice in its one reading: its header names the columns, then its table
+    assert all(n == (2 if p.name == "energy.txt" else 1) for p, n in counts.items()), counts
 
 
 def crashed(point):

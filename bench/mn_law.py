@@ -1,0 +1,1 @@
+../scripts/mn_law.py
