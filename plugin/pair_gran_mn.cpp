@@ -83,19 +83,18 @@ static inline double contact_mass_scale(bool i_wall, bool j_wall, double mi, dou
                 : mn::pair_mass_scale(mi, mj);
 }
 
-// A contact just ended: its row goes to the counters, once even if both processes hold the pair.
+// A contact just ended: its atoms have one contact less; its row goes to the counters, once even
+// if both processes hold the pair.
 void PairGranMN::report_end(int i, int j, double dx, double dy, double rsq, const double *state,
                             const tagint *tag)
 {
   double **v = atom->v;
   const double r = sqrt(rsq);
   const double vn = (dx * (v[i][0] - v[j][0]) + dy * (v[i][1] - v[j][1])) / r;
-  const bool record = force->newton_pair || j < atom->nlocal || tag[i] < tag[j];
-  const bool i_wall = is_wall_type[atom->type[i]], j_wall = is_wall_type[atom->type[j]];
-  if (i_wall)
-    counters->pair_ended(j, i, true, state, vn, record);
-  else
-    counters->pair_ended(i, j, j_wall, state, vn, record);
+  const bool tally_j = force->newton_pair || j < atom->nlocal;
+  const bool record = tally_j || tag[i] < tag[j];
+  counters->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
+                       record, tally_j);
 }
 
 // Two disks whose centres came within the larger radius: the law has lost them (their normal
