@@ -29,7 +29,8 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), step_particle(nullptr),
     step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
     fold_ghosts(false), recounting(false), every(1),
-    now(0.0), change_time(0.0), clock_step(0), base_time(0.0), base_step(0), window_start(0.0), convert_layout(false),
+    now(0.0), change_time(0.0), clock_step(0), base_time(0.0), base_step(0), window_start(0.0),
+    convert_layout(false),
     rows_every(0), row_array(nullptr), nmax_rows(0), rows_handed(0), handed_step(-1),
     vector_step(-1)
 {
@@ -117,7 +118,8 @@ void FixContactsMN::init()
 void FixContactsMN::advance_clock()
 {
   change_time = now;
-  if (update->ntimestep > clock_step) now = base_time + (update->ntimestep - base_step) * update->dt;
+  if (update->ntimestep > clock_step)
+    now = base_time + (update->ntimestep - base_step) * update->dt;
   clock_step = update->ntimestep;
 }
 

@@ -137,7 +137,7 @@ int FixWallGranMN::sides_in_contact(int i) const
   if (!counters || !(atom->mask[i] & groupbit)) return 0;
   int sides = 0;
   for (int side = 0; side < 2; side++)
-    if (state[i][UT_COLUMNS + FixContactsMN::WALL_SLOTS * side + FixContactsMN::WALL_TOUCHING] != 0.0)
+    if (state[i][UT_COLUMNS + FixContactsMN::WALL_SLOTS * side + FixContactsMN::WALL_TOUCHING])
       sides++;
   return sides;
 }
