@@ -83,6 +83,9 @@ def builds_and_state(tmp_path, name, fix, neighbor, nprocs=1, steps=3000):
     deck = pile_deck((fix,), steps, True).replace("timestep", f"{neighbor}\ntimestep")
     run = run_lammps(deck, tmp_path / name, nprocs=nprocs)
     builds = int(re.search(r"Neighbor list builds = (\d+)", run.output).group(1))
+    # pair_style gran/mn's warning about once yes is for a run where no fix asks for builds
+    assert ("only at the start of a run" in run.output) == ("once yes" in neighbor and
+                                                            "neigh_check yes" not in fix)
     a = run.atoms()
     return builds, np.column_stack([a[k] for k in ("x", "y", "vx", "vy", "omegaz")])
 
