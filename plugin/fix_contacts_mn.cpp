@@ -7,6 +7,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "fix_wall_gran_mn.h"
 #include "force.h"
 #include "granmn_compat.h"
 #include "granmn_glue.h"
@@ -23,13 +24,15 @@ using namespace FixConst;
 
 static constexpr int ROW_COLS = 8;          // tag_i tag_j kind start duration vn_start vn_end peak
 
-// fix ID group contacts/mn [local N]
+// fix ID group contacts/mn [local N] [every M]
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), step_particle(nullptr),
     step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
-    fold_ghosts(false),
-    now(0.0), clock_step(0), window_start(0.0), rows_every(0), row_array(nullptr), nmax_rows(0),
-    rows_handed(0), handed_step(-1), vector_step(-1)
+    fold_ghosts(false), recounting(false), every(1),
+    now(0.0), change_time(0.0), clock_step(0), base_time(0.0), base_step(0), window_start(0.0),
+    convert_layout(false),
+    rows_every(0), row_array(nullptr), nmax_rows(0), rows_handed(0), handed_step(-1),
+    vector_step(-1)
 {
   int iarg = 3;
   while (iarg < narg) {
@@ -38,6 +41,12 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
       rows_every = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
       if (rows_every <= 0)
         error->all(FLERR, "Illegal fix contacts/mn command: local N needs N > 0 steps");
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "every") == 0) {
+      if (iarg + 2 > narg) error->all(FLERR, "Illegal fix contacts/mn command: every needs M");
+      every = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (every <= 0)
+        error->all(FLERR, "Illegal fix contacts/mn command: every M needs M > 0 steps");
       iarg += 2;
     } else {
       error->all(FLERR, "Illegal fix contacts/mn command: unknown keyword {}", arg[iarg]);
@@ -60,9 +69,9 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
   }
   restart_global = 1;
   comm_reverse = 4;
-  allocate_state(NCOLS);
-  clock_step = update->ntimestep;
-  now = update->ntimestep * update->dt;
+  allocate_state(STATE_COLS);
+  clock_step = base_step = update->ntimestep;
+  now = base_time = update->ntimestep * update->dt;
   window_start = now;
 }
 
@@ -78,7 +87,7 @@ FixContactsMN::~FixContactsMN()
 
 int FixContactsMN::setmask()
 {
-  return PRE_FORCE | END_OF_STEP;
+  return PRE_FORCE | END_OF_STEP | POST_RUN;
 }
 
 void FixContactsMN::init()
@@ -89,13 +98,28 @@ void FixContactsMN::init()
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");
   fold_ghosts = comm->nprocs == 1 && atom->map_style != Atom::MAP_NONE;
+  // one process: end_of_step has work only where an output reads the fix; else it compares
+  // every step's tallies with the atoms' contacts
+  int steps = every;
+  for (int other = rows_every; other;) {    // the greatest common divisor with local's N
+    const int rest = steps % other;
+    steps = other;
+    other = rest;
+  }
+  nevery = fold_ghosts ? steps : 1;
+  // during a run, the per-atom output is current every `every` steps (between runs always)
+  peratom_freq = every;
 }
 
 // Called once per step before any contact is reported: the clock moves on by the step just
-// taken, with the time step it was taken with.
+// taken, with the time step it was taken with. The time is counted from the last run's start
+// or change of time step, (steps since) x dt, not summed step by step: the difference of two
+// times, a contact's duration, is then (steps) x dt to one rounding of each.
 void FixContactsMN::advance_clock()
 {
-  if (update->ntimestep > clock_step) now += (update->ntimestep - clock_step) * update->dt;
+  change_time = now;
+  if (update->ntimestep > clock_step)
+    now = base_time + (update->ntimestep - base_step) * update->dt;
   clock_step = update->ntimestep;
 }
 
@@ -106,6 +130,13 @@ void FixContactsMN::drop_handed_rows()
     rows.erase(rows.begin(), rows.begin() + (size_t) rows_handed * ROW_COLS);
     rows_handed = 0;
   }
+}
+
+// fix dt/reset changed the time step from the next step on.
+void FixContactsMN::reset_dt()
+{
+  base_time = now;
+  base_step = clock_step;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -122,42 +153,64 @@ void FixContactsMN::grow_step_arrays()
   memory->create(step_boundary, nmax_step, "contacts/mn:step_boundary");
   memory->create(begun_particle, nmax_step, "contacts/mn:begun_particle");
   memory->create(begun_boundary, nmax_step, "contacts/mn:begun_boundary");
-  // zero once: collect zeroes what the tallies wrote (one process), or pre_force all of it
-  for (int i = 0; i < nmax_step; i++)
+}
+
+void FixContactsMN::zero_step_arrays()
+{
+  grow_step_arrays();
+  const int n = atom->nlocal + atom->nghost;
+  for (int i = 0; i < n; i++)
     step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
-  touched.clear();
 }
 
 // No time passes between runs: the step a run starts at is the clock's, also after
-// reset_timestep moved it (either way).
-void FixContactsMN::setup_pre_force(int vflag)
+// reset_timestep moved it (either way). On one process the setup's pair contacts are tallied
+// as well, to be checked against the atoms' contacts (recount).
+void FixContactsMN::setup_pre_force(int)
 {
-  clock_step = update->ntimestep;
-  pre_force(vflag);
-}
-
-// This step's tallies are zero before the pair style and the wall fix fill them: on one
-// process collect zeroed the entries it visited; else zero them all here.
-void FixContactsMN::pre_force(int)
-{
+  clock_step = base_step = update->ntimestep;
+  base_time = now;
   advance_clock();
-  grow_step_arrays();
-  if (!fold_ghosts) {
-    const int n = atom->nlocal + atom->nghost;
-    for (int i = 0; i < n; i++)
-      step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
-    touched.clear();
+  if (convert_layout) {
+    // a file of the layout that kept the output columns only: its times are complete up to
+    // now; the contacts are counted anew at this setup
+    for (int i = 0; i < atom->nlocal; i++) {
+      double *s = state[i];
+      s[ACCUMULATED_PARTICLE] = s[TIME_PARTICLE];
+      s[ACCUMULATED_BOUNDARY] = s[TIME_BOUNDARY];
+      s[ACCUMULATED_MULTIPLE] = s[TIME_MULTIPLE];
+      s[SINCE] = now;
+      s[CONTACTS_PARTICLE] = s[CONTACTS_BOUNDARY] = 0.0;
+    }
+    convert_layout = false;
   }
+  zero_step_arrays();
+  recounting = fold_ghosts;
   drop_handed_rows();
 }
 
-void FixContactsMN::pair_ended(int i, int j, bool boundary, const double *record, double vn,
-                               bool write_row)
+// On more than one process, this step's tallies are zero before the pair style and the wall
+// fix fill them.
+void FixContactsMN::pre_force(int)
 {
+  advance_clock();
+  if (!fold_ghosts) zero_step_arrays();
+  drop_handed_rows();
+}
+
+void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary,
+                               const double *record, double vn, bool write_row, bool tally_j)
+{
+  if (fold_ghosts) {
+    change(i, -(double) !j_is_boundary, -(double) j_is_boundary);
+    if (tally_j) change(home(j), -(double) !i_is_boundary, -(double) i_is_boundary);
+  }
   const int *mask = atom->mask;
   if (!write_row || !((mask[i] | mask[j]) & groupbit)) return;
   // the mobile atom first against a bump, else the smaller ID first (v_n is the same either way)
   const tagint *tag = atom->tag;
+  if (i_is_boundary) std::swap(i, j);
+  const bool boundary = i_is_boundary || j_is_boundary;
   const bool swap = !boundary && tag[j] < tag[i];
   ended(record, tag[swap ? j : i], tag[swap ? i : j], boundary ? 2 : 1, vn);
 }
@@ -175,64 +228,83 @@ void FixContactsMN::ended(const double *record, double tag_i, double tag_j, doub
 
 /* ---------------------------------------------------------------------- */
 
-// Add this step to atom i's counts and times.
-static inline void add_step(double *p, double begun_particle, double begun_boundary,
-                            double step_particle, double step_boundary, bool accumulate_time,
-                            double dt)
+// More than one process: bring ghost tallies home, add the contacts begun, and change each
+// atom whose contacts at this step differ from its last.
+void FixContactsMN::collect()
 {
-  p[FixContactsMN::BEGUN_PARTICLE] += begun_particle;
-  p[FixContactsMN::BEGUN_BOUNDARY] += begun_boundary;
-  p[FixContactsMN::NOW] = step_particle + step_boundary;
-  if (accumulate_time) {
-    if (step_particle > 0.0) p[FixContactsMN::TIME_PARTICLE] += dt;
-    if (step_boundary > 0.0) p[FixContactsMN::TIME_BOUNDARY] += dt;
-    if (p[FixContactsMN::NOW] >= 2.0) p[FixContactsMN::TIME_MULTIPLE] += dt;
+  if (force->newton_pair) granmn::reverse_comm(comm, this);
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    double *s = state[i];
+    if (mask[i] & groupbit) {
+      s[BEGUN_PARTICLE] += begun_particle[i];
+      s[BEGUN_BOUNDARY] += begun_boundary[i];
+    }
+    const double particle = step_particle[i] - s[CONTACTS_PARTICLE];
+    const double boundary = step_boundary[i] - s[CONTACTS_BOUNDARY];
+    if (particle != 0.0 || boundary != 0.0) change(i, particle, boundary);
   }
 }
 
-// Bring ghost tallies home, then add this step to each atom's counts and times. An atom with
-// no contact at this step gains nothing but NOW = 0.
-void FixContactsMN::collect(bool accumulate_time)
+// One process, at a run's setup: each atom's contacts are those the pair style tallied and the
+// wall sides it touches (as the wall fixes keep them, whether their setup ran yet or not:
+// each change of theirs is reported). An atom that differs (nothing between two runs should
+// make one) takes the count from here on.
+void FixContactsMN::recount()
+{
+  recounting = false;
+  std::vector<FixWallGranMN *> walls;
+  for (Fix *fix : granmn::fixes_by_style(modify, "^wall/gran/mn"))
+    walls.push_back(static_cast<FixWallGranMN *>(fix));
+  for (int i = 0; i < atom->nlocal; i++) {
+    double boundary = step_boundary[i];
+    for (FixWallGranMN *wall : walls) boundary += wall->sides_in_contact(i);
+    const double particle_change = step_particle[i] - state[i][CONTACTS_PARTICLE];
+    const double boundary_change = boundary - state[i][CONTACTS_BOUNDARY];
+    if (particle_change != 0.0 || boundary_change != 0.0)
+      change(i, particle_change, boundary_change);
+  }
+}
+
+// The per-atom output's times as of now, for the atoms in contact (the others' were written
+// at their last change).
+void FixContactsMN::update_outputs()
 {
   const int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  const double dt = update->dt;
-  if (!fold_ghosts) {
-    if (force->newton_pair) granmn::reverse_comm(comm, this);
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit)
-        add_step(state[i], begun_particle[i], begun_boundary[i], step_particle[i],
-                 step_boundary[i], accumulate_time, dt);
-    return;
+  for (int i = 0; i < atom->nlocal; i++) {
+    double *s = state[i];
+    if (!(mask[i] & groupbit)) continue;
+    const double elapsed = now - s[SINCE];
+    const double particle = s[CONTACTS_PARTICLE], boundary = s[CONTACTS_BOUNDARY];
+    s[TIME_PARTICLE] = s[ACCUMULATED_PARTICLE] + (particle > 0.0 ? elapsed : 0.0);
+    s[TIME_BOUNDARY] = s[ACCUMULATED_BOUNDARY] + (boundary > 0.0 ? elapsed : 0.0);
+    s[TIME_MULTIPLE] = s[ACCUMULATED_MULTIPLE] + (particle + boundary >= 2.0 ? elapsed : 0.0);
   }
-  // the atoms of the last step's list keep their indices unless LAMMPS re-sorted or exchanged
-  // them at this step (a neighbour-list build, or a run's setup)
-  if (update->setupflag || neighbor->lastcall == update->ntimestep) {
-    for (int i = 0; i < nlocal; i++) state[i][NOW] = 0.0;
-  } else {
-    for (int i : touched_before) state[i][NOW] = 0.0;
-  }
-  for (int i : touched) {
-    if (mask[i] & groupbit)
-      add_step(state[i], begun_particle[i], begun_boundary[i], step_particle[i],
-               step_boundary[i], accumulate_time, dt);
-    step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
-  }
-  touched.swap(touched_before);
-  touched.clear();
 }
 
 // Contacts that exist when a run starts are counted once, at its setup.
 void FixContactsMN::setup(int)
 {
-  collect(false);
+  if (fold_ghosts)
+    recount();
+  else
+    collect();
+  update_outputs();
   publish_rows();
 }
 
 void FixContactsMN::end_of_step()
 {
-  collect(true);
+  if (!fold_ghosts) collect();
+  if (update->ntimestep % every == 0) update_outputs();
   if (rows_every && update->ntimestep % rows_every == 0) publish_rows();
+}
+
+// Between runs the per-atom output is current (write_dump, variables).
+void FixContactsMN::post_run()
+{
+  update_outputs();
+  peratom_freq = 1;
 }
 
 void FixContactsMN::publish_rows()
@@ -285,8 +357,12 @@ int FixContactsMN::modify_param(int narg, char **arg)
   if (strcmp(arg[0], "reset") != 0) return 0;
   if (narg > 1)
     error->all(FLERR, "Illegal fix_modify command: fix contacts/mn reset takes no arguments");
-  for (int i = 0; i < atom->nlocal; i++)
-    for (int c = BEGUN_PARTICLE; c <= TIME_MULTIPLE; c++) state[i][c] = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    double *s = state[i];
+    for (int c = BEGUN_PARTICLE; c <= TIME_MULTIPLE; c++) s[c] = 0.0;
+    s[ACCUMULATED_PARTICLE] = s[ACCUMULATED_BOUNDARY] = s[ACCUMULATED_MULTIPLE] = 0.0;
+    s[SINCE] = now;
+  }
   window_start = now;
   vector_step = -1;
   return 1;
@@ -296,11 +372,22 @@ int FixContactsMN::modify_param(int narg, char **arg)
 double FixContactsMN::compute_vector(int n)
 {
   if (vector_step != update->ntimestep) {
+    // the times as of now (update_outputs' sums, without writing them)
     double local[NCOLS] = {0.0};
     const int *mask = atom->mask;
-    for (int i = 0; i < atom->nlocal; i++)
-      if (mask[i] & groupbit)
-        for (int c = 0; c < NCOLS; c++) local[c] += state[i][c];
+    for (int i = 0; i < atom->nlocal; i++) {
+      const double *s = state[i];
+      if (!(mask[i] & groupbit)) continue;
+      const double elapsed = now - s[SINCE];
+      const double particle = s[CONTACTS_PARTICLE], boundary = s[CONTACTS_BOUNDARY];
+      local[BEGUN_PARTICLE] += s[BEGUN_PARTICLE];
+      local[BEGUN_BOUNDARY] += s[BEGUN_BOUNDARY];
+      local[TIME_PARTICLE] += s[ACCUMULATED_PARTICLE] + (particle > 0.0 ? elapsed : 0.0);
+      local[TIME_BOUNDARY] += s[ACCUMULATED_BOUNDARY] + (boundary > 0.0 ? elapsed : 0.0);
+      local[TIME_MULTIPLE] +=
+          s[ACCUMULATED_MULTIPLE] + (particle + boundary >= 2.0 ? elapsed : 0.0);
+      local[NOW] += s[NOW];
+    }
     MPI_Allreduce(local, vector_sums, NCOLS, MPI_DOUBLE, MPI_SUM, world);
     vector_sums[6] = now - window_start;
     vector_sums[7] = group->count(igroup);
@@ -325,10 +412,12 @@ void FixContactsMN::grow_arrays(int nmax)
 }
 
 // The first value marks the layout: earlier versions wrote one value, a step (>= 0), and kept
-// contact start steps rather than times in the pair history; then the clock alone (-2). Now
-// (-3) the rows not yet dumped follow the clock, gathered from all processes: a run continued
-// from the file dumps them at its next multiple of N.
-static constexpr double CLOCK_LAYOUT = -2.0, CLOCK_AND_ROWS_LAYOUT = -3.0;
+// contact start steps rather than times in the pair history; then the clock alone (-2); then
+// (-3) the rows not yet dumped after the clock, gathered from all processes: a run continued
+// from the file dumps them at its next multiple of N. Both kept only the output columns per
+// atom; now (-4, the same record) the per-atom state holds what the times are made of.
+static constexpr double CLOCK_LAYOUT = -2.0, CLOCK_AND_ROWS_LAYOUT = -3.0,
+                        STATE_LAYOUT = -4.0;
 static constexpr int CLOCK_VALUES = 4;
 
 void FixContactsMN::write_restart(FILE *fp)
@@ -347,7 +436,7 @@ void FixContactsMN::write_restart(FILE *fp)
   MPI_Gatherv(rows.data() + skip, mine, MPI_DOUBLE, values.data() + CLOCK_VALUES + 1,
               counts.data(), offsets.data(), MPI_DOUBLE, 0, world);
   if (comm->me == 0) {
-    values[0] = CLOCK_AND_ROWS_LAYOUT;
+    values[0] = STATE_LAYOUT;
     values[1] = now;
     values[2] = (double) clock_step;
     values[3] = window_start;
@@ -362,7 +451,7 @@ void FixContactsMN::restart(char *buf)
 {
   double layout;
   memcpy(&layout, buf, sizeof(double));
-  if (layout != CLOCK_LAYOUT && layout != CLOCK_AND_ROWS_LAYOUT)
+  if (layout != CLOCK_LAYOUT && layout != CLOCK_AND_ROWS_LAYOUT && layout != STATE_LAYOUT)
     error->all(FLERR, "Fix contacts/mn: the restart file was written by an earlier version that "
                       "kept steps, not times; write a new one");
   double clock[CLOCK_VALUES + 1];
@@ -370,11 +459,12 @@ void FixContactsMN::restart(char *buf)
   now = clock[1];
   clock_step = (bigint) clock[2];
   window_start = clock[3];
+  convert_layout = layout != STATE_LAYOUT;
   // the pending rows go to the first process (dump local gathers them all); kept only if
   // this run asks for rows
   rows.clear();
   rows_handed = 0;
-  if (layout == CLOCK_AND_ROWS_LAYOUT && comm->me == 0 && rows_every) {
+  if (layout != CLOCK_LAYOUT && comm->me == 0 && rows_every) {
     rows.resize((size_t) clock[CLOCK_VALUES] * ROW_COLS);
     memcpy(rows.data(), buf + sizeof(clock), rows.size() * sizeof(double));
   }

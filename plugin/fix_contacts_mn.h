@@ -17,7 +17,7 @@ namespace LAMMPS_NS {
 
 class FixContactsMN : public FixPerAtomState {
  public:
-  // Columns of the per-atom array.
+  // Columns of the per-atom array (the output; the state has more, see below).
   enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, NCOLS };
   // What this fix keeps per contact, wherever the contact lives: in the pair style's neighbor
   // history (RECORD_SIZE values) or in a wall fix's per-atom state (WALL_SLOTS per side: the
@@ -33,6 +33,8 @@ class FixContactsMN : public FixPerAtomState {
   void pre_force(int) override;
   void setup(int) override;
   void end_of_step() override;
+  void post_run() override;
+  void reset_dt() override;
   int modify_param(int, char **) override;
   double compute_vector(int) override;
 
@@ -52,30 +54,48 @@ class FixContactsMN : public FixPerAtomState {
   void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, double *record,
                      bool began, double delta, double vn, bool tally_j);
   // pair_style gran/mn: a pair stopped touching; `write_row`: this process writes its row
-  // (a pair stored on two processes has one row). i is the mobile atom against a bump.
-  void pair_ended(int i, int j, bool boundary, const double *record, double vn, bool write_row);
+  // (a pair stored on two processes has one row); `tally_j` as for pair_touching.
+  void pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary, const double *record,
+                  double vn, bool write_row, bool tally_j);
   // fix wall/gran/mn, for every atom of its group and wall side; `w` is that atom's
   // WALL_SLOTS for the wall fix and side.
   void wall_state(int i, double *w, bool touching, double delta, double vn);
 
  private:
-  // state[i]: the NCOLS output columns
+  // The state per atom: the NCOLS output columns, then what the times are made of. The times
+  // change only when an atom's contacts do: `ACCUMULATED_*` hold each time up to the clock
+  // time `SINCE` of the atom's last change, `CONTACTS_*` its contacts since then. The output's
+  // time columns are those plus the time since, written at each change and whenever they are
+  // read (every `every` steps, at the end of a run), so that no step costs work per contact
+  // or per atom; reading them never rounds the sums (the output is a copy).
+  enum { ACCUMULATED_PARTICLE = NCOLS, ACCUMULATED_BOUNDARY, ACCUMULATED_MULTIPLE, SINCE,
+         CONTACTS_PARTICLE, CONTACTS_BOUNDARY, STATE_COLS };
+  // Tallies of this step's contacts (owned + ghost), where contacts are counted anew at a
+  // step: at every step on more than one process (brought home by reverse communication,
+  // then compared with each atom's contacts), at a run's setup on one.
   double *step_particle, *step_boundary;    // contacts at this step, owned + ghost
   double *begun_particle, *begun_boundary;  // contacts begun at this step, owned + ghost
   int nmax_step;
-  // One process: a ghost's tallies go straight to the disk it images (atom->map), so nothing
-  // is exchanged; only the disks in contact are visited: `touched` lists those of this step
-  // (tallied, then zeroed by collect), `touched_before` those of the last step (their NOW is
-  // zeroed first). The work per step scales with the disks in contact, not with all disks.
-  // Else the tallies travel by reverse communication and every disk is visited.
+  // One process: a ghost's contacts are its image's (atom->map), each begin and end of a
+  // contact changes its atoms' contacts at once, and a step costs nothing per contact beyond
+  // its record. A run's setup counts all contacts anew and corrects any atom that differs
+  // (one that lost a partner to delete_atoms, say).
   bool fold_ghosts;
-  std::vector<int> touched, touched_before;
+  bool recounting;             // this step's pair contacts are tallied too (one process, setup)
+  int every;                   // the per-atom output is current at multiples of it
+  bool outputs_current;        // ... and between runs
   // The fix's own clock: the time of the current step, the sum of the time steps actually
   // taken (a timestep changed between runs counts from then on; LAMMPS's time restarts at
-  // zero after read_restart in this version, this clock does not).
+  // zero after read_restart in this version, this clock does not): base_time at base_step
+  // (the last run's start or change of time step), plus the steps since times dt.
   double now;
+  double change_time;          // when a change found at this step happened: the last step's
+                               // time (a contact found at step n was there for step n's dt)
   bigint clock_step;           // the step `now` belongs to
+  double base_time;
+  bigint base_step;
   double window_start;         // time at which accumulation (re)started
+  bool convert_layout;         // restart file of the output-columns-only state: convert it
   int rows_every;              // local rows: contacts completed in the last N steps (0: none)
   std::vector<double> rows;    // 8 values per completed contact, not yet dumped
   double **row_array;
@@ -91,9 +111,14 @@ class FixContactsMN : public FixPerAtomState {
   void drop_handed_rows();
   void touching(double *record, bool began, double delta, double vn);
   void tally(int i, bool boundary, bool began);
+  int home(int j) const { return j < atom->nlocal ? j : atom->map(atom->tag[j]); }
+  void change(int i, double particle, double boundary);
   void ended(const double *record, double tag_i, double tag_j, double kind, double vn_end);
-  void collect(bool accumulate_time);
+  void collect();
+  void recount();
+  void update_outputs();
   void grow_step_arrays();
+  void zero_step_arrays();
   void publish_rows();
 };
 
@@ -112,9 +137,28 @@ inline void FixContactsMN::touching(double *record, bool began, double delta, do
 // One contact of atom i at this step (with a boundary or not; begun at this step or not).
 inline void FixContactsMN::tally(int i, bool boundary, bool began)
 {
-  if (step_particle[i] == 0.0 && step_boundary[i] == 0.0) touched.push_back(i);
   (boundary ? step_boundary : step_particle)[i] += 1.0;
   if (began) (boundary ? begun_boundary : begun_particle)[i] += 1.0;
+}
+
+// Atom i's contacts change by `particle` and `boundary` at change_time: the time since its
+// last change goes to its times as its contacts were, then the output columns are current.
+inline void FixContactsMN::change(int i, double particle, double boundary)
+{
+  double *s = state[i];
+  if (atom->mask[i] & groupbit) {
+    const double elapsed = change_time - s[SINCE];
+    if (s[CONTACTS_PARTICLE] > 0.0) s[ACCUMULATED_PARTICLE] += elapsed;
+    if (s[CONTACTS_BOUNDARY] > 0.0) s[ACCUMULATED_BOUNDARY] += elapsed;
+    if (s[CONTACTS_PARTICLE] + s[CONTACTS_BOUNDARY] >= 2.0) s[ACCUMULATED_MULTIPLE] += elapsed;
+    s[TIME_PARTICLE] = s[ACCUMULATED_PARTICLE];
+    s[TIME_BOUNDARY] = s[ACCUMULATED_BOUNDARY];
+    s[TIME_MULTIPLE] = s[ACCUMULATED_MULTIPLE];
+    s[NOW] = s[CONTACTS_PARTICLE] + particle + s[CONTACTS_BOUNDARY] + boundary;
+  }
+  s[CONTACTS_PARTICLE] += particle;
+  s[CONTACTS_BOUNDARY] += boundary;
+  s[SINCE] = change_time;
 }
 
 inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary,
@@ -122,10 +166,24 @@ inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool 
                                          bool tally_j)
 {
   touching(record, began, delta, vn);
-  tally(i, j_is_boundary, began);
-  if (tally_j) {
-    if (fold_ghosts && j >= atom->nlocal) j = atom->map(atom->tag[j]);
-    tally(j, i_is_boundary, began);
+  if (!fold_ghosts) {
+    tally(i, j_is_boundary, began);
+    if (tally_j) tally(j, i_is_boundary, began);
+    return;
+  }
+  if (began) {
+    const int *mask = atom->mask;
+    change(i, !j_is_boundary, j_is_boundary);
+    if (mask[i] & groupbit) state[i][j_is_boundary ? BEGUN_BOUNDARY : BEGUN_PARTICLE] += 1.0;
+    if (tally_j) {
+      const int k = home(j);
+      change(k, !i_is_boundary, i_is_boundary);
+      if (mask[k] & groupbit) state[k][i_is_boundary ? BEGUN_BOUNDARY : BEGUN_PARTICLE] += 1.0;
+    }
+  }
+  if (recounting) {
+    tally(i, j_is_boundary, false);
+    if (tally_j) tally(home(j), i_is_boundary, false);
   }
 }
 
@@ -136,10 +194,14 @@ inline void FixContactsMN::wall_state(int i, double *w, bool in_contact, double 
     touching(w, began, delta, vn);
     w[WALL_TOUCHING] = 1.0;
     // owned atom: counted directly, so that the order of fix setups does not matter
-    if (began && (atom->mask[i] & groupbit)) state[i][BEGUN_BOUNDARY] += 1.0;
-    tally(i, true, false);
+    if (began) {
+      if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
+      if (fold_ghosts) change(i, 0.0, 1.0);
+    }
+    if (!fold_ghosts) tally(i, true, false);
   } else if (w[WALL_TOUCHING] != 0.0) {
     w[WALL_TOUCHING] = 0.0;
+    if (fold_ghosts) change(i, 0.0, -1.0);
     if (atom->mask[i] & groupbit) ended(w, atom->tag[i], 0, 2, vn);
   }
 }

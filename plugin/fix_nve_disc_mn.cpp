@@ -11,6 +11,7 @@
 #include "fix_nve_disc_mn.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "force.h"
@@ -24,12 +25,12 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-// fix ID group nve/disc/mn [scheme verlet|ab2] [gravity G X Y]
+// fix ID group nve/disc/mn [scheme verlet|ab2] [gravity G X Y] [neigh_check yes|no]
 // fix ID group nve/ab2
 FixNVEDiscMN::FixNVEDiscMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), integrator(mn::Integrator::VelocityVerlet),
     has_gravity(false), gravity{0.0, 0.0}, dtv(0.0), dtf(0.0), factors_every_step(false),
-    factors_lastcall(-1)
+    factors_lastcall(-1), neigh_check(false), trigger_sq(0.0), held_lastcall(-1)
 {
   if (strcmp(style, "nve/ab2") == 0) {
     if (narg != 3) error->all(FLERR, "Illegal fix nve/ab2 command: it takes no arguments");
@@ -62,6 +63,12 @@ FixNVEDiscMN::FixNVEDiscMN(LAMMPS *lmp, int narg, char **arg) :
       gravity[1] = magnitude * (y / length);
       has_gravity = true;
       iarg += 4;
+    } else if (strcmp(arg[iarg], "neigh_check") == 0) {
+      if (iarg + 2 > narg ||
+          (strcmp(arg[iarg + 1], "yes") != 0 && strcmp(arg[iarg + 1], "no") != 0))
+        error->all(FLERR, "Illegal fix {} command: neigh_check needs yes or no", style);
+      neigh_check = strcmp(arg[iarg + 1], "yes") == 0;
+      iarg += 2;
     } else {
       error->all(FLERR, "Illegal fix {} command: unknown keyword {}", style, arg[iarg]);
     }
@@ -72,6 +79,10 @@ FixNVEDiscMN::FixNVEDiscMN(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Fix {} requires atom attributes radius, rmass, omega, torque "
                       "(atom_style sphere)", style);
   time_integrate = 1;
+  if (neigh_check) {
+    force_reneighbor = 1;
+    next_reneighbor = -1;
+  }
   if (integrator == mn::Integrator::AdamsBashforth2) allocate_state(NSTATE);
 }
 
@@ -95,6 +106,21 @@ void FixNVEDiscMN::init()
     error->all(FLERR, "Fix {} integrates disks: {} atoms of its group have diameter 0 "
                       "(point particles)", style, points_all);
   check_other_fixes();
+  if (neigh_check) {
+    // its test sees only the atoms it moves, in a box that keeps its size
+    for (Fix *fix : granmn::all_fixes(modify))
+      if (fix != this && fix->time_integrate)
+        error->all(FLERR, "Fix {} ({}) with neigh_check yes tests only the atoms it moves, and "
+                          "fix {} ({}) moves atoms too; use neigh_check no (LAMMPS's own test)",
+                   id, style, fix->id, fix->style);
+    // (a shrink-wrapped box changes only at builds, where LAMMPS's test does not look)
+    for (Fix *fix : granmn::all_fixes(modify))
+      if (fix->box_change)
+        error->all(FLERR, "Fix {} ({}) with neigh_check yes needs a box that no fix changes "
+                          "during a run, and fix {} ({}) does; use neigh_check no (LAMMPS's own "
+                          "test)", id, style, fix->id, fix->style);
+    trigger_sq = 0.25 * neighbor->skin * neighbor->skin;
+  }
   factors_every_step = !granmn::fixes_by_style(modify, "^adapt").empty();
   dtv = update->dt;
   dtf = 0.5 * update->dt * force->ftm2v;
@@ -125,6 +151,21 @@ void FixNVEDiscMN::check_other_fixes()
 void FixNVEDiscMN::setup(int)
 {
   compute_factors();
+  if (neigh_check) hold_positions();
+}
+
+// The positions at the last build, as LAMMPS holds them (x is unchanged from the build to
+// this fix's next pass).
+void FixNVEDiscMN::hold_positions()
+{
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  held.resize(2 * nlocal);
+  for (int i = 0; i < nlocal; i++) {
+    held[2 * i] = x[i][0];
+    held[2 * i + 1] = x[i][1];
+  }
+  held_lastcall = neighbor->lastcall;
 }
 
 void FixNVEDiscMN::reset_dt()
@@ -170,6 +211,20 @@ static inline void half_kick(const FixNVEDiscMN::Factors &c, const double *f,
 void FixNVEDiscMN::refresh_factors()
 {
   if (factors_every_step || neighbor->lastcall != factors_lastcall) compute_factors();
+  if (neigh_check && neighbor->lastcall != held_lastcall) hold_positions();
+}
+
+// neigh_check: LAMMPS's own test (Neighbor::check_distance, the same operations: z does not
+// move), so that the lists are built at the same steps.
+void FixNVEDiscMN::request_build(bool moved)
+{
+  int flag = moved ? 1 : 0;
+  if (comm->nprocs > 1) {
+    int flag_all = 0;
+    MPI_Allreduce(&flag, &flag_all, 1, MPI_INT, MPI_MAX, world);
+    flag = flag_all;
+  }
+  if (flag) next_reneighbor = update->ntimestep;
 }
 
 void FixNVEDiscMN::initial_integrate(int)
@@ -184,13 +239,23 @@ void FixNVEDiscMN::initial_integrate(int)
   const int nlocal = atom->nlocal;
   const Factors *c = factors.data();
 
+  const bool check = neigh_check;
+  const double *hold = held.data();
+  const double trigger = trigger_sq;
+  bool moved = false;
+
   if (integrator == mn::Integrator::VelocityVerlet) {
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
       half_kick(c[i], f[i], torque[i], v[i], omega[i]);
       x[i][0] += dtv * v[i][0];
       x[i][1] += dtv * v[i][1];
+      if (check) {
+        const double dx = x[i][0] - hold[2 * i], dy = x[i][1] - hold[2 * i + 1];
+        if (dx * dx + dy * dy > trigger) moved = true;
+      }
     }
+    if (check) request_build(moved);
     return;
   }
   for (int i = 0; i < nlocal; i++) {
@@ -211,7 +276,12 @@ void FixNVEDiscMN::initial_integrate(int)
     }
     omega[i][2] = mn::ab2_velocity(omega[i][2], a[2], previous[ALPHA], dtv);
     for (int k = 0; k < 3; k++) previous[k] = a[k];
+    if (check) {
+      const double dx = x[i][0] - hold[2 * i], dy = x[i][1] - hold[2 * i + 1];
+      if (dx * dx + dy * dy > trigger) moved = true;
+    }
   }
+  if (check) request_build(moved);
 }
 
 // velocity Verlet's second half (the atoms may have been re-sorted since the first)
@@ -231,5 +301,6 @@ void FixNVEDiscMN::final_integrate()
 
 double FixNVEDiscMN::memory_usage()
 {
-  return FixPerAtomState::memory_usage() + (double) factors.capacity() * sizeof(Factors);
+  return FixPerAtomState::memory_usage() + (double) factors.capacity() * sizeof(Factors) +
+      (double) held.capacity() * sizeof(double);
 }

@@ -28,6 +28,8 @@ class FixNVEDiscMN : public FixPerAtomState {
   double memory_usage() override;
 
   mn::Integrator scheme() const { return integrator; }
+  // neigh_check yes: this fix decides when the neighbour lists are built
+  bool checks_neighbor_builds() const { return neigh_check; }
 
   // one atom's factors (the member factors below says what they are)
   struct Factors {
@@ -49,6 +51,16 @@ class FixNVEDiscMN : public FixPerAtomState {
   double dtv, dtf;
   bool factors_every_step;    // a fix adapt may change masses or radii at any step
   bigint factors_lastcall;    // the neighbour-list build the factors were computed after
+  // neigh_check yes: LAMMPS's test for a neighbour-list build (a disk moved more than half the
+  // skin since the last) done in this fix's pass over the disks, which asks LAMMPS for the
+  // build (next_reneighbor); with neigh_modify once yes LAMMPS does not test again
+  bool neigh_check;
+  double trigger_sq;          // (skin/2)^2, as LAMMPS computes it
+  std::vector<double> held;   // x, y of each local atom at the last build
+  bigint held_lastcall;
+
+  void hold_positions();
+  void request_build(bool moved);
 
   void compute_factors();
   void refresh_factors();

@@ -132,6 +132,16 @@ void FixWallGranMN::init()
                            granmn::integrator_in_use(modify));
 }
 
+int FixWallGranMN::sides_in_contact(int i) const
+{
+  if (!counters || !(atom->mask[i] & groupbit)) return 0;
+  int sides = 0;
+  for (int side = 0; side < 2; side++)
+    if (state[i][UT_COLUMNS + FixContactsMN::WALL_SLOTS * side + FixContactsMN::WALL_TOUCHING])
+      sides++;
+  return sides;
+}
+
 void FixWallGranMN::setup(int vflag)
 {
   post_force(vflag);

@@ -19,7 +19,8 @@ class FixWallGranMN : public FixPerAtomState {
   void setup(int) override;
   void post_force(int) override;
   double compute_vector(int) override;
-
+  // With fix contacts/mn: the wall sides atom i touches (as of this fix's last evaluation).
+  int sides_in_contact(int i) const;
 
  private:
   int axis;                   // 0: xplane, 1: yplane

@@ -11,6 +11,7 @@
 #include "domain.h"
 #include "error.h"
 #include "fix_contacts_mn.h"
+#include "fix_nve_disc_mn.h"
 #include "fix_dummy.h"
 #include "fix_per_atom_state.h"
 #include "fix_neigh_history.h"
@@ -83,19 +84,18 @@ static inline double contact_mass_scale(bool i_wall, bool j_wall, double mi, dou
                 : mn::pair_mass_scale(mi, mj);
 }
 
-// A contact just ended: its row goes to the counters, once even if both processes hold the pair.
+// A contact just ended: its atoms have one contact less; its row goes to the counters, once even
+// if both processes hold the pair.
 void PairGranMN::report_end(int i, int j, double dx, double dy, double rsq, const double *state,
                             const tagint *tag)
 {
   double **v = atom->v;
   const double r = sqrt(rsq);
   const double vn = (dx * (v[i][0] - v[j][0]) + dy * (v[i][1] - v[j][1])) / r;
-  const bool record = force->newton_pair || j < atom->nlocal || tag[i] < tag[j];
-  const bool i_wall = is_wall_type[atom->type[i]], j_wall = is_wall_type[atom->type[j]];
-  if (i_wall)
-    counters->pair_ended(j, i, true, state, vn, record);
-  else
-    counters->pair_ended(i, j, j_wall, state, vn, record);
+  const bool tally_j = force->newton_pair || j < atom->nlocal;
+  const bool record = tally_j || tag[i] < tag[j];
+  counters->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
+                       record, tally_j);
 }
 
 // Two disks whose centres came within the larger radius: the law has lost them (their normal
@@ -386,7 +386,10 @@ void PairGranMN::init_style()
   check_wall_types_not_integrated();
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
-  if (neighbor->build_once && comm->me == 0)
+  bool builds_checked = false;    // fix nve/disc/mn neigh_check yes asks for the builds
+  for (Fix *fix : granmn::fixes_by_style(modify, "^nve/disc/mn$"))
+    if (static_cast<FixNVEDiscMN *>(fix)->checks_neighbor_builds()) builds_checked = true;
+  if (neighbor->build_once && !builds_checked && comm->me == 0)
     error->warning(FLERR, "pair_style gran/mn: neigh_modify once yes builds the neighbor list "
                           "only at the start of a run: disks that come into contact later are "
                           "never seen (no force, no contact); leave out 'once yes'");

@@ -65,6 +65,33 @@ print "RESULT sums {SUMS}"
     assert now == 1 and n == 1
 
 
+def test_a_timestep_changed_within_a_run_counts_each_step_with_its_own(tmp_path):
+    """fix dt/reset shortens the time step every 100 steps as a second disk falls faster (a
+    step moves it 0.9 dt_0 at most): the disk resting on the wall touches it for LAMMPS's
+    elapsed time, the sum of the steps as taken; a clock that took the last time step for the
+    steps before it would be 8 % off, the window too."""
+    kn = 2e5
+    dt = law(kn, 0.7, 0.7)["tau_c"] / 50
+    deck = f"""
+{disk_over_floor(kn, 0.5 - 1.0 / kn, dt, mu=0.5)}thermo 0
+create_atoms 1 single 2.0 4.0 0
+set atom 2 diameter 1.0
+set atom 2 density/disc {DISC_DENSITY!r}
+group mobile type 1
+velocity all set 0 0 0
+set atom 2 vy -1.0
+fix shorter all dt/reset 100 NULL {dt!r} {0.9 * dt!r} units box
+run 1000
+print "RESULT sums {SUMS} $(time:%.17g) $(dt:%.17g)"
+"""
+    values = run_lammps(deck, tmp_path).result("sums")
+    t_boundary, window, elapsed, last_dt = values[3], values[6], values[8], values[9]
+    print(f"elapsed {elapsed:.6g} = {elapsed / dt:.1f} dt_0; last dt {last_dt / dt:.3f} dt_0")
+    assert last_dt < 0.85 * dt and elapsed < 0.9 * 1000 * dt
+    assert t_boundary == pytest.approx(elapsed, rel=1e-12)
+    assert window == pytest.approx(elapsed, rel=1e-12)
+
+
 def test_bounces_before_lasting_contact_grow_linearly_with_ln_kn(tmp_path):
     """The rebound speed falls by e_w per bounce until it is of order g tau_w, below which the
     disk cannot leave the wall; tau_w ~ kn^-1/2, so the number of bounces is
@@ -167,9 +194,14 @@ def test_counts_continue_across_restart(settled, counted_reference, tmp_path, np
 
 
 BAD = {
-    "unknown keyword": ("fix c all contacts/mn every 10", "unknown keyword every"),
+    "unknown keyword": ("fix c all contacts/mn often 10", "unknown keyword often"),
     "local without N": ("fix c all contacts/mn local", "local needs N"),
     "local zero": ("fix c all contacts/mn local 0", "local N needs N > 0"),
+    "every without M": ("fix c all contacts/mn every", "every needs M"),
+    "every zero": ("fix c all contacts/mn every 0", "every M needs M > 0"),
+    "per-atom output between its steps": (
+        "fix c all contacts/mn every 10\ndump d all custom 5 d.txt id f_c[3]\nrun 0",
+        "Dump custom and fix not computed at compatible times"),
     "reset with an argument": ("fix c all contacts/mn\nfix_modify c reset now",
                                "reset takes no arguments"),
     "two counter fixes": ("fix c all contacts/mn\nfix d all contacts/mn",
@@ -386,11 +418,13 @@ def test_rows_pending_at_a_restart_are_dumped_by_the_run_that_continues(
 
 
 def clock_only_layout(restart, target):
-    """The restart file as the previous version wrote it: fix contacts/mn's global record holds
-    the clock alone (layout -2: 4 values), not the clock, a row count and the rows (layout -3).
-    Only for a file with no rows pending (the count 0)."""
+    """The restart file as an earlier version wrote it: fix contacts/mn's global record holds
+    the clock alone (layout -2: 4 values), not the clock, a row count and the rows (layouts -3
+    and now -4). Only for a file with no rows pending (the count 0). Its per-atom records stay
+    this version's: the fix takes the times of the output columns, as from a file of layout -2
+    or -3, and counts the contacts anew."""
     data = restart.read_bytes()
-    now_layout = struct.pack("=id", 5 * 8, -3.0)
+    now_layout = struct.pack("=id", 5 * 8, -4.0)
     start = data.index(now_layout)
     clock = data[start + 12:start + 36]
     assert struct.unpack("=d", data[start + 36:start + 44])[0] == 0.0
@@ -409,3 +443,83 @@ def test_restart_file_of_the_clock_only_layout_is_still_read(counted_reference, 
     restarted = run_lammps(deck, tmp_path / "restarted")
     assert_same_counts(counts_and_rows(counted_reference, after_step=HALF),
                        counts_and_rows(restarted))
+
+
+# The times against a direct per-step sum: the pile without its bumps (so that every contact
+# of a disk is with another disk, which compute contact/atom counts, or with the floor or the
+# lid, which its position tells), flowing, its counters read at odd intervals (per-atom every
+# 7 steps, the sums every 13, thermo every 11) and continued from a restart file written at a
+# step that is none of those multiples.
+DIRECT_STEPS, DIRECT_RESTART, LID = 1400, 703, 11.5
+DIRECT_OUTPUTS = """
+fix c mobile contacts/mn every 7
+compute touching all contact/atom
+dump direct all custom 1 direct.txt id c_touching y radius
+dump counters mobile custom 7 counters.txt id f_c[3] f_c[4] f_c[5] f_c[6]
+dump_modify counters format float %.17g
+fix sums all print 13 "$(step) $(f_c[3]:%.17g) $(f_c[4]:%.17g) $(f_c[5]:%.17g)" append sums.txt screen no
+thermo_style custom step f_c[3] f_c[5]
+thermo 11
+"""
+
+
+def frames(path):
+    """step -> {id: values} of a LAMMPS text dump; a step written twice (a run's setup repeats
+    the last step of the run before) keeps its first frame."""
+    frames, lines, k = {}, path.read_text().splitlines(), 0
+    while k < len(lines):
+        step, n = int(lines[k + 1]), int(lines[k + 3])
+        rows = np.loadtxt(lines[k + 9:k + 9 + n], ndmin=2)
+        frames.setdefault(step, {int(row[0]): row[1:] for row in rows})
+        k += 9 + n
+    return frames
+
+
+def test_times_equal_a_direct_per_step_sum(settled, tmp_path):
+    """Each disk's times (touching disks, touching the floor or lid, two or more contacts) equal
+    the sum of dt over the steps at which it touched so, counted directly at each step, also
+    read at steps that are not output steps of the fix and across a restart file."""
+    first = (f"newton on\nread_data {settled}\ngroup mobile type 1\ngroup bumps type 2\n"
+             "delete_atoms group bumps compress no\n" + styles(0.5) + DIRECT_OUTPUTS +
+             f"run {DIRECT_RESTART}\nwrite_restart half.restart\n")
+    run = run_lammps(first, tmp_path)
+    second = ("read_restart half.restart\nneighbor 0.1 bin\ncomm_modify vel yes\n" +
+              FIXES.format(tilt=0.3, integrator="nve/sphere disc") + DIRECT_OUTPUTS +
+              "dump_modify direct append yes\ndump_modify counters append yes\n" +
+              f"run {DIRECT_STEPS - DIRECT_RESTART}\n")
+    run_lammps(second, tmp_path)
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    direct, counters = frames(tmp_path / "direct.txt"), frames(tmp_path / "counters.txt")
+    ids = sorted(counters[0])
+    # per step, per disk: touching a disk, the floor or the lid, two or more contacts
+    totals = {i: np.zeros(3) for i in ids}
+    expected, expected_sums, sum_now = {}, {}, np.zeros(3)
+    for step in range(DIRECT_STEPS + 1):
+        for i in ids:
+            disks, y, radius = direct[step][i]
+            walls = (y < radius) + (LID - y < radius)
+            if step > 0:    # a run's setup adds no time (step 0); step 703 is run 1's last step
+                touching = dt * np.array([disks > 0, walls > 0, disks + walls >= 2])
+                totals[i] += touching
+                sum_now += touching
+        if step in counters:
+            expected[step] = {i: totals[i].copy() for i in ids}
+        expected_sums[step] = sum_now.copy()
+    worst = max(np.abs(counters[step][i][:3] - expected[step][i]).max()
+                for step in counters for i in ids)
+    sums = np.loadtxt(tmp_path / "sums.txt", ndmin=2)
+    worst_sum = max(np.abs(values - expected_sums[int(step)]).max() for step, *values in sums)
+    multiple = sum(expected[DIRECT_STEPS][i][2] for i in ids)
+    print(f"{len(counters)} readings of {len(ids)} disks, {len(sums)} of the sums; largest "
+          f"difference {worst:.3g}, of the sums {worst_sum:.3g} (dt {dt:.3g}); "
+          f"multiple-contact time {multiple:.3f}")
+    assert DIRECT_RESTART % 7 and DIRECT_RESTART % 13 and len(sums) > 100
+    assert multiple > 0 and sorted(counters) == list(range(0, DIRECT_STEPS + 1, 7))
+    # a time off by one step of one disk, at any reading, would be dt: the sums of dt round
+    # far below that
+    assert worst < 1e-6 * dt and worst_sum < 1e-6 * dt
+    # contacts now, exactly
+    for step in counters:
+        for i in ids:
+            disks, y, radius = direct[step][i]
+            assert counters[step][i][3] == disks + (y < radius) + (LID - y < radius)

@@ -2,6 +2,7 @@
 nve/sphere disc + fix gravity (and fix nve/ab2 + fix gravity), against the analytic motion of
 a falling and a rolling disk, and its bad inputs."""
 import math
+import re
 
 import numpy as np
 import pytest
@@ -74,6 +75,42 @@ def test_fused_ab2_is_nve_ab2_plus_gravity_to_rounding(tmp_path):
     fused = final_state(tmp_path, "fused", (f"nve/disc/mn scheme ab2 {GRAVITY}",), 500)
     scale = np.abs(separate).max(axis=0)
     assert np.all(np.abs(separate - fused) <= 1e-11 * scale), np.abs(separate - fused).max(axis=0)
+
+
+def builds_and_state(tmp_path, name, fix, neighbor, nprocs=1, steps=3000):
+    """The pile under `fix` with the neighbour settings `neighbor`: LAMMPS's count of list
+    builds and the final state."""
+    deck = pile_deck((fix,), steps, True).replace("timestep", f"{neighbor}\ntimestep")
+    run = run_lammps(deck, tmp_path / name, nprocs=nprocs)
+    builds = int(re.search(r"Neighbor list builds = (\d+)", run.output).group(1))
+    # pair_style gran/mn's warning about once yes is for a run where no fix asks for builds
+    assert ("only at the start of a run" in run.output) == ("once yes" in neighbor and
+                                                            "neigh_check yes" not in fix)
+    a = run.atoms()
+    return builds, np.column_stack([a[k] for k in ("x", "y", "vx", "vy", "omegaz")])
+
+
+LAMMPS_CHECK = "neigh_modify delay 0 every 1 check yes"
+OWN_CHECK = "neigh_modify delay 0 every 1 check yes once yes"
+
+
+@pytest.mark.parametrize("scheme,nprocs", [("verlet", 1), ("ab2", 1), ("verlet", 2)])
+def test_neigh_check_builds_the_lists_at_the_steps_lammps_would(tmp_path, scheme, nprocs):
+    """neigh_check yes with neigh_modify once yes: the fix's own test (a disk moved more than
+    half the skin since the last build) asks for the builds, LAMMPS tests nothing. 3000 steps
+    of the flowing pile (skin 0.1): the same number of builds as LAMMPS's own test at every
+    step and the same final state to the last bit (a build one step early or late re-sorts
+    the neighbours, hence the order of the force sums, and shows in the last digits); on two
+    processes too (the decision is reduced over them). Without the fix's test `once yes`
+    builds no list after the first: the pile would fall through itself."""
+    fix = f"nve/disc/mn scheme {scheme} {GRAVITY}"
+    builds, state = builds_and_state(tmp_path, "lammps", fix, LAMMPS_CHECK, nprocs)
+    own_builds, own_state = builds_and_state(tmp_path, "own", f"{fix} neigh_check yes",
+                                             OWN_CHECK, nprocs)
+    print(f"{builds} builds with LAMMPS's test, {own_builds} with the fix's")
+    assert builds > 5
+    assert own_builds == builds
+    assert np.array_equal(state, own_state), np.abs(state - own_state).max()
 
 
 def one_disk(fix, steps, dt, y0, wall="", mu=0.5):
@@ -193,6 +230,19 @@ BAD = {
                                               "gravity direction 0 0 has no length"),
     "nve/disc/mn unknown keyword": (bad_deck("nve/disc/mn disc"), "unknown keyword disc"),
     "nve/ab2 with arguments": (bad_deck("nve/ab2 scheme verlet"), "it takes no arguments"),
+    "nve/disc/mn neigh_check without yes or no": (bad_deck("nve/disc/mn neigh_check 1"),
+                                                  "neigh_check needs yes or no"),
+    "neigh_check with another integrator": (
+        bad_deck("nve/disc/mn neigh_check yes",
+                 extra="create_atoms 1 single 2.0 2.0 0\nset atom 4 diameter 1.0\n"
+                       "set atom 4 density/disc 1.2732395447351628\ngroup lone id 4\n"
+                       "fix still lone move linear 0 0 0"),
+        "Fix integrate (nve/disc/mn) with neigh_check yes tests only the atoms it moves, and "
+        "fix still (move) moves atoms too"),
+    "neigh_check with a box a fix changes": (
+        bad_deck("nve/disc/mn neigh_check yes", extra="fix squeeze all deform 1 x scale 0.99"),
+        "Fix integrate (nve/disc/mn) with neigh_check yes needs a box that no fix changes "
+        "during a run, and fix squeeze (deform) does"),
 }
 
 
