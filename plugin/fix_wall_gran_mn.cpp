@@ -1,5 +1,5 @@
 /* ----------------------------------------------------------------------
-   fix wall/gran/mn: LAMMPS glue around mn_contact.h for flat walls.
+   fix wall/gran/mn: flat walls with the law of mn_contact.h.
    The per-atom u_t history follows LAMMPS's fix wall/gran (grow/exchange/restart).
 ------------------------------------------------------------------------- */
 

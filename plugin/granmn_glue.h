@@ -14,7 +14,7 @@
 #include "update.h"
 #include "utils.h"
 
-#include "mn_contact.h"
+#include "mn_integration.h"
 
 #include <cstring>
 

@@ -1,7 +1,7 @@
 // mn-law: prints the coefficients docs/model.md section 3 derives from (kn, e, beta, mu), and the
 // stability limits, one "name value" per line, so that scripts use the header's numbers.
 //   mn-law KN E BETA [MU]
-#include "mn_contact.h"
+#include "mn_integration.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -1,5 +1,5 @@
 /* ----------------------------------------------------------------------
-   pair_style gran/mn: LAMMPS glue around mn_contact.h.
+   pair_style gran/mn: the law of mn_contact.h between disks and bumps.
    Structure follows LAMMPS's pair gran/hooke/history (neighbor history through
    FixNeighHistory, created in init_style in place of a placeholder fix).
 ------------------------------------------------------------------------- */

@@ -1,6 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    pair_style gran/mn: the Mitarai-Nakanishi 2D linear spring-dashpot law.
-   LAMMPS glue only; the law itself is in mn_contact.h.
+   The LAMMPS side of the law (neighbour history, bumps, checks, restart files); the law
+   itself is in mn_contact.h.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_PAIR_GRAN_MN_H

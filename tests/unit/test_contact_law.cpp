@@ -2,6 +2,7 @@
 // integrated far more finely than any production run (RK4, dt = tau/2e4), so that the measured
 // restitution and duration must equal the analytic ones to within the integration error.
 #include "mn_contact.h"
+#include "mn_integration.h"
 
 #include <gtest/gtest.h>
 
