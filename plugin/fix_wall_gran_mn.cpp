@@ -59,7 +59,7 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     iarg += used;
   }
   resolve_law();
-  use_history = law.mu > 0.0;
+  use_history = law.material.mu > 0.0;
 
   vector_flag = 1;
   size_vector = 2;    // force exerted by the particles on the walls (x, y)
@@ -79,32 +79,16 @@ int FixWallGranMN::setmask()
 void FixWallGranMN::resolve_law()
 {
   PairGranMN *pair = dynamic_cast<PairGranMN *>(force->pair_match("gran/mn", 1));
-  const bool *given = parsed.given;
-  const bool all_given = given[0] && given[1] && given[2] && given[3];
-  if (!pair && !all_given)
+  if (!pair && !parsed.all_numbers_given())
     error->all(FLERR, "Fix wall/gran/mn takes its kn, e, beta, mu from pair_style gran/mn: "
                       "define that pair style first or give all four on the fix line");
-  mn::Material m = parsed.material;
-  mn::Options o = parsed.options;
-  own_law = true;
-  if (pair) {
-    const mn::Material &pm = pair->contact_material();
-    if (!given[0]) m.kn = pm.kn;
-    if (!given[1]) m.e = pm.e;
-    if (!given[2]) m.beta = pm.beta;
-    if (!given[3]) m.mu = pm.mu;
-    // an option is a flag: one not given on the fix line is the pair's
-    const mn::Options &po = pair->contact_law().options;
-    o.limit_damping = o.limit_damping || po.limit_damping;
-    o.coulomb_cutback = o.coulomb_cutback || po.coulomb_cutback;
-    own_law = given[0] || given[1] || given[2] || given[3] ||
-        o.limit_damping != po.limit_damping || o.coulomb_cutback != po.coulomb_cutback;
-  }
-  const char *problem = mn::material_error(m);
-  if (problem) error->all(FLERR, "Illegal fix wall/gran/mn command: {}", problem);
-  law = mn::derive(m, o);
-  problem = mn::law_error(law);
-  if (problem) error->all(FLERR, "Illegal fix wall/gran/mn command: {} (kn = {})", problem, m.kn);
+  const mn::Law *pair_law = pair ? &pair->contact_law() : nullptr;
+  law = granmn::law_from_arguments(lmp, "fix wall/gran/mn", parsed, pair_law);
+  own_law = !pair_law;
+  for (const granmn::LawKeyword &keyword : granmn::LAW_KEYWORDS)
+    own_law = own_law ||
+        (keyword.number ? law.material.*keyword.number != pair_law->material.*keyword.number
+                        : law.options.*keyword.option != pair_law->options.*keyword.option);
 }
 
 void FixWallGranMN::init()
@@ -123,7 +107,7 @@ void FixWallGranMN::init()
   if (use_history && integrator == mn::Integrator::AdamsBashforth2)
     widen_state(vt_previous_first + 2);
   vt_previous_column = use_history && ncols >= vt_previous_first + 2 ? vt_previous_first : -1;
-  if (law.mu > 0.0 && !use_history)
+  if (law.material.mu > 0.0 && !use_history)
     error->all(FLERR, "Fix wall/gran/mn was defined with mu = 0 and keeps no tangential "
                       "history; define it again after giving mu > 0");
   // The pair style already checked the time step against the same law.

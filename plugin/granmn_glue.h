@@ -103,41 +103,86 @@ inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, c
                         who, dt, law.tau_c);
 }
 
-// The contact-law keywords a style's arguments may hold, and which of them were given.
+// The law's keywords on a style's line: a number of the material, or an option (a flag).
+struct LawKeyword {
+  const char *name;
+  double mn::Material::*number;
+  bool mn::Options::*option;
+};
+constexpr LawKeyword LAW_KEYWORDS[] = {
+    {"kn", &mn::Material::kn, nullptr},     {"e", &mn::Material::e, nullptr},
+    {"beta", &mn::Material::beta, nullptr}, {"mu", &mn::Material::mu, nullptr},
+    {"limit_damping", nullptr, &mn::Options::limit_damping},
+    {"coulomb_cutback", nullptr, &mn::Options::coulomb_cutback}};
+constexpr int N_LAW_KEYWORDS = sizeof(LAW_KEYWORDS) / sizeof(LAW_KEYWORDS[0]);
+
+// The law keywords a style's arguments hold: their values, and which were given.
 struct LawArguments {
   mn::Material material{0.0, 0.0, 0.0, 0.0};
-  bool given[4] = {false, false, false, false};    // kn, e, beta, mu
-  mn::Options options;    // an option is on if given
+  mn::Options options;
+  bool given[N_LAW_KEYWORDS] = {};
+
+  bool all_numbers_given() const
+  {
+    for (int k = 0; k < N_LAW_KEYWORDS; k++)
+      if (LAW_KEYWORDS[k].number && !given[k]) return false;
+    return true;
+  }
 };
 
-inline const char *law_keyword(int k)
-{
-  static const char *const names[4] = {"kn", "e", "beta", "mu"};
-  return names[k];
-}
-
-// Reads the law keyword at arg[iarg] ("kn K", "e E", "beta B", "mu MU", "limit_damping",
-// "coulomb_cutback"); returns how many arguments it used, 0 if arg[iarg] is none of them.
+// Reads the law keyword at arg[iarg] ("kn K", ..., "limit_damping"); returns how many
+// arguments it used, 0 if arg[iarg] is none of them.
 inline int parse_law_keyword(LAMMPS_NS::LAMMPS *lmp, const char *command, int narg, char **arg,
                              int iarg, LawArguments &law)
 {
-  double *values[4] = {&law.material.kn, &law.material.e, &law.material.beta, &law.material.mu};
-  for (int k = 0; k < 4; k++)
-    if (strcmp(arg[iarg], law_keyword(k)) == 0) {
-      if (law.given[k])
-        lmp->error->all(FLERR, "Illegal {} command: {} given twice", command, law_keyword(k));
-      if (iarg + 2 > narg)
-        lmp->error->all(FLERR, "Illegal {} command: {} needs a value", command, law_keyword(k));
-      *values[k] = LAMMPS_NS::utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      law.given[k] = true;
-      return 2;
+  for (int k = 0; k < N_LAW_KEYWORDS; k++) {
+    const LawKeyword &keyword = LAW_KEYWORDS[k];
+    if (strcmp(arg[iarg], keyword.name) != 0) continue;
+    if (keyword.option) {
+      law.options.*keyword.option = law.given[k] = true;
+      return 1;
     }
-  bool *flag = nullptr;
-  if (strcmp(arg[iarg], "limit_damping") == 0) flag = &law.options.limit_damping;
-  if (strcmp(arg[iarg], "coulomb_cutback") == 0) flag = &law.options.coulomb_cutback;
-  if (!flag) return 0;
-  *flag = true;
-  return 1;
+    if (law.given[k])
+      lmp->error->all(FLERR, "Illegal {} command: {} given twice", command, keyword.name);
+    law.given[k] = true;
+    if (iarg + 2 > narg)
+      lmp->error->all(FLERR, "Illegal {} command: {} needs a value", command, keyword.name);
+    law.material.*keyword.number = LAMMPS_NS::utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    return 2;
+  }
+  return 0;
+}
+
+// The law of a material and options, checked: an error of `command` says what is wrong.
+inline mn::Law checked_law(LAMMPS_NS::LAMMPS *lmp, const char *command,
+                           const mn::Material &material, const mn::Options &options)
+{
+  const char *problem = mn::material_error(material);
+  if (problem) lmp->error->all(FLERR, "Illegal {} command: {}", command, problem);
+  const mn::Law law = mn::derive(material, options);
+  problem = mn::law_error(law);
+  if (problem)
+    lmp->error->all(FLERR, "Illegal {} command: {} (kn = {})", command, problem, material.kn);
+  return law;
+}
+
+// The law the arguments give, what they do not give taken from `defaults` (nullptr: every
+// number must be given, an option not given is off).
+inline mn::Law law_from_arguments(LAMMPS_NS::LAMMPS *lmp, const char *command,
+                                  const LawArguments &arguments, const mn::Law *defaults)
+{
+  mn::Material material = arguments.material;
+  mn::Options options = arguments.options;
+  for (int k = 0; k < N_LAW_KEYWORDS; k++) {
+    const LawKeyword &keyword = LAW_KEYWORDS[k];
+    if (arguments.given[k]) continue;
+    if (keyword.option && defaults) options.*keyword.option = defaults->options.*keyword.option;
+    if (keyword.number && defaults)
+      material.*keyword.number = defaults->material.*keyword.number;
+    else if (keyword.number)
+      lmp->error->all(FLERR, "Illegal {} command: {} must be given", command, keyword.name);
+  }
+  return checked_law(lmp, command, material, options);
 }
 
 }    // namespace granmn

@@ -5,7 +5,8 @@
 // Conventions (docs/model.md sections 2-3): for a contact of disk i with partner j, n points from j
 // to i, t = (-n_y, n_x), delta > 0 is the overlap, v_n = n.v_ij and v_t = t.v_ij with the full
 // radii as lever arms. The force on i is fn*n + ft*t and the torque on i is -radius_i*ft.
-// "mass_scale" is 2M = 2 m_i m_j/(m_i+m_j) for two mobile disks and m_i against the boundary.
+// A contact's mass scale is 2M = 2 m_i m_j/(m_i+m_j) for two mobile disks and m_i against the
+// boundary; the force is the mass scale times an acceleration.
 #ifndef MN_CONTACT_H
 #define MN_CONTACT_H
 
@@ -29,13 +30,14 @@ struct Options {
   bool coulomb_cutback = false;   // Cundall-Strack: cut u_t back to the Coulomb limit while sliding
 };
 
-// The coefficients derived from a Material (docs/model.md section 3).
+// A material, its options and the coefficients derived from them (docs/model.md section 3).
 struct Law {
-  double kn, eta_n, kt, eta_t, mu;
+  Material material;
+  Options options;
+  double eta_n, kt, eta_t;
   double tau_c;   // duration of a binary normal collision
   double tau_w;   // duration of a normal collision with the boundary (mass scale m_i)
   double e_w;     // restitution of a normal collision with the boundary
-  Options options;
 };
 
 // nullptr if the material is valid, else what is wrong with it.
@@ -62,8 +64,7 @@ inline Law derive(const Material &m, const Options &options = Options())
 {
   Law law;
   const double ln_e = std::log(m.e);
-  law.kn = m.kn;
-  law.mu = m.mu;
+  law.material = m;
   law.options = options;
   // eta_n = sqrt(2 kn / ((pi/ln e)^2 + 1)), written so that e = 1 gives 0 without 0/0.
   law.eta_n = std::sqrt(2.0 * m.kn * ln_e * ln_e / (PI * PI + ln_e * ln_e));
@@ -146,30 +147,32 @@ inline void advance_tangential_displacement(Integrator integrator, double vt, do
   if (vt_previous) *vt_previous = vt;
 }
 
-// Force of one contact. ut is the tangential displacement of this contact (nullptr when
-// mu = 0: no friction, no history). It is advanced first over dt_history (0 when forces are only
-// re-evaluated, as in LAMMPS's setup) by the integrator's rule; Adams-Bashforth 2 needs
-// vt_previous (see advance_tangential_displacement), velocity Verlet none.
-inline Force contact_force(const Law &law, double mass_scale, const Kinematics &k, double *ut,
+// Force of one contact. force_scale turns the law's accelerations into forces: the contact's
+// mass scale, in units where force = mass x acceleration (in LAMMPS's, divided by ftm2v).
+// ut is the tangential displacement of this contact (nullptr when mu = 0: no friction, no
+// history). It is advanced first over dt_history (0 when forces are only re-evaluated, as in
+// LAMMPS's setup) by the integrator's rule; Adams-Bashforth 2 needs vt_previous (see
+// advance_tangential_displacement), velocity Verlet none.
+inline Force contact_force(const Law &law, double force_scale, const Kinematics &k, double *ut,
                            double dt_history,
                            Integrator integrator = Integrator::VelocityVerlet,
                            double *vt_previous = nullptr)
 {
   Force f;
-  f.fn = mass_scale * (law.kn * k.delta - law.eta_n * k.vn);
+  f.fn = force_scale * (law.material.kn * k.delta - law.eta_n * k.vn);
   if (law.options.limit_damping && f.fn < 0.0) f.fn = 0.0;
   f.ft = 0.0;
   f.sliding = false;
   if (!ut) return f;
 
   advance_tangential_displacement(integrator, k.vt, dt_history, ut, vt_previous);
-  const double trial = -mass_scale * (law.kt * (*ut) + law.eta_t * k.vt);
-  const double cap = law.mu * std::fabs(f.fn);
+  const double trial = -force_scale * (law.kt * (*ut) + law.eta_t * k.vt);
+  const double cap = law.material.mu * std::fabs(f.fn);
   if (std::fabs(trial) > cap) {
     f.sliding = true;
     f.ft = std::copysign(cap, trial);
     if (law.options.coulomb_cutback && law.kt > 0.0)
-      *ut = -(f.ft / mass_scale + law.eta_t * k.vt) / law.kt;
+      *ut = -(f.ft / force_scale + law.eta_t * k.vt) / law.kt;
   } else {
     f.ft = trial;
   }

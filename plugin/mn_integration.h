@@ -122,7 +122,7 @@ inline double max_stable_dt(Integrator integrator, double w2, double g)
 inline bool amplifies_undamped_mode(const Law &law, Integrator integrator)
 {
   return integrator == Integrator::AdamsBashforth2 &&
-      (law.eta_n == 0.0 || (law.mu > 0.0 && law.eta_t == 0.0));
+      (law.eta_n == 0.0 || (law.material.mu > 0.0 && law.eta_t == 0.0));
 }
 
 // The modes of a contact whose stability bounds the step: normal and (if mu > 0) sticking
@@ -150,14 +150,14 @@ struct StabilityLimit {
 
 inline StabilityLimit stability_limit(const Law &law, Integrator integrator)
 {
-  StabilityLimit limit{max_stable_dt(integrator, 2.0 * law.kn, 2.0 * law.eta_n),
+  StabilityLimit limit{max_stable_dt(integrator, 2.0 * law.material.kn, 2.0 * law.eta_n),
                        Mode::NormalPair};
   auto consider = [&](double w2, double g, Mode mode) {
     const double dt = max_stable_dt(integrator, w2, g);
     if (dt < limit.dt) limit = {dt, mode};
   };
-  consider(law.kn, law.eta_n, Mode::NormalBoundary);
-  if (law.mu > 0.0) {
+  consider(law.material.kn, law.eta_n, Mode::NormalBoundary);
+  if (law.material.mu > 0.0) {
     consider(6.0 * law.kt, 6.0 * law.eta_t, Mode::TangentialPair);
     consider(3.0 * law.kt, 3.0 * law.eta_t, Mode::TangentialBoundary);
   }

@@ -39,11 +39,8 @@ class PairGranMN : public Pair {
 
   // The law as derived for the current settings; the wall fix takes it from here.
   const mn::Law &contact_law() const { return law; }
-  const mn::Material &contact_material() const { return material; }
 
  private:
-  mn::Material material;
-  mn::Options options;
   mn::Law law;
   std::vector<int> wall_types;       // types of immobile boundary elements (bumps)
   std::vector<char> is_wall_type;    // per type, 1..ntypes
@@ -67,7 +64,7 @@ class PairGranMN : public Pair {
   class FixNeighHistory *fix_history;
 
   void allocate();
-  void derive_law();
+  void publish_law();
   void check_wall_types();
   void check_wall_types_not_integrated();
   void update_exclusions();
