@@ -6,6 +6,7 @@
 #define LMP_GRANMN_GLUE_H
 
 #include "error.h"
+#include "fix_contacts_mn.h"
 #include "fix_nve_disc_mn.h"
 #include "fix_nve_sphere.h"
 #include "granmn_compat.h"
@@ -101,6 +102,59 @@ inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, c
                         "{}: timestep {} resolves a collision (tau_c = {:.6g}) with fewer "
                         "than 10 steps",
                         who, dt, law.tau_c);
+}
+
+// Where a contact's values sit in the storage of the style that keeps it (-1: not kept),
+// handed out at init: in the pair style's neighbour history (pair_history_layout), in the
+// wall fix's per-atom state for each wall side (wall_state_layout). The styles hand the
+// record and the flag to fix contacts/mn, which knows what a record holds, not where it is.
+struct ContactLayout {
+  int ut_width = 1;        // u_t's components: one in 2D
+  int ut = -1;             // u_t, ut_width values (mu > 0)
+  int vt_previous = -1;    // v_t at the previous force evaluation, ut_width values: Adams-
+                           // Bashforth 2's rule for u_t (mu > 0)
+  int record = -1;         // fix contacts/mn's record (FixContactsMN::RECORD_SIZE values)
+  int touching = -1;       // 1 while in contact (a wall side; a pair has its neighbour flag)
+  int size = 0;            // values the storage holds: per contact (pair), per atom (wall)
+};
+
+// A contact's neighbour history: its parts one after the other, only those kept (restart files
+// hold the history in this order).
+inline ContactLayout pair_history_layout(bool friction, bool adams_bashforth, bool counters)
+{
+  ContactLayout layout;
+  auto take = [&layout](bool kept, int width) {
+    if (!kept) return -1;
+    layout.size += width;
+    return layout.size - width;
+  };
+  layout.ut = take(friction, layout.ut_width);
+  layout.vt_previous = take(friction && adams_bashforth, layout.ut_width);
+  layout.record = take(counters, LAMMPS_NS::FixContactsMN::RECORD_SIZE);
+  return layout;
+}
+
+// An atom's row in the wall fix, both sides: each part at a place of its own whether kept or
+// not (u_t of both sides, each side's record and flag, the previous v_t of both), so that a
+// part kept from a later run on moves no other (restart files hold the rows so); `size` is
+// the whole row's. A style keeps the row up to its last part kept.
+inline void wall_state_layout(ContactLayout side[2])
+{
+  int next = 0;
+  for (int s : {0, 1}) {
+    side[s].ut = next;
+    next += side[s].ut_width;
+  }
+  for (int s : {0, 1}) {
+    side[s].record = next;
+    next += LAMMPS_NS::FixContactsMN::RECORD_SIZE;
+    side[s].touching = next++;
+  }
+  for (int s : {0, 1}) {
+    side[s].vt_previous = next;
+    next += side[s].ut_width;
+  }
+  side[0].size = side[1].size = next;
 }
 
 // The law's keywords on a style's line: a number of the material, or an option (a flag).

@@ -33,7 +33,7 @@
 using namespace LAMMPS_NS;
 
 PairGranMN::PairGranMN(LAMMPS *lmp) :
-    Pair(lmp), history(0), size_history(0), restart_history_size(-1),
+    Pair(lmp), restart_history_size(-1),
     counters(nullptr),
     law_reported(false), force_per_mass_acceleration(1.0), max_radius(nullptr),
     fix_history(nullptr)
@@ -165,6 +165,7 @@ void PairGranMN::compute(int eflag, int vflag)
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
+  const bool history = layout.size > 0;
   int **firsttouch = history ? fix_history->firstflag : nullptr;
   double **firstslots = history ? fix_history->firstvalue : nullptr;
   const int *type = atom->type;
@@ -176,7 +177,7 @@ void PairGranMN::compute(int eflag, int vflag)
   const char *is_wall = is_wall_type.data();
   const double to_force = force_per_mass_acceleration;
   FixContactsMN *const tally = counters;
-  const int stride = size_history, ut_slot = layout.ut, record_slot = layout.record;
+  const int stride = layout.size, ut_slot = layout.ut, record_slot = layout.record;
   const int vt_previous_slot = layout.vt_previous;
   const mn::Integrator scheme = integrator;
 
@@ -403,16 +404,9 @@ void PairGranMN::init_style()
   // The per-contact history: u_t when there is friction (and under Adams-Bashforth 2 the
   // previous v_t its rule for u_t needs), then the counters' record if asked.
   counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
-  layout = HistoryLayout();
-  if (law.material.mu > 0.0) layout.ut = layout.size++;
-  if (law.material.mu > 0.0 && integrator == mn::Integrator::AdamsBashforth2)
-    layout.vt_previous = layout.size++;
-  if (counters) {
-    layout.record = layout.size;
-    layout.size += FixContactsMN::RECORD_SIZE;
-  }
-  const int needed = layout.size;
-  if (fix_history && needed != size_history)
+  const granmn::ContactLayout needed = granmn::pair_history_layout(
+      law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, counters);
+  if (fix_history && needed.size != layout.size)
     error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
                       "mu, fix contacts/mn or integrator (Adams-Bashforth 2, fix nve/ab2 or fix "
                       "nve/disc/mn scheme ab2, keeps one more value per contact when mu > 0); define fix contacts/mn, mu and the integrator "
@@ -420,13 +414,13 @@ void PairGranMN::init_style()
   // LAMMPS restores per-pair history with the size of the new run: a different size would
   // misread every partner, so the run must keep mu > 0 (or not), fix contacts/mn (or not) and
   // the integrator
-  if (!fix_history && restart_history_size >= 0 && needed != restart_history_size)
+  if (!fix_history && restart_history_size >= 0 && needed.size != restart_history_size)
     error->all(FLERR, "pair_style gran/mn: the restart file holds {} history values per contact, "
                       "this run needs {}: keep mu zero or non-zero, define fix contacts/mn "
                       "(or not) and use the scheme (Adams-Bashforth 2 or not) as in the run that "
-                      "wrote it", restart_history_size, needed);
-  size_history = needed;
-  history = size_history > 0 ? 1 : 0;
+                      "wrote it", restart_history_size, needed.size);
+  layout = needed;
+  const bool history = layout.size > 0;
   // At a reneighboring, fix neigh/history keeps a pair's history only if the pair overlapped
   // when the list was built, i.e. before this step's force evaluation: a contact that ended in
   // the step's move would lose its record before the counters see it end (found by the
@@ -450,7 +444,7 @@ void PairGranMN::init_style()
 
   if (history && !fix_history) {
     auto cmd = fmt::format("NEIGH_HISTORY_GRANMN{} all NEIGH_HISTORY {}", instance_me,
-                           size_history);
+                           layout.size);
     fix_history = (FixNeighHistory *) modify->replace_fix(
         "NEIGH_HISTORY_GRANMN_DUMMY" + std::to_string(instance_me), cmd, 1);
     fix_history->pair = this;
@@ -513,7 +507,7 @@ void PairGranMN::write_restart_settings(FILE *fp)
   const double values[4] = {m.kn, m.e, m.beta, m.mu};
   fwrite(values, sizeof(double), 4, fp);
   const int flags[4] = {law.options.limit_damping, law.options.coulomb_cutback, (int) wall_types.size(),
-                        history ? size_history : 0};
+                        layout.size};
   fwrite(flags, sizeof(int), 4, fp);
   if (!wall_types.empty()) fwrite(wall_types.data(), sizeof(int), wall_types.size(), fp);
 }
@@ -564,7 +558,7 @@ void PairGranMN::read_restart(FILE *fp)
 
 void PairGranMN::GRANMN_TRANSFER_HISTORY(source, target)
 {
-  for (int k = 0; k < size_history; k++) target[k] = source[k];
+  for (int k = 0; k < layout.size; k++) target[k] = source[k];
 }
 
 // For compute pair/local: fforce*(dx,dy) is the normal force; svector = ft, delta, vn, vt, ut.
@@ -590,7 +584,7 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < jnum; jj++)
       if ((jlist[jj] & NEIGHMASK) == j) {
-        ut = fix_history->firstvalue[i][size_history * jj + layout.ut];
+        ut = fix_history->firstvalue[i][layout.size * jj + layout.ut];
         break;
       }
   }

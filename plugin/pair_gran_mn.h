@@ -8,6 +8,7 @@
 #define LMP_PAIR_GRAN_MN_H
 
 #include "granmn_compat.h"
+#include "granmn_glue.h"
 #include "pair.h"
 
 #include "mn_contact.h"
@@ -44,14 +45,7 @@ class PairGranMN : public Pair {
   mn::Law law;
   std::vector<int> wall_types;       // types of immobile boundary elements (bumps)
   std::vector<char> is_wall_type;    // per type, 1..ntypes
-  int history;                       // 1: per-pair history kept
-  int size_history;                  // values per contact in the neighbor history
-  // Where each part of a contact's history sits (-1: not kept): u_t (mu > 0), the previous
-  // v_t that Adams-Bashforth 2's rule for u_t needs (mu > 0 under fix nve/ab2), then fix
-  // contacts/mn's record (if defined).
-  struct HistoryLayout {
-    int ut = -1, vt_previous = -1, record = -1, size = 0;
-  } layout;
+  granmn::ContactLayout layout;      // of a contact's neighbor history (none: size 0)
   mn::Integrator integrator = mn::Integrator::VelocityVerlet;    // the run's, found at init_style
   int restart_history_size;          // per-pair history size in the restart read, -1 if none
   class FixContactsMN *counters;     // nullptr unless fix contacts/mn is defined
