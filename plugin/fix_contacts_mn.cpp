@@ -57,7 +57,7 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
   size_peratom_cols = NCOLS;
   peratom_freq = 1;
   vector_flag = 1;
-  size_vector = 8;
+  size_vector = VECTOR_SIZE;
   global_freq = 1;
   extvector = -1;
   extlist = new int[size_vector]{1, 1, 1, 1, 1, 1, 0, 1};
@@ -69,7 +69,7 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
   }
   restart_global = 1;
   comm_reverse = 4;
-  allocate_state(STATE_COLS);
+  register_state(STATE_COLS);
   clock_step = base_step = update->ntimestep;
   now = base_time = update->ntimestep * update->dt;
   window_start = now;
@@ -212,7 +212,7 @@ void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_bound
   if (i_is_boundary) std::swap(i, j);
   const bool boundary = i_is_boundary || j_is_boundary;
   const bool swap = !boundary && tag[j] < tag[i];
-  ended(record, tag[swap ? j : i], tag[swap ? i : j], boundary ? 2 : 1, vn);
+  ended(record, tag[swap ? j : i], tag[swap ? i : j], boundary ? ROW_BOUNDARY : ROW_DISKS, vn);
 }
 
 // A completed contact's row: IDs, kind, start, duration, v_n in and out, peak overlap.
@@ -389,8 +389,8 @@ double FixContactsMN::compute_vector(int n)
       local[NOW] += s[NOW];
     }
     MPI_Allreduce(local, vector_sums, NCOLS, MPI_DOUBLE, MPI_SUM, world);
-    vector_sums[6] = now - window_start;
-    vector_sums[7] = group->count(igroup);
+    vector_sums[WINDOW] = now - window_start;
+    vector_sums[GROUP_SIZE] = group->count(igroup);
     vector_step = update->ntimestep;
   }
   return vector_sums[n];

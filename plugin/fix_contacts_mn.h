@@ -17,13 +17,15 @@ namespace LAMMPS_NS {
 
 class FixContactsMN : public FixPerAtomState {
  public:
-  // Columns of the per-atom array (the output; the state has more, see below).
+  // Columns of the per-atom array (the output; the state has more, see below), then the
+  // global vector's two more: the window's length and the group's size.
   enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, NCOLS };
-  // What this fix keeps per contact, wherever the contact lives: in the pair style's neighbor
-  // history (RECORD_SIZE values) or in a wall fix's per-atom state (WALL_SLOTS per side: the
-  // record, then whether the atom touches that wall).
+  enum { WINDOW = NCOLS, GROUP_SIZE, VECTOR_SIZE };
+  // What this fix keeps of a contact, its record: RECORD_SIZE values that the style keeping
+  // the contact stores where its layout says (granmn::ContactLayout).
   enum { RECORD_START, RECORD_VN_START, RECORD_PEAK, RECORD_SIZE };
-  enum { WALL_TOUCHING = RECORD_SIZE, WALL_SLOTS };
+  // The kind column of a contact's row: between two disks, of a disk with the boundary.
+  enum { ROW_DISKS = 1, ROW_BOUNDARY = 2 };
 
   FixContactsMN(class LAMMPS *, int, char **);
   ~FixContactsMN() override;
@@ -45,10 +47,9 @@ class FixContactsMN : public FixPerAtomState {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // The contact events, one path for pairs and walls. A contact's record lives with the
-  // contact (see RECORD_*); the style that owns it reports:
-  //   touching(record, began, ...)  at every force evaluation while in contact,
-  //   ended(record, ...)            at the first one after it ends (its row, if asked).
+  // The contact events, one path for pairs and walls: the style that keeps a contact's record
+  // reports it at every force evaluation while in contact and at the first one after it
+  // ends (its row, if asked).
   // pair_style gran/mn: a pair in contact; `tally_j`: j's share is counted here (owned, or
   // newton on).
   void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, double *record,
@@ -57,9 +58,10 @@ class FixContactsMN : public FixPerAtomState {
   // (a pair stored on two processes has one row); `tally_j` as for pair_touching.
   void pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary, const double *record,
                   double vn, bool write_row, bool tally_j);
-  // fix wall/gran/mn, for every atom of its group and wall side; `w` is that atom's
-  // WALL_SLOTS for the wall fix and side.
-  void wall_state(int i, double *w, bool touching, double delta, double vn);
+  // fix wall/gran/mn, for every atom of its group and wall side: the record and the flag
+  // (1 while in contact) it keeps for that atom and side.
+  void wall_state(int i, double *record, double &touching, bool in_contact, double delta,
+                  double vn);
 
  private:
   // The state per atom: the NCOLS output columns, then what the times are made of. The times
@@ -104,12 +106,12 @@ class FixContactsMN : public FixPerAtomState {
   // they go at the next step, whatever its number (reset_timestep may move it either way).
   int rows_handed;
   bigint handed_step;
-  double vector_sums[8];
+  double vector_sums[VECTOR_SIZE];
   bigint vector_step;
 
   void advance_clock();
   void drop_handed_rows();
-  void touching(double *record, bool began, double delta, double vn);
+  void update_record(double *record, bool began, double delta, double vn);
   void tally(int i, bool boundary, bool began);
   int home(int j) const { return j < atom->nlocal ? j : atom->map(atom->tag[j]); }
   void change(int i, double particle, double boundary);
@@ -123,7 +125,7 @@ class FixContactsMN : public FixPerAtomState {
 };
 
 // Inline: called for every contact (and every atom near a wall) at every step.
-inline void FixContactsMN::touching(double *record, bool began, double delta, double vn)
+inline void FixContactsMN::update_record(double *record, bool began, double delta, double vn)
 {
   if (began) {
     record[RECORD_START] = now;
@@ -165,7 +167,7 @@ inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool 
                                          double *record, bool began, double delta, double vn,
                                          bool tally_j)
 {
-  touching(record, began, delta, vn);
+  update_record(record, began, delta, vn);
   if (!fold_ghosts) {
     tally(i, j_is_boundary, began);
     if (tally_j) tally(j, i_is_boundary, began);
@@ -187,22 +189,23 @@ inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool 
   }
 }
 
-inline void FixContactsMN::wall_state(int i, double *w, bool in_contact, double delta, double vn)
+inline void FixContactsMN::wall_state(int i, double *record, double &touching, bool in_contact,
+                                      double delta, double vn)
 {
   if (in_contact) {
-    const bool began = w[WALL_TOUCHING] == 0.0;
-    touching(w, began, delta, vn);
-    w[WALL_TOUCHING] = 1.0;
+    const bool began = touching == 0.0;
+    update_record(record, began, delta, vn);
+    touching = 1.0;
     // owned atom: counted directly, so that the order of fix setups does not matter
     if (began) {
       if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
       if (fold_ghosts) change(i, 0.0, 1.0);
     }
     if (!fold_ghosts) tally(i, true, false);
-  } else if (w[WALL_TOUCHING] != 0.0) {
-    w[WALL_TOUCHING] = 0.0;
+  } else if (touching != 0.0) {
+    touching = 0.0;
     if (fold_ghosts) change(i, 0.0, -1.0);
-    if (atom->mask[i] & groupbit) ended(w, atom->tag[i], 0, 2, vn);
+    if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, ROW_BOUNDARY, vn);
   }
 }
 

@@ -83,7 +83,7 @@ FixNVEDiscMN::FixNVEDiscMN(LAMMPS *lmp, int narg, char **arg) :
     force_reneighbor = 1;
     next_reneighbor = -1;
   }
-  if (integrator == mn::Integrator::AdamsBashforth2) allocate_state(NSTATE);
+  if (integrator == mn::Integrator::AdamsBashforth2) register_state(NSTATE);
 }
 
 int FixNVEDiscMN::setmask()

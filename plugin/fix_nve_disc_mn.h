@@ -10,7 +10,7 @@
 
 #include "fix_per_atom_state.h"
 
-#include "mn_contact.h"
+#include "mn_integration.h"
 
 #include <vector>
 

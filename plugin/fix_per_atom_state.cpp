@@ -6,7 +6,7 @@
 
 using namespace LAMMPS_NS;
 
-void FixPerAtomState::allocate_state(int columns)
+void FixPerAtomState::register_state(int columns)
 {
   ncols = columns;
   restart_peratom = 1;
@@ -23,7 +23,7 @@ void FixPerAtomState::widen_state(int columns)
 {
   if (columns <= ncols) return;
   if (!has_callbacks)
-    error->all(FLERR, "Fix {} ({}): per-atom state widened without allocate_state in the "
+    error->all(FLERR, "Fix {} ({}): per-atom state widened without register_state in the "
                       "constructor", id, style);
   double **wider = nullptr;
   memory->create(wider, atom->nmax, columns, "fix:per-atom state");
@@ -116,7 +116,7 @@ int FixPerAtomState::maxsize_restart()
 
 FixAtomIDs::FixAtomIDs(LAMMPS *lmp, int narg, char **arg) : FixPerAtomState(lmp, narg, arg)
 {
-  allocate_state(1);
+  register_state(1);
   wd_header = 0;    // an atom's ID is in any data file
 }
 

@@ -31,12 +31,13 @@ class FixPerAtomState : public Fix {
   double **state = nullptr;    // ncols per atom, zero for new atoms
   int ncols = 0;
 
-  // Called once by a subclass's constructor (0 columns: none yet, but widen_state may add
-  // some later); no call, no cost. LAMMPS registers a fix's per-atom callbacks only while the
-  // fix is being constructed (Atom::add_callback takes the fix being added), hence here.
-  void allocate_state(int columns);
+  // Gives each atom `columns` values (0: none yet, widen_state adds them) and registers the
+  // fix's per-atom callbacks with LAMMPS, which takes them only from a fix being constructed
+  // (Atom::add_callback takes the fix being added): a subclass that keeps a state calls it
+  // from its constructor, once; one that never calls it pays nothing.
+  void register_state(int columns);
   // More columns (zero for every atom) for a need found later, e.g. at init; keeps the others.
-  // Needs allocate_state first.
+  // Needs register_state first.
   void widen_state(int columns);
 
  private:

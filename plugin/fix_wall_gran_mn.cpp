@@ -1,5 +1,5 @@
 /* ----------------------------------------------------------------------
-   fix wall/gran/mn: LAMMPS glue around mn_contact.h for flat walls.
+   fix wall/gran/mn: flat walls with the law of mn_contact.h.
    The per-atom u_t history follows LAMMPS's fix wall/gran (grow/exchange/restart).
 ------------------------------------------------------------------------- */
 
@@ -26,7 +26,7 @@ using namespace FixConst;
 //                                                  [limit_damping] [coulomb_cutback]
 FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), own_law(false), use_history(false),
-    integrator(mn::Integrator::VelocityVerlet), vt_previous_column(-1), counters(nullptr),
+    integrator(mn::Integrator::VelocityVerlet), counters(nullptr),
     force_per_mass_acceleration(1.0), force_reduced(false)
 {
   if (domain->dimension != 2)
@@ -59,14 +59,14 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     iarg += used;
   }
   resolve_law();
-  use_history = law.mu > 0.0;
+  use_history = law.material.mu > 0.0;
 
   vector_flag = 1;
   size_vector = 2;    // force exerted by the particles on the walls (x, y)
   global_freq = 1;
   extvector = 1;
-  // mu = 0: no columns yet; fix contacts/mn, if defined later, adds its own at init
-  allocate_state(use_history ? UT_COLUMNS : 0);
+  // the columns come at init, where what is kept is known
+  register_state(0);
   wall_force[0] = wall_force[1] = 0.0;
 }
 
@@ -79,32 +79,16 @@ int FixWallGranMN::setmask()
 void FixWallGranMN::resolve_law()
 {
   PairGranMN *pair = dynamic_cast<PairGranMN *>(force->pair_match("gran/mn", 1));
-  const bool *given = parsed.given;
-  const bool all_given = given[0] && given[1] && given[2] && given[3];
-  if (!pair && !all_given)
+  if (!pair && !parsed.all_numbers_given())
     error->all(FLERR, "Fix wall/gran/mn takes its kn, e, beta, mu from pair_style gran/mn: "
                       "define that pair style first or give all four on the fix line");
-  mn::Material m = parsed.material;
-  mn::Options o = parsed.options;
-  own_law = true;
-  if (pair) {
-    const mn::Material &pm = pair->contact_material();
-    if (!given[0]) m.kn = pm.kn;
-    if (!given[1]) m.e = pm.e;
-    if (!given[2]) m.beta = pm.beta;
-    if (!given[3]) m.mu = pm.mu;
-    // an option is a flag: one not given on the fix line is the pair's
-    const mn::Options &po = pair->contact_law().options;
-    o.limit_damping = o.limit_damping || po.limit_damping;
-    o.coulomb_cutback = o.coulomb_cutback || po.coulomb_cutback;
-    own_law = given[0] || given[1] || given[2] || given[3] ||
-        o.limit_damping != po.limit_damping || o.coulomb_cutback != po.coulomb_cutback;
-  }
-  const char *problem = mn::material_error(m);
-  if (problem) error->all(FLERR, "Illegal fix wall/gran/mn command: {}", problem);
-  law = mn::derive(m, o);
-  problem = mn::law_error(law);
-  if (problem) error->all(FLERR, "Illegal fix wall/gran/mn command: {} (kn = {})", problem, m.kn);
+  const mn::Law *pair_law = pair ? &pair->contact_law() : nullptr;
+  law = granmn::law_from_arguments(lmp, "fix wall/gran/mn", parsed, pair_law);
+  own_law = !pair_law;
+  for (const granmn::LawKeyword &keyword : granmn::LAW_KEYWORDS)
+    own_law = own_law ||
+        (keyword.number ? law.material.*keyword.number != pair_law->material.*keyword.number
+                        : law.options.*keyword.option != pair_law->options.*keyword.option);
 }
 
 void FixWallGranMN::init()
@@ -114,16 +98,26 @@ void FixWallGranMN::init()
   // the law gives mass x acceleration; LAMMPS turns force back into acceleration with ftm2v
   force_per_mass_acceleration = 1.0 / force->ftm2v;
   counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
-  // each wall fix keeps its own contact state for the counters, per atom and side
-  if (counters) widen_state(UT_COLUMNS + 2 * FixContactsMN::WALL_SLOTS);
-  // Adams-Bashforth 2's rule for u_t needs each side's previous v_t: two columns after the
-  // counters' (so that neither moves when the other is added between runs), kept from then on
   integrator = granmn::integrator_in_use(modify);
-  const int vt_previous_first = UT_COLUMNS + 2 * FixContactsMN::WALL_SLOTS;
+  // The state keeps u_t (mu > 0), the counters' record and flag of each side (each wall fix
+  // its own, with fix contacts/mn), and the previous v_t of Adams-Bashforth 2's rule for u_t,
+  // which is kept from then on (current under either integrator).
+  granmn::ContactLayout all[2];
+  granmn::wall_state_layout(all);
+  const granmn::ContactLayout &last = all[1];
+  if (use_history) widen_state(last.ut + last.ut_width);
+  if (counters) widen_state(last.touching + 1);
   if (use_history && integrator == mn::Integrator::AdamsBashforth2)
-    widen_state(vt_previous_first + 2);
-  vt_previous_column = use_history && ncols >= vt_previous_first + 2 ? vt_previous_first : -1;
-  if (law.mu > 0.0 && !use_history)
+    widen_state(last.vt_previous + last.ut_width);
+  for (int side : {0, 1}) {
+    granmn::ContactLayout &kept = side_layout[side];
+    kept = all[side];
+    if (!use_history) kept.ut = -1;
+    if (!counters) kept.record = kept.touching = -1;
+    if (!use_history || ncols < last.vt_previous + last.ut_width) kept.vt_previous = -1;
+    kept.size = ncols;
+  }
+  if (law.material.mu > 0.0 && !use_history)
     error->all(FLERR, "Fix wall/gran/mn was defined with mu = 0 and keeps no tangential "
                       "history; define it again after giving mu > 0");
   // The pair style already checked the time step against the same law.
@@ -136,9 +130,8 @@ int FixWallGranMN::sides_in_contact(int i) const
 {
   if (!counters || !(atom->mask[i] & groupbit)) return 0;
   int sides = 0;
-  for (int side = 0; side < 2; side++)
-    if (state[i][UT_COLUMNS + FixContactsMN::WALL_SLOTS * side + FixContactsMN::WALL_TOUCHING])
-      sides++;
+  for (const granmn::ContactLayout &side : side_layout)
+    if (state[i][side.touching] != 0.0) sides++;
   return sides;
 }
 
@@ -166,7 +159,7 @@ void FixWallGranMN::post_force(int)
   const double to_force = force_per_mass_acceleration;
   const int first_side = has_lo ? 0 : 1, last_side = has_hi ? 1 : 0;
   const mn::Integrator scheme = integrator;
-  const int vt_column = vt_previous_column;
+  const granmn::ContactLayout layouts[2] = {side_layout[0], side_layout[1]};
   double wall_fx = 0.0, wall_fy = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
@@ -175,15 +168,19 @@ void FixWallGranMN::post_force(int)
       // distance from the wall to the centre, along the wall's inward normal
       const double dist = side == 0 ? x[i][axis] - lo : hi - x[i][axis];
       const double normal = side == 0 ? 1.0 : -1.0;
-      const bool touching = dist < radius[i];
+      const bool in_contact = dist < radius[i];
+      const granmn::ContactLayout &layout = layouts[side];
+      double *row = history[i];
       if (tally)
-        tally->wall_state(i, &history[i][UT_COLUMNS + FixContactsMN::WALL_SLOTS * side],
-                          touching, radius[i] - dist, normal * v[i][axis]);
-      if (!touching) {
+        tally->wall_state(i, row + layout.record, row[layout.touching], in_contact,
+                          radius[i] - dist, normal * v[i][axis]);
+      double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
+      double *vt_previous = layout.vt_previous >= 0 ? row + layout.vt_previous : nullptr;
+      if (!in_contact) {
         // only a contact that has just ended has any history to clear (as in the pair style)
-        if (use_history && history[i][side] != 0.0) history[i][side] = 0.0;
-        if (vt_column >= 0 && history[i][vt_column + side] != 0.0)
-          history[i][vt_column + side] = 0.0;
+        for (double *values : {ut, vt_previous})
+          for (int k = 0; values && k < layout.ut_width; k++)
+            if (values[k] != 0.0) values[k] = 0.0;
         continue;
       }
       if (dist <= 0.0)
@@ -195,9 +192,8 @@ void FixWallGranMN::post_force(int)
       const mn::Kinematics kin =
           mn::kinematics(dx, dy, dist, radius[i], v[i][0], v[i][1], radius[i] * omega[i][2]);
       const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
-      const mn::Force fc = mn::contact_force(
-          contact, scale, kin, use_history ? &history[i][side] : nullptr, dt_history, scheme,
-          vt_column >= 0 ? &history[i][vt_column + side] : nullptr);
+      const mn::Force fc =
+          mn::contact_force(contact, scale, kin, ut, dt_history, scheme, vt_previous);
       const mn::Cartesian fxy = mn::cartesian(kin, fc);
       const double fx = fxy.fx, fy = fxy.fy;
       f[i][0] += fx;

@@ -30,12 +30,10 @@ class FixWallGranMN : public FixPerAtomState {
   granmn::LawArguments parsed;
   mn::Law law;
   bool own_law;               // the law is not exactly the pair style's
-  bool use_history;           // mu > 0: per-atom u_t in state[i][side], side 0 lower, 1 upper
-  // u_t of the two sides; with fix contacts/mn, its per-side contact state follows
-  static constexpr int UT_COLUMNS = 2;
+  bool use_history;           // mu > 0: u_t per atom and side (fixed at the fix's definition)
   mn::Integrator integrator;    // the run's, found at init
-  // First of the two sides' previous v_t (Adams-Bashforth 2's rule for u_t), -1 if not kept
-  int vt_previous_column;
+  // Where each side's values sit in an atom's row of the state: side 0 lower, 1 upper
+  granmn::ContactLayout side_layout[2];
   class FixContactsMN *counters;    // nullptr unless fix contacts/mn is defined
   double wall_force[2], wall_force_all[2];
   double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units

@@ -6,6 +6,7 @@
 #define LMP_GRANMN_GLUE_H
 
 #include "error.h"
+#include "fix_contacts_mn.h"
 #include "fix_nve_disc_mn.h"
 #include "fix_nve_sphere.h"
 #include "granmn_compat.h"
@@ -14,7 +15,7 @@
 #include "update.h"
 #include "utils.h"
 
-#include "mn_contact.h"
+#include "mn_integration.h"
 
 #include <cstring>
 
@@ -103,41 +104,139 @@ inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, c
                         who, dt, law.tau_c);
 }
 
-// The contact-law keywords a style's arguments may hold, and which of them were given.
-struct LawArguments {
-  mn::Material material{0.0, 0.0, 0.0, 0.0};
-  bool given[4] = {false, false, false, false};    // kn, e, beta, mu
-  mn::Options options;    // an option is on if given
+// Where a contact's values sit in the storage of the style that keeps it (-1: not kept),
+// handed out at init: in the pair style's neighbour history (pair_history_layout), in the
+// wall fix's per-atom state for each wall side (wall_state_layout). The styles hand the
+// record and the flag to fix contacts/mn, which knows what a record holds, not where it is.
+struct ContactLayout {
+  int ut_width = 1;        // u_t's components: one in 2D
+  int ut = -1;             // u_t, ut_width values (mu > 0)
+  int vt_previous = -1;    // v_t at the previous force evaluation, ut_width values: Adams-
+                           // Bashforth 2's rule for u_t (mu > 0)
+  int record = -1;         // fix contacts/mn's record (FixContactsMN::RECORD_SIZE values)
+  int touching = -1;       // 1 while in contact (a wall side; a pair has its neighbour flag)
+  int size = 0;            // values the storage holds: per contact (pair), per atom (wall)
 };
 
-inline const char *law_keyword(int k)
+// A contact's neighbour history: its parts one after the other, only those kept (restart files
+// hold the history in this order).
+inline ContactLayout pair_history_layout(bool friction, bool adams_bashforth, bool counters)
 {
-  static const char *const names[4] = {"kn", "e", "beta", "mu"};
-  return names[k];
+  ContactLayout layout;
+  auto take = [&layout](bool kept, int width) {
+    if (!kept) return -1;
+    layout.size += width;
+    return layout.size - width;
+  };
+  layout.ut = take(friction, layout.ut_width);
+  layout.vt_previous = take(friction && adams_bashforth, layout.ut_width);
+  layout.record = take(counters, LAMMPS_NS::FixContactsMN::RECORD_SIZE);
+  return layout;
 }
 
-// Reads the law keyword at arg[iarg] ("kn K", "e E", "beta B", "mu MU", "limit_damping",
-// "coulomb_cutback"); returns how many arguments it used, 0 if arg[iarg] is none of them.
+// An atom's row in the wall fix, both sides: each part at a place of its own whether kept or
+// not (u_t of both sides, each side's record and flag, the previous v_t of both), so that a
+// part kept from a later run on moves no other (restart files hold the rows so); `size` is
+// the whole row's. A style keeps the row up to its last part kept.
+inline void wall_state_layout(ContactLayout side[2])
+{
+  int next = 0;
+  for (int s : {0, 1}) {
+    side[s].ut = next;
+    next += side[s].ut_width;
+  }
+  for (int s : {0, 1}) {
+    side[s].record = next;
+    next += LAMMPS_NS::FixContactsMN::RECORD_SIZE;
+    side[s].touching = next++;
+  }
+  for (int s : {0, 1}) {
+    side[s].vt_previous = next;
+    next += side[s].ut_width;
+  }
+  side[0].size = side[1].size = next;
+}
+
+// The law's keywords on a style's line: a number of the material, or an option (a flag).
+struct LawKeyword {
+  const char *name;
+  double mn::Material::*number;
+  bool mn::Options::*option;
+};
+constexpr LawKeyword LAW_KEYWORDS[] = {
+    {"kn", &mn::Material::kn, nullptr},     {"e", &mn::Material::e, nullptr},
+    {"beta", &mn::Material::beta, nullptr}, {"mu", &mn::Material::mu, nullptr},
+    {"limit_damping", nullptr, &mn::Options::limit_damping},
+    {"coulomb_cutback", nullptr, &mn::Options::coulomb_cutback}};
+constexpr int N_LAW_KEYWORDS = sizeof(LAW_KEYWORDS) / sizeof(LAW_KEYWORDS[0]);
+
+// The law keywords a style's arguments hold: their values, and which were given.
+struct LawArguments {
+  mn::Material material{0.0, 0.0, 0.0, 0.0};
+  mn::Options options;
+  bool given[N_LAW_KEYWORDS] = {};
+
+  bool all_numbers_given() const
+  {
+    for (int k = 0; k < N_LAW_KEYWORDS; k++)
+      if (LAW_KEYWORDS[k].number && !given[k]) return false;
+    return true;
+  }
+};
+
+// Reads the law keyword at arg[iarg] ("kn K", ..., "limit_damping"); returns how many
+// arguments it used, 0 if arg[iarg] is none of them.
 inline int parse_law_keyword(LAMMPS_NS::LAMMPS *lmp, const char *command, int narg, char **arg,
                              int iarg, LawArguments &law)
 {
-  double *values[4] = {&law.material.kn, &law.material.e, &law.material.beta, &law.material.mu};
-  for (int k = 0; k < 4; k++)
-    if (strcmp(arg[iarg], law_keyword(k)) == 0) {
-      if (law.given[k])
-        lmp->error->all(FLERR, "Illegal {} command: {} given twice", command, law_keyword(k));
-      if (iarg + 2 > narg)
-        lmp->error->all(FLERR, "Illegal {} command: {} needs a value", command, law_keyword(k));
-      *values[k] = LAMMPS_NS::utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      law.given[k] = true;
-      return 2;
+  for (int k = 0; k < N_LAW_KEYWORDS; k++) {
+    const LawKeyword &keyword = LAW_KEYWORDS[k];
+    if (strcmp(arg[iarg], keyword.name) != 0) continue;
+    if (keyword.option) {
+      law.options.*keyword.option = law.given[k] = true;
+      return 1;
     }
-  bool *flag = nullptr;
-  if (strcmp(arg[iarg], "limit_damping") == 0) flag = &law.options.limit_damping;
-  if (strcmp(arg[iarg], "coulomb_cutback") == 0) flag = &law.options.coulomb_cutback;
-  if (!flag) return 0;
-  *flag = true;
-  return 1;
+    if (law.given[k])
+      lmp->error->all(FLERR, "Illegal {} command: {} given twice", command, keyword.name);
+    law.given[k] = true;
+    if (iarg + 2 > narg)
+      lmp->error->all(FLERR, "Illegal {} command: {} needs a value", command, keyword.name);
+    law.material.*keyword.number = LAMMPS_NS::utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    return 2;
+  }
+  return 0;
+}
+
+// The law of a material and options, checked: an error of `command` says what is wrong.
+inline mn::Law checked_law(LAMMPS_NS::LAMMPS *lmp, const char *command,
+                           const mn::Material &material, const mn::Options &options)
+{
+  const char *problem = mn::material_error(material);
+  if (problem) lmp->error->all(FLERR, "Illegal {} command: {}", command, problem);
+  const mn::Law law = mn::derive(material, options);
+  problem = mn::law_error(law);
+  if (problem)
+    lmp->error->all(FLERR, "Illegal {} command: {} (kn = {})", command, problem, material.kn);
+  return law;
+}
+
+// The law the arguments give, what they do not give taken from `defaults` (nullptr: every
+// number must be given, an option not given is off).
+inline mn::Law law_from_arguments(LAMMPS_NS::LAMMPS *lmp, const char *command,
+                                  const LawArguments &arguments, const mn::Law *defaults)
+{
+  mn::Material material = arguments.material;
+  mn::Options options = arguments.options;
+  for (int k = 0; k < N_LAW_KEYWORDS; k++) {
+    const LawKeyword &keyword = LAW_KEYWORDS[k];
+    if (arguments.given[k]) continue;
+    if (keyword.option && defaults) options.*keyword.option = defaults->options.*keyword.option;
+    if (keyword.number && defaults)
+      material.*keyword.number = defaults->material.*keyword.number;
+    else if (keyword.number)
+      lmp->error->all(FLERR, "Illegal {} command: {} must be given", command, keyword.name);
+  }
+  return checked_law(lmp, command, material, options);
 }
 
 }    // namespace granmn

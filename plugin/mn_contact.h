@@ -1,16 +1,16 @@
 // The Mitarai-Nakanishi 2D linear spring-dashpot contact law (PRE 67, 021301 (2003)),
-// free of LAMMPS so that the pair style, the wall fix and the unit tests share one copy.
+// free of LAMMPS so that the pair style, the wall fix and the unit tests share one copy. The
+// integrators' steps and their stability on a contact are in mn_integration.h.
 //
 // Conventions (docs/model.md sections 2-3): for a contact of disk i with partner j, n points from j
 // to i, t = (-n_y, n_x), delta > 0 is the overlap, v_n = n.v_ij and v_t = t.v_ij with the full
 // radii as lever arms. The force on i is fn*n + ft*t and the torque on i is -radius_i*ft.
-// "mass_scale" is 2M = 2 m_i m_j/(m_i+m_j) for two mobile disks and m_i against the boundary.
+// A contact's mass scale is 2M = 2 m_i m_j/(m_i+m_j) for two mobile disks and m_i against the
+// boundary; the force is the mass scale times an acceleration.
 #ifndef MN_CONTACT_H
 #define MN_CONTACT_H
 
-#include <algorithm>
 #include <cmath>
-#include <complex>
 
 namespace mn {
 
@@ -30,13 +30,14 @@ struct Options {
   bool coulomb_cutback = false;   // Cundall-Strack: cut u_t back to the Coulomb limit while sliding
 };
 
-// The coefficients derived from a Material (docs/model.md section 3).
+// A material, its options and the coefficients derived from them (docs/model.md section 3).
 struct Law {
-  double kn, eta_n, kt, eta_t, mu;
+  Material material;
+  Options options;
+  double eta_n, kt, eta_t;
   double tau_c;   // duration of a binary normal collision
   double tau_w;   // duration of a normal collision with the boundary (mass scale m_i)
   double e_w;     // restitution of a normal collision with the boundary
-  Options options;
 };
 
 // nullptr if the material is valid, else what is wrong with it.
@@ -63,8 +64,7 @@ inline Law derive(const Material &m, const Options &options = Options())
 {
   Law law;
   const double ln_e = std::log(m.e);
-  law.kn = m.kn;
-  law.mu = m.mu;
+  law.material = m;
   law.options = options;
   // eta_n = sqrt(2 kn / ((pi/ln e)^2 + 1)), written so that e = 1 gives 0 without 0/0.
   law.eta_n = std::sqrt(2.0 * m.kn * ln_e * ln_e / (PI * PI + ln_e * ln_e));
@@ -147,30 +147,32 @@ inline void advance_tangential_displacement(Integrator integrator, double vt, do
   if (vt_previous) *vt_previous = vt;
 }
 
-// Force of one contact. ut is the tangential displacement of this contact (nullptr when
-// mu = 0: no friction, no history). It is advanced first over dt_history (0 when forces are only
-// re-evaluated, as in LAMMPS's setup) by the integrator's rule; Adams-Bashforth 2 needs
-// vt_previous (see advance_tangential_displacement), velocity Verlet none.
-inline Force contact_force(const Law &law, double mass_scale, const Kinematics &k, double *ut,
+// Force of one contact. force_scale turns the law's accelerations into forces: the contact's
+// mass scale, in units where force = mass x acceleration (in LAMMPS's, divided by ftm2v).
+// ut is the tangential displacement of this contact (nullptr when mu = 0: no friction, no
+// history). It is advanced first over dt_history (0 when forces are only re-evaluated, as in
+// LAMMPS's setup) by the integrator's rule; Adams-Bashforth 2 needs vt_previous (see
+// advance_tangential_displacement), velocity Verlet none.
+inline Force contact_force(const Law &law, double force_scale, const Kinematics &k, double *ut,
                            double dt_history,
                            Integrator integrator = Integrator::VelocityVerlet,
                            double *vt_previous = nullptr)
 {
   Force f;
-  f.fn = mass_scale * (law.kn * k.delta - law.eta_n * k.vn);
+  f.fn = force_scale * (law.material.kn * k.delta - law.eta_n * k.vn);
   if (law.options.limit_damping && f.fn < 0.0) f.fn = 0.0;
   f.ft = 0.0;
   f.sliding = false;
   if (!ut) return f;
 
   advance_tangential_displacement(integrator, k.vt, dt_history, ut, vt_previous);
-  const double trial = -mass_scale * (law.kt * (*ut) + law.eta_t * k.vt);
-  const double cap = law.mu * std::fabs(f.fn);
+  const double trial = -force_scale * (law.kt * (*ut) + law.eta_t * k.vt);
+  const double cap = law.material.mu * std::fabs(f.fn);
   if (std::fabs(trial) > cap) {
     f.sliding = true;
     f.ft = std::copysign(cap, trial);
     if (law.options.coulomb_cutback && law.kt > 0.0)
-      *ut = -(f.ft / mass_scale + law.eta_t * k.vt) / law.kt;
+      *ut = -(f.ft / force_scale + law.eta_t * k.vt) / law.kt;
   } else {
     f.ft = trial;
   }
@@ -192,166 +194,6 @@ inline Cartesian cartesian(const Kinematics &k, const Force &f)
 inline double torque(const Force &f, double radius)
 {
   return -radius * f.ft;
-}
-
-// ---------------------------------------------------------------------------------------
-// Numerical stability of a contact under a time integrator.
-//
-// Each contact mode is a damped oscillator x'' = -w2 x - g x'. The integrators are linear on
-// it, so one step is a 3x3 matrix on the integrator's state; the step is stable while that
-// matrix's spectral radius is at most 1.
-
-// The paper's scheme for one coordinate (docs/model.md section 4), used by fix nve/ab2 and by
-// the stability analysis alike: the new velocity by Adams-Bashforth 2 from this step's and
-// the previous step's accelerations, the new position by the trapezoidal rule.
-inline double ab2_velocity(double v, double a, double a_previous, double dt)
-{
-  return v + dt * (1.5 * a - 0.5 * a_previous);
-}
-
-inline double trapezoidal_position(double x, double v, double v_new, double dt)
-{
-  return x + 0.5 * dt * (v + v_new);
-}
-
-namespace detail {
-
-// One step of the integrator on the oscillator, state s.
-inline void step(Integrator integrator, double w2, double g, double dt, const double s[3],
-                 double out[3])
-{
-  if (integrator == Integrator::VelocityVerlet) {
-    // s = (x, v, a): a is the acceleration computed at the end of the previous step.
-    const double vh = s[1] + 0.5 * dt * s[2];
-    const double x = s[0] + dt * vh;
-    const double a = -w2 * x - g * vh;
-    out[0] = x;
-    out[1] = vh + 0.5 * dt * a;
-    out[2] = a;
-  } else {
-    // s = (x, v, a_prev); the acceleration at this step follows from (x, v).
-    const double a = -w2 * s[0] - g * s[1];
-    const double v = ab2_velocity(s[1], a, s[2], dt);
-    out[0] = trapezoidal_position(s[0], s[1], v, dt);
-    out[1] = v;
-    out[2] = a;
-  }
-}
-
-inline double spectral_radius(Integrator integrator, double w2, double g, double dt)
-{
-  double m[3][3];
-  for (int c = 0; c < 3; c++) {
-    double unit[3] = {0.0, 0.0, 0.0}, col[3];
-    unit[c] = 1.0;
-    step(integrator, w2, g, dt, unit, col);
-    for (int r = 0; r < 3; r++) m[r][c] = col[r];
-  }
-  // Characteristic polynomial z^3 + a z^2 + b z + c, roots by Durand-Kerner.
-  const double a = -(m[0][0] + m[1][1] + m[2][2]);
-  const double b = m[0][0] * m[1][1] - m[0][1] * m[1][0] + m[0][0] * m[2][2] -
-      m[0][2] * m[2][0] + m[1][1] * m[2][2] - m[1][2] * m[2][1];
-  const double c = -(m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                     m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]));
-  using cplx = std::complex<double>;
-  auto p = [&](cplx z) { return ((z + a) * z + b) * z + c; };
-  cplx root[3] = {cplx(1.0, 0.0), cplx(0.4, 0.9), cplx(-0.65, 0.72)};
-  for (int iter = 0; iter < 500; iter++)
-    for (int i = 0; i < 3; i++) {
-      cplx denom(1.0, 0.0);
-      for (int j = 0; j < 3; j++)
-        if (j != i) denom *= root[i] - root[j];
-      if (std::abs(denom) > 0.0) root[i] -= p(root[i]) / denom;
-    }
-  return std::max({std::abs(root[0]), std::abs(root[1]), std::abs(root[2])});
-}
-
-}    // namespace detail
-
-// Largest growth of an undamped mode's amplitude over one contact (half an oscillation) that
-// the step limit accepts; see max_stable_dt.
-constexpr double UNDAMPED_GROWTH_PER_CONTACT = 1e-3;
-
-// Largest dt for which the integrator is stable on x'' = -w2 x - g x' (0 if none).
-// A damped mode (g > 0) has a strict limit: the spectral radius of the step reaches 1. An
-// undamped mode (g = 0: e = 1 or beta = 1) sits on the unit circle under velocity Verlet, but
-// Adams-Bashforth 2 amplifies it a little at every step (by about (w dt)^4/4), so it has no
-// strict limit at all: there the limit is the step at which a contact (pi/w long) grows by
-// UNDAMPED_GROWTH_PER_CONTACT, and lasting contacts still gain energy (the styles warn).
-inline double max_stable_dt(Integrator integrator, double w2, double g)
-{
-  const double tolerance = 1e-9;    // rounding of the eigenvalues
-  const bool weakly_unstable = g == 0.0 && integrator == Integrator::AdamsBashforth2;
-  auto stable = [&](double dt) {
-    const double radius = detail::spectral_radius(integrator, w2, g, dt);
-    if (!weakly_unstable) return radius <= 1.0 + tolerance;
-    const double steps = std::max(1.0, PI / (std::sqrt(w2) * dt));
-    return std::pow(radius, steps) <= 1.0 + UNDAMPED_GROWTH_PER_CONTACT;
-  };
-  double lo = 0.0, hi = 1.0 / std::sqrt(w2);
-  while (stable(hi) && hi < 1e6 / std::sqrt(w2)) {
-    lo = hi;
-    hi *= 2.0;
-  }
-  if (lo == 0.0 && !stable(1e-6 * hi)) return 0.0;
-  for (int iter = 0; iter < 60; iter++) {
-    const double mid = 0.5 * (lo + hi);
-    (stable(mid) ? lo : hi) = mid;
-  }
-  return lo;
-}
-
-// True if the integrator slowly amplifies one of the law's modes (AB2 with e = 1, or with
-// beta = 1 and friction): fine for collisions, not for contacts that last.
-inline bool amplifies_undamped_mode(const Law &law, Integrator integrator)
-{
-  return integrator == Integrator::AdamsBashforth2 &&
-      (law.eta_n == 0.0 || (law.mu > 0.0 && law.eta_t == 0.0));
-}
-
-// The modes of a contact whose stability bounds the step: normal and (if mu > 0) sticking
-// tangential motion, for a pair of mobile disks (mass scale 2M) and against the boundary (mass
-// scale m_i). Uses I = m sigma^2/8 (disks), for which the tangential equation does not depend
-// on masses.
-enum class Mode { NormalPair, NormalBoundary, TangentialPair, TangentialBoundary };
-
-inline const char *mode_name(Mode mode)
-{
-  switch (mode) {
-    case Mode::NormalPair: return "the normal mode of two disks";
-    case Mode::NormalBoundary: return "the normal mode against the boundary";
-    case Mode::TangentialPair: return "the tangential (sticking) mode of two disks";
-    case Mode::TangentialBoundary: return "the tangential (sticking) mode against the boundary";
-  }
-  return "";
-}
-
-// The largest stable step and the mode that sets it (the stiffest one under the integrator).
-struct StabilityLimit {
-  double dt;
-  Mode mode;
-};
-
-inline StabilityLimit stability_limit(const Law &law, Integrator integrator)
-{
-  StabilityLimit limit{max_stable_dt(integrator, 2.0 * law.kn, 2.0 * law.eta_n),
-                       Mode::NormalPair};
-  auto consider = [&](double w2, double g, Mode mode) {
-    const double dt = max_stable_dt(integrator, w2, g);
-    if (dt < limit.dt) limit = {dt, mode};
-  };
-  consider(law.kn, law.eta_n, Mode::NormalBoundary);
-  if (law.mu > 0.0) {
-    consider(6.0 * law.kt, 6.0 * law.eta_t, Mode::TangentialPair);
-    consider(3.0 * law.kt, 3.0 * law.eta_t, Mode::TangentialBoundary);
-  }
-  return limit;
-}
-
-inline double max_stable_dt(const Law &law, Integrator integrator)
-{
-  return stability_limit(law, integrator).dt;
 }
 
 }    // namespace mn

@@ -1,7 +1,7 @@
 // mn-law: prints the coefficients docs/model.md section 3 derives from (kn, e, beta, mu), and the
 // stability limits, one "name value" per line, so that scripts use the header's numbers.
 //   mn-law KN E BETA [MU]
-#include "mn_contact.h"
+#include "mn_integration.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -29,7 +29,7 @@ int main(int argc, char **argv)
   const mn::Law law = mn::derive(material);
   std::printf("kn %.17g\neta_n %.17g\nkt %.17g\neta_t %.17g\ntau_c %.17g\ntau_w %.17g\n"
               "e_w %.17g\ndt_max_verlet %.17g\ndt_max_ab2 %.17g\n",
-              law.kn, law.eta_n, law.kt, law.eta_t, law.tau_c, law.tau_w, law.e_w,
+              law.material.kn, law.eta_n, law.kt, law.eta_t, law.tau_c, law.tau_w, law.e_w,
               mn::max_stable_dt(law, mn::Integrator::VelocityVerlet),
               mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
   return 0;

@@ -1,5 +1,5 @@
 /* ----------------------------------------------------------------------
-   pair_style gran/mn: LAMMPS glue around mn_contact.h.
+   pair_style gran/mn: the law of mn_contact.h between disks and bumps.
    Structure follows LAMMPS's pair gran/hooke/history (neighbor history through
    FixNeighHistory, created in init_style in place of a placeholder fix).
 ------------------------------------------------------------------------- */
@@ -33,7 +33,7 @@
 using namespace LAMMPS_NS;
 
 PairGranMN::PairGranMN(LAMMPS *lmp) :
-    Pair(lmp), history(0), size_history(0), restart_history_size(-1),
+    Pair(lmp), restart_history_size(-1),
     counters(nullptr),
     law_reported(false), force_per_mass_acceleration(1.0), max_radius(nullptr),
     fix_history(nullptr)
@@ -130,12 +130,13 @@ void PairGranMN::report_passed_through(int i, int j, double r)
                         dt, vn * dt, 0.1 * radius_min / vn);
   } else {
     // the speed they met at, from the energy of the normal motion: damping only lowers it
-    const double omega2 = (boundary ? 1.0 : 2.0) * law.kn;
+    const double omega2 = (boundary ? 1.0 : 2.0) * law.material.kn;
     speed = sqrt(vn * vn + omega2 * delta * delta);
     const double stopped_within = speed / sqrt(omega2);
     cause = fmt::format("kn = {:.6g} stops them only within an overlap of {:.6g}: it takes "
                         "kn > {:.6g} to stop them within the radius",
-                        law.kn, stopped_within, law.kn * pow(stopped_within / radius_min, 2));
+                        law.material.kn, stopped_within,
+                        law.material.kn * pow(stopped_within / radius_min, 2));
   }
   error->one(FLERR, "pair_style gran/mn: atoms {} and {} have passed through each other at step "
                     "{}: the centre of one is inside the other (overlap {:.6g} > {:.6g}, the "
@@ -164,6 +165,7 @@ void PairGranMN::compute(int eflag, int vflag)
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
+  const bool history = layout.size > 0;
   int **firsttouch = history ? fix_history->firstflag : nullptr;
   double **firstslots = history ? fix_history->firstvalue : nullptr;
   const int *type = atom->type;
@@ -175,7 +177,7 @@ void PairGranMN::compute(int eflag, int vflag)
   const char *is_wall = is_wall_type.data();
   const double to_force = force_per_mass_acceleration;
   FixContactsMN *const tally = counters;
-  const int stride = size_history, ut_slot = layout.ut, record_slot = layout.record;
+  const int stride = layout.size, ut_slot = layout.ut, record_slot = layout.record;
   const int vt_previous_slot = layout.vt_previous;
   const mn::Integrator scheme = integrator;
 
@@ -253,14 +255,9 @@ void PairGranMN::allocate()
   max_radius = new double[n + 1];
 }
 
-void PairGranMN::derive_law()
+// A new law: reported at the next init_style, its derived values published now.
+void PairGranMN::publish_law()
 {
-  const char *problem = mn::material_error(material);
-  if (problem) error->all(FLERR, "Illegal pair_style gran/mn command: {}", problem);
-  law = mn::derive(material, options);
-  problem = mn::law_error(law);
-  if (problem)
-    error->all(FLERR, "Illegal pair_style gran/mn command: {} (kn = {})", problem, material.kn);
   law_reported = false;
 
   // Decks read the derived scales from here, e.g. timestep $(v_mn_tau_c/100).
@@ -302,10 +299,6 @@ void PairGranMN::settings(int narg, char **arg)
       error->all(FLERR, "Illegal pair_style gran/mn command: unknown keyword {}", arg[iarg]);
     }
   }
-  for (int k = 0; k < 4; k++)
-    if (!parsed.given[k])
-      error->all(FLERR, "Illegal pair_style gran/mn command: {} must be given",
-                 granmn::law_keyword(k));
   // One law per simulation: fix wall/gran/mn, fix contacts/mn and the v_mn_* variables take
   // it from the gran/mn style. pair_style hybrid declares its sub-styles in order, so a second
   // gran/mn finds the first here.
@@ -314,9 +307,8 @@ void PairGranMN::settings(int narg, char **arg)
     error->all(FLERR, "pair_style gran/mn: pair_style hybrid holds gran/mn twice; the gran/mn "
                       "styles support one (fix wall/gran/mn, fix contacts/mn and the v_mn_* "
                       "variables take their law from it): give one gran/mn sub-style");
-  material = parsed.material;
-  options = parsed.options;
-  derive_law();
+  law = granmn::law_from_arguments(lmp, "pair_style gran/mn", parsed, nullptr);
+  publish_law();
   if (domain->box_exist) check_wall_types();
 }
 
@@ -401,7 +393,7 @@ void PairGranMN::init_style()
                    "  eta_n = {:.8g} kt = {:.8g} eta_t = {:.8g}\n"
                    "  tau_c = {:.8g} tau_w = {:.8g} e_w = {:.8g}\n"
                    "  largest stable dt: {:.6g} (velocity Verlet), {:.6g} (Adams-Bashforth 2)\n",
-                   law.kn, material.e, material.beta, law.mu, law.eta_n, law.kt, law.eta_t,
+                   law.material.kn, law.material.e, law.material.beta, law.material.mu, law.eta_n, law.kt, law.eta_t,
                    law.tau_c, law.tau_w, law.e_w,
                    mn::max_stable_dt(law, mn::Integrator::VelocityVerlet),
                    mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
@@ -412,16 +404,9 @@ void PairGranMN::init_style()
   // The per-contact history: u_t when there is friction (and under Adams-Bashforth 2 the
   // previous v_t its rule for u_t needs), then the counters' record if asked.
   counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
-  layout = HistoryLayout();
-  if (material.mu > 0.0) layout.ut = layout.size++;
-  if (material.mu > 0.0 && integrator == mn::Integrator::AdamsBashforth2)
-    layout.vt_previous = layout.size++;
-  if (counters) {
-    layout.record = layout.size;
-    layout.size += FixContactsMN::RECORD_SIZE;
-  }
-  const int needed = layout.size;
-  if (fix_history && needed != size_history)
+  const granmn::ContactLayout needed = granmn::pair_history_layout(
+      law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, counters);
+  if (fix_history && needed.size != layout.size)
     error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
                       "mu, fix contacts/mn or integrator (Adams-Bashforth 2, fix nve/ab2 or fix "
                       "nve/disc/mn scheme ab2, keeps one more value per contact when mu > 0); define fix contacts/mn, mu and the integrator "
@@ -429,13 +414,13 @@ void PairGranMN::init_style()
   // LAMMPS restores per-pair history with the size of the new run: a different size would
   // misread every partner, so the run must keep mu > 0 (or not), fix contacts/mn (or not) and
   // the integrator
-  if (!fix_history && restart_history_size >= 0 && needed != restart_history_size)
+  if (!fix_history && restart_history_size >= 0 && needed.size != restart_history_size)
     error->all(FLERR, "pair_style gran/mn: the restart file holds {} history values per contact, "
                       "this run needs {}: keep mu zero or non-zero, define fix contacts/mn "
                       "(or not) and use the scheme (Adams-Bashforth 2 or not) as in the run that "
-                      "wrote it", restart_history_size, needed);
-  size_history = needed;
-  history = size_history > 0 ? 1 : 0;
+                      "wrote it", restart_history_size, needed.size);
+  layout = needed;
+  const bool history = layout.size > 0;
   // At a reneighboring, fix neigh/history keeps a pair's history only if the pair overlapped
   // when the list was built, i.e. before this step's force evaluation: a contact that ended in
   // the step's move would lose its record before the counters see it end (found by the
@@ -459,7 +444,7 @@ void PairGranMN::init_style()
 
   if (history && !fix_history) {
     auto cmd = fmt::format("NEIGH_HISTORY_GRANMN{} all NEIGH_HISTORY {}", instance_me,
-                           size_history);
+                           layout.size);
     fix_history = (FixNeighHistory *) modify->replace_fix(
         "NEIGH_HISTORY_GRANMN_DUMMY" + std::to_string(instance_me), cmd, 1);
     fix_history->pair = this;
@@ -518,10 +503,11 @@ double PairGranMN::init_one(int i, int j)
 
 void PairGranMN::write_restart_settings(FILE *fp)
 {
-  const double values[4] = {material.kn, material.e, material.beta, material.mu};
+  const mn::Material &m = law.material;
+  const double values[4] = {m.kn, m.e, m.beta, m.mu};
   fwrite(values, sizeof(double), 4, fp);
-  const int flags[4] = {options.limit_damping, options.coulomb_cutback, (int) wall_types.size(),
-                        history ? size_history : 0};
+  const int flags[4] = {law.options.limit_damping, law.options.coulomb_cutback, (int) wall_types.size(),
+                        layout.size};
   fwrite(flags, sizeof(int), 4, fp);
   if (!wall_types.empty()) fwrite(wall_types.data(), sizeof(int), wall_types.size(), fp);
 }
@@ -541,10 +527,12 @@ void PairGranMN::read_restart_settings(FILE *fp)
   if (comm->me == 0 && flags[2] > 0)
     utils::sfread(FLERR, wall_types.data(), sizeof(int), flags[2], fp, nullptr, error);
   if (flags[2] > 0) MPI_Bcast(wall_types.data(), flags[2], MPI_INT, 0, world);
-  material = {values[0], values[1], values[2], values[3]};
+  mn::Options options;
   options.limit_damping = flags[0];
   options.coulomb_cutback = flags[1];
-  derive_law();
+  law = granmn::checked_law(lmp, "pair_style gran/mn", {values[0], values[1], values[2], values[3]},
+                            options);
+  publish_law();
 }
 
 void PairGranMN::write_restart(FILE *fp)
@@ -570,7 +558,7 @@ void PairGranMN::read_restart(FILE *fp)
 
 void PairGranMN::GRANMN_TRANSFER_HISTORY(source, target)
 {
-  for (int k = 0; k < size_history; k++) target[k] = source[k];
+  for (int k = 0; k < layout.size; k++) target[k] = source[k];
 }
 
 // For compute pair/local: fforce*(dx,dy) is the normal force; svector = ft, delta, vn, vt, ut.
@@ -596,7 +584,7 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < jnum; jj++)
       if ((jlist[jj] & NEIGHMASK) == j) {
-        ut = fix_history->firstvalue[i][size_history * jj + layout.ut];
+        ut = fix_history->firstvalue[i][layout.size * jj + layout.ut];
         break;
       }
   }
@@ -606,7 +594,7 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
                         contact_mass_scale(is_wall_type[atom->type[i]], is_wall_type[atom->type[j]],
                                            atom->rmass[i], atom->rmass[j]) *
                             force_per_mass_acceleration,
-                        kin, law.mu > 0.0 ? &ut_copy : nullptr, 0.0);
+                        kin, law.material.mu > 0.0 ? &ut_copy : nullptr, 0.0);
   fforce = fc.fn / r;
   svector[0] = fc.ft;
   svector[1] = kin.delta;

@@ -1,12 +1,14 @@
 /* -*- c++ -*- ----------------------------------------------------------
    pair_style gran/mn: the Mitarai-Nakanishi 2D linear spring-dashpot law.
-   LAMMPS glue only; the law itself is in mn_contact.h.
+   The LAMMPS side of the law (neighbour history, bumps, checks, restart files); the law
+   itself is in mn_contact.h.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_PAIR_GRAN_MN_H
 #define LMP_PAIR_GRAN_MN_H
 
 #include "granmn_compat.h"
+#include "granmn_glue.h"
 #include "pair.h"
 
 #include "mn_contact.h"
@@ -38,22 +40,12 @@ class PairGranMN : public Pair {
 
   // The law as derived for the current settings; the wall fix takes it from here.
   const mn::Law &contact_law() const { return law; }
-  const mn::Material &contact_material() const { return material; }
 
  private:
-  mn::Material material;
-  mn::Options options;
   mn::Law law;
   std::vector<int> wall_types;       // types of immobile boundary elements (bumps)
   std::vector<char> is_wall_type;    // per type, 1..ntypes
-  int history;                       // 1: per-pair history kept
-  int size_history;                  // values per contact in the neighbor history
-  // Where each part of a contact's history sits (-1: not kept): u_t (mu > 0), the previous
-  // v_t that Adams-Bashforth 2's rule for u_t needs (mu > 0 under fix nve/ab2), then fix
-  // contacts/mn's record (if defined).
-  struct HistoryLayout {
-    int ut = -1, vt_previous = -1, record = -1, size = 0;
-  } layout;
+  granmn::ContactLayout layout;      // of a contact's neighbor history (none: size 0)
   mn::Integrator integrator = mn::Integrator::VelocityVerlet;    // the run's, found at init_style
   int restart_history_size;          // per-pair history size in the restart read, -1 if none
   class FixContactsMN *counters;     // nullptr unless fix contacts/mn is defined
@@ -66,7 +58,7 @@ class PairGranMN : public Pair {
   class FixNeighHistory *fix_history;
 
   void allocate();
-  void derive_law();
+  void publish_law();
   void check_wall_types();
   void check_wall_types_not_integrated();
   void update_exclusions();

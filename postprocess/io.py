@@ -11,13 +11,14 @@ class DataError(Exception):
     """A point's output is missing, truncated or inconsistent."""
 
 
+# The per-atom columns of fix contacts/mn in its documented order (docs/fix_contacts_mn.rst):
+# counts.txt's header names them by number (f_c[1] ...). The cumulative ones grow over the
+# counters' window; contacts_now is a count at one moment.
+CUMULATIVE_COUNTERS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary",
+                       "time_multiple")
+COUNTER_COLUMNS = CUMULATIVE_COUNTERS + ("contacts_now",)
 # the columns of energy.txt the analysis uses
-ENERGY_COLUMNS = ("step", "e_trans", "e_rot", "e_total", "begun_disk", "begun_boundary",
-                  "time_disk", "time_boundary", "time_multiple", "contacts_now", "window")
-# counts.txt's header names the per-atom columns of fix contacts/mn by number (f_c[1] ...);
-# their meaning is the fix's documented column order (docs/fix_contacts_mn.rst)
-COUNTER_COLUMNS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary",
-                   "time_multiple", "contacts_now")
+ENERGY_COLUMNS = ("step", "e_trans", "e_rot", "e_total", *COUNTER_COLUMNS, "window")
 ROW_COLUMNS = ("id_i", "id_j", "kind", "start", "duration", "vn_start", "vn_end", "peak")
 # the codes of contacts.txt's kind column: a contact between two disks, of a disk with the
 # boundary (docs/fix_contacts_mn.rst)

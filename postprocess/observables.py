@@ -3,7 +3,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .io import DataError, Point
+from .io import CUMULATIVE_COUNTERS, DataError, Point
 from .scenes import SCENES, scene
 from .selection import Selection, in_energy_range, steady_parts
 from .signals import dominant_period
@@ -21,8 +21,6 @@ N_BLOCKS = 5
 # values are the frictional deck's defaults.
 REST_ENERGY, REST_TIME = 1e-5, 10.0
 
-COUNTERS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary", "time_multiple")
-
 
 def bottom_layer(counts):
     """Disks that touched the boundary during the window (frictional flow normalisation)."""
@@ -35,7 +33,7 @@ def span_rates(energy, spans, n_particles, n_boundary):
     length = sum(energy["time"][b - 1] - energy["time"][a] for a, b in spans)
     if length <= 0:
         raise DataError("the selected spans have no length")
-    delta = {k: sum(energy[k][b - 1] - energy[k][a] for a, b in spans) for k in COUNTERS}
+    delta = {k: sum(energy[k][b - 1] - energy[k][a] for a, b in spans) for k in CUMULATIVE_COUNTERS}
     return {
         "N_c": delta["begun_disk"] / (n_particles * length),
         "N_w": delta["begun_boundary"] / (n_boundary * length),

@@ -2,6 +2,7 @@
 // integrated far more finely than any production run (RK4, dt = tau/2e4), so that the measured
 // restitution and duration must equal the analytic ones to within the integration error.
 #include "mn_contact.h"
+#include "mn_integration.h"
 
 #include <gtest/gtest.h>
 
@@ -64,7 +65,7 @@ Rates rates(const mn::Law &law, const Scene &s)
   const mn::Kinematics k = contact_kinematics(s, mass_scale);
   if (k.delta <= 0.0) return d;
   double ut = s.ut;
-  const mn::Force f = mn::contact_force(law, mass_scale, k, law.mu > 0 ? &ut : nullptr, 0.0);
+  const mn::Force f = mn::contact_force(law, mass_scale, k, law.material.mu > 0 ? &ut : nullptr, 0.0);
   accelerations(s, k, f, d);
   d.dut = k.vt;
   return d;
@@ -141,7 +142,7 @@ double integrate(const mn::Law &law, Scene &s, double dt, mn::Integrator integra
       s.ut = vt_previous = 0.0;
       return d;
     }
-    const mn::Force f = mn::contact_force(law, mass_scale, k, law.mu > 0 ? &s.ut : nullptr,
+    const mn::Force f = mn::contact_force(law, mass_scale, k, law.material.mu > 0 ? &s.ut : nullptr,
                                           dt_history, integrator, ab2 ? &vt_previous : nullptr);
     accelerations(s, k, f, d);
     return d;
@@ -336,7 +337,7 @@ TEST(Force, NoFrictionNeedsNoHistory)
   const mn::Kinematics k = mn::kinematics(1.0, 0.0, 1.0, 1.01, -0.5, 0.3, 0.1);
   const mn::Force f = mn::contact_force(law, 1.0, k, nullptr, 1e-4);
   EXPECT_EQ(f.ft, 0.0);
-  EXPECT_NEAR(f.fn, law.kn * 0.01 + law.eta_n * 0.5, 1e-9);
+  EXPECT_NEAR(f.fn, law.material.kn * 0.01 + law.eta_n * 0.5, 1e-9);
 }
 
 TEST(Force, LiteralHistoryKeepsGrowingWhileSlidingCutbackDoesNot)
@@ -404,7 +405,7 @@ TEST(Stability, ReportedLimitSeparatesDecayFromGrowth)
   for (mn::Integrator integrator :
        {mn::Integrator::VelocityVerlet, mn::Integrator::AdamsBashforth2}) {
     const mn::Law law = mn::derive({1e5, 0.7, 0.7, 0.5});
-    const double cases[][2] = {{2 * law.kn, 2 * law.eta_n}, {6 * law.kt, 6 * law.eta_t}};
+    const double cases[][2] = {{2 * law.material.kn, 2 * law.eta_n}, {6 * law.kt, 6 * law.eta_t}};
     for (const auto &mode : cases) {
       const double dt_max = mn::max_stable_dt(integrator, mode[0], mode[1]);
       ASSERT_GT(dt_max, 0.0);
@@ -428,7 +429,7 @@ TEST(Stability, LawLimitIsTheStiffestModeAndAboveTheRecommendedStep)
 {
   const mn::Law law = mn::derive({2e5, 0.7, 0.7, 0.5});
   const double dt_max = mn::max_stable_dt(law, mn::Integrator::VelocityVerlet);
-  EXPECT_LE(dt_max, mn::max_stable_dt(mn::Integrator::VelocityVerlet, 2 * law.kn, 2 * law.eta_n));
+  EXPECT_LE(dt_max, mn::max_stable_dt(mn::Integrator::VelocityVerlet, 2 * law.material.kn, 2 * law.eta_n));
   EXPECT_GT(dt_max, law.tau_c / 10);    // the paper's tau_c/100 is far inside
   EXPECT_LT(dt_max, law.tau_c);
 }
@@ -468,7 +469,7 @@ TEST(Stability, AdamsBashforthOnAnUndampedModeIsLimitedByTheGrowthOverAContact)
   EXPECT_FALSE(mn::amplifies_undamped_mode(law, mn::Integrator::VelocityVerlet));
   const double dt_max = mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2);
   EXPECT_GT(dt_max, law.tau_c / 100);
-  const double w2 = 2 * law.kn;
+  const double w2 = 2 * law.material.kn;
   auto growth_over_a_contact = [&](double dt) {
     double s[3] = {1.0, 0.0, -w2}, next[3];
     const int steps = (int) std::ceil(mn::PI / std::sqrt(w2) / dt);
