@@ -39,9 +39,10 @@ REALISATIONS = 40
 CLAIMS = [c for c in load_claims() if c["measure"] != "limit_decision"]
 
 
-def study(claim, value, rng):
+def study(claim, value, rng, noise=None):
     """A scene's rows over its preset grid in which the claim's measure takes `value`, with
-    the measured noise (the other quantities 1, exact)."""
+    the measured noise or, if given, a relative error `noise` per point (the other quantities
+    1, exact)."""
     kn = GRIDS[claim["scene"]]
     scene, q, kind = claim["scene"], claim["quantity"], claim["measure"]
     rows = [{"kn": k, "label": ""} for k in kn]
@@ -69,7 +70,7 @@ def study(claim, value, rng):
     elif kind == "max_abs_deviation":
         exact = claim["reference"] + value * np.sin(np.arange(len(kn)))
         exact[np.argmax(np.abs(exact - claim["reference"]))] = claim["reference"] + value
-    sigma = NOISE[(scene, q)]
+    sigma = NOISE[(scene, q)] if noise is None else noise
     scatter = sigma * SCATTER.get((scene, q), 1.0)
     for o, v in zip(rows, exact):
         o[q] = v * (1 + scatter * rng.standard_normal())
@@ -77,11 +78,12 @@ def study(claim, value, rng):
     return rows
 
 
-def verdicts(claim, value):
+def verdicts(claim, value, noise=None):
     rng = np.random.default_rng(2003)
     out = []
     for _ in range(REALISATIONS):
-        (_, _, _, status), = evaluate({claim["scene"]: study(claim, value, rng)}, [claim])
+        rows = study(claim, value, rng, noise)
+        (_, _, _, status), = evaluate({claim["scene"]: rows}, [claim])
         out.append(status)
     return out
 
@@ -91,6 +93,14 @@ def verdicts(claim, value):
     if c["id"] in TOO_NOISY else c for c in CLAIMS], ids=[c["id"] for c in CLAIMS])
 def test_the_papers_physics_passes(claim):
     results = verdicts(claim, claim["expected"])
+    assert results.count("pass") >= 0.8 * REALISATIONS, results
+
+
+@pytest.mark.parametrize("claim_id", sorted(TOO_NOISY))
+def test_a_claim_too_noisy_here_passes_the_papers_physics_on_precise_data(claim_id):
+    """What the studies' noise prevents, better data would give: at 20 % per point."""
+    claim, = [c for c in CLAIMS if c["id"] == claim_id]
+    results = verdicts(claim, claim["expected"], noise=0.2)
     assert results.count("pass") >= 0.8 * REALISATIONS, results
 
 
