@@ -213,7 +213,7 @@ inline mn::Law checked_law(LAMMPS_NS::LAMMPS *lmp, const char *command,
 {
   const char *problem = mn::material_error(material);
   if (problem) lmp->error->all(FLERR, "Illegal {} command: {}", command, problem);
-  const mn::Law law = mn::derive(material, options);
+  const mn::Law law = mn::derive(material, options, mn::DISC_Q);    // the styles require dimension 2
   problem = mn::law_error(law);
   if (problem)
     lmp->error->all(FLERR, "Illegal {} command: {} (kn = {})", command, problem, material.kn);

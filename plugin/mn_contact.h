@@ -6,7 +6,9 @@
 // to i, t = (-n_y, n_x), delta > 0 is the overlap, v_n = n.v_ij and v_t = t.v_ij with the full
 // radii as lever arms. The force on i is fn*n + ft*t and the torque on i is -radius_i*ft.
 // A contact's mass scale is 2M = 2 m_i m_j/(m_i+m_j) for two mobile disks and m_i against the
-// boundary; the force is the mass scale times an acceleration.
+// boundary; the force is the mass scale times an acceleration. The mapping from (k_n, e, beta) to
+// the coefficients holds for any shape of inertia, through q = 1 + m r^2/I (docs/model.md
+// section 3.1): 3 for the paper's discs, 7/2 for solid spheres.
 #ifndef MN_CONTACT_H
 #define MN_CONTACT_H
 
@@ -30,10 +32,34 @@ struct Options {
   bool coulomb_cutback = false;   // Cundall-Strack: cut u_t back to the Coulomb limit while sliding
 };
 
+// The shape of the particles' inertia, q = 1 + m r^2/I with r the contact's lever arm (the
+// radius): a sticking contact's tangential motion obeys the normal one's equation with 2 k_n,
+// 2 eta_n replaced by 2q k_t, 2q eta_t (docs/model.md section 3.1).
+constexpr double DISC_Q = 3.0;            // I = m r^2/2: the paper's 2D discs
+constexpr double SOLID_SPHERE_Q = 3.5;    // I = 2 m r^2/5
+
+// The q of a contact of particles i and j (mass m, lever arm r, moment of inertia I):
+// 1 + M (r_i^2/I_i + r_j^2/I_j) with M = m_i m_j/(m_i + m_j), the ratio of the reduced mass to
+// the tangential effective mass. Two particles of the same q have that q whatever their sizes
+// and masses.
+inline double pair_q(double mi, double ri, double inertia_i, double mj, double rj,
+                     double inertia_j)
+{
+  return 1.0 + mi * mj / (mi + mj) * (ri * ri / inertia_i + rj * rj / inertia_j);
+}
+
+// Against the boundary (mass scale m_i, a partner that does not move): the mobile particle's own
+// q, pair_q's limit for m_j, I_j -> infinity.
+inline double boundary_q(double mi, double ri, double inertia_i)
+{
+  return 1.0 + mi * ri * ri / inertia_i;
+}
+
 // A material, its options and the coefficients derived from them (docs/model.md section 3).
 struct Law {
   Material material;
   Options options;
+  double q;   // the shape of inertia the tangential coefficients are derived for
   double eta_n, kt, eta_t;
   double tau_c;   // duration of a binary normal collision
   double tau_w;   // duration of a normal collision with the boundary (mass scale m_i)
@@ -60,18 +86,22 @@ inline const char *law_error(const Law &law)
   return nullptr;
 }
 
-inline Law derive(const Material &m, const Options &options = Options())
+// The coefficients for particles of shape q (DISC_Q: the paper's law, which the 2D styles use).
+inline Law derive(const Material &m, const Options &options = Options(), double q = DISC_Q)
 {
   Law law;
   const double ln_e = std::log(m.e);
   law.material = m;
   law.options = options;
+  law.q = q;
   // eta_n = sqrt(2 kn / ((pi/ln e)^2 + 1)), written so that e = 1 gives 0 without 0/0.
   law.eta_n = std::sqrt(2.0 * m.kn * ln_e * ln_e / (PI * PI + ln_e * ln_e));
   law.tau_c = std::sqrt((PI * PI + ln_e * ln_e) / (2.0 * m.kn));
-  law.eta_t = -std::log(m.beta) / (3.0 * law.tau_c);
-  // Tangential oscillation of a sticking contact has the normal one's frequency.
-  law.kt = (2.0 * m.kn - law.eta_n * law.eta_n + 9.0 * law.eta_t * law.eta_t) / 6.0;
+  // beta = exp(-q eta_t tau_c): the sticking tangential mode decays at rate q eta_t.
+  law.eta_t = -std::log(m.beta) / (q * law.tau_c);
+  // Tangential oscillation of a sticking contact has the normal one's frequency:
+  // 2q kt - q^2 eta_t^2 = 2 kn - eta_n^2.
+  law.kt = (2.0 * m.kn - law.eta_n * law.eta_n + q * q * law.eta_t * law.eta_t) / (2.0 * q);
   law.tau_w = PI / std::sqrt(m.kn - 0.25 * law.eta_n * law.eta_n);
   law.e_w = std::exp(-0.5 * law.eta_n * law.tau_w);
   return law;

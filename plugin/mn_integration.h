@@ -127,8 +127,8 @@ inline bool amplifies_undamped_mode(const Law &law, Integrator integrator)
 
 // The modes of a contact whose stability bounds the step: normal and (if mu > 0) sticking
 // tangential motion, for a pair of mobile disks (mass scale 2M) and against the boundary (mass
-// scale m_i). Uses I = m sigma^2/8 (disks), for which the tangential equation does not depend
-// on masses.
+// scale m_i), for particles of the law's shape q, for which the tangential equation does not
+// depend on masses (docs/model.md section 3.1).
 enum class Mode { NormalPair, NormalBoundary, TangentialPair, TangentialBoundary };
 
 inline const char *mode_name(Mode mode)
@@ -158,8 +158,8 @@ inline StabilityLimit stability_limit(const Law &law, Integrator integrator)
   };
   consider(law.material.kn, law.eta_n, Mode::NormalBoundary);
   if (law.material.mu > 0.0) {
-    consider(6.0 * law.kt, 6.0 * law.eta_t, Mode::TangentialPair);
-    consider(3.0 * law.kt, 3.0 * law.eta_t, Mode::TangentialBoundary);
+    consider(2.0 * law.q * law.kt, 2.0 * law.q * law.eta_t, Mode::TangentialPair);
+    consider(law.q * law.kt, law.q * law.eta_t, Mode::TangentialBoundary);
   }
   return limit;
 }
