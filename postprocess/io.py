@@ -19,6 +19,7 @@ CUMULATIVE_COUNTERS = ("begun_disk", "begun_boundary", "time_disk", "time_bounda
 COUNTER_COLUMNS = CUMULATIVE_COUNTERS + ("contacts_now",)
 # the columns of energy.txt the analysis uses
 ENERGY_COLUMNS = ("step", "e_trans", "e_rot", "e_total", *COUNTER_COLUMNS, "window")
+# the columns of fix contacts/mn's rows (contacts.txt, whose header names them f_c[1] ...)
 ROW_COLUMNS = ("id_i", "id_j", "kind", "start", "duration", "vn_start", "vn_end", "peak")
 # the codes of contacts.txt's kind column: a contact between two disks, of a disk with the
 # boundary (docs/fix_contacts_mn.rst)
@@ -215,21 +216,32 @@ def read_profile(point):
 
 
 def read_rows(point):
-    """contacts.txt (dump local of fix contacts/mn) as a dict of arrays; empty if none."""
+    """contacts.txt (dump local of fix contacts/mn) as a dict of arrays, its columns named by
+    each snapshot's own header (ITEM: ENTRIES f_c[1] ...); empty if none."""
     path = Path(point) / "contacts.txt"
     if not path.exists():
         raise DataError(f"{path}: missing (run the deck with -var rows yes)")
-    rows, expect = [], None
+    fix_columns = {f"f_c[{k}]": name for k, name in enumerate(ROW_COLUMNS, 1)}
+    rows, columns = [], None
     for number, line in enumerate(path.read_text().splitlines(), 1):
         if line.startswith("ITEM:"):
-            expect = line.startswith("ITEM: ENTRIES")
+            columns = None
+            if line.startswith("ITEM: ENTRIES"):
+                names = line.split()[2:]
+                missing = [n for n in fix_columns if n not in names]
+                if missing:
+                    raise DataError(f"{path}:{number}: the header {' '.join(names)} names no "
+                                    f"column {', '.join(missing)}")
+                columns = [names.index(n) for n in fix_columns]
+                width = len(names)
             continue
-        if not expect:
+        if columns is None:
             continue
         words = line.split()
-        if len(words) != len(ROW_COLUMNS):
-            raise DataError(f"{path}:{number}: {len(words)} columns, expected {len(ROW_COLUMNS)}")
-        rows.append(numbers(path, number, words))
+        if len(words) != width:
+            raise DataError(f"{path}:{number}: {len(words)} columns, the header names {width}")
+        values = numbers(path, number, words)
+        rows.append([values[k] for k in columns])
     data = np.array(rows).reshape(-1, len(ROW_COLUMNS))
     return {name: data[:, k] for k, name in enumerate(ROW_COLUMNS)}
 

@@ -218,12 +218,39 @@ def test_broken_profile_names_the_file_and_the_problem(tmp_path, damage, message
         read_profile(tmp_path)
 
 
+def contact_rows_snapshot(names, entries):
+    """One snapshot of a dump local as LAMMPS writes it, its columns named `names`."""
+    return ("ITEM: TIMESTEP\n100\nITEM: NUMBER OF ENTRIES\n" + f"{len(entries)}\n" +
+            "ITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n0 1\n" + f"ITEM: ENTRIES {' '.join(names)}\n" +
+            "".join(line + "\n" for line in entries))
+
+
+ROW_NAMES = [f"f_c[{k}]" for k in range(1, 9)]
+
+
 def test_broken_contact_rows_name_the_line(tmp_path):
     from postprocess.io import read_rows
     (tmp_path / "contacts.txt").write_text(
-        "ITEM: TIMESTEP\n100\nITEM: NUMBER OF ENTRIES\n1\nITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n"
-        "0 1\nITEM: ENTRIES c_1 c_2\n1 2 1 0.1 0.005 -1 0.7 nan?\n")
+        contact_rows_snapshot(ROW_NAMES, ["1 2 1 0.1 0.005 -1 0.7 nan?"]))
     with pytest.raises(DataError, match=r"contacts.txt:10: not a number"):
+        read_rows(tmp_path)
+
+
+def test_contact_rows_are_read_by_their_header(tmp_path):
+    """The columns by the dump's own names, in whatever order a deck dumps them; a header
+    without one of the fix's columns is refused, not read by position."""
+    from postprocess.io import read_rows
+    order = [7, 0, 1, 2, 3, 4, 5, 6]    # the peak overlap first
+    row = [1, 2, 1, 0.1, 0.005, -1, 0.7, 0.01]
+    (tmp_path / "contacts.txt").write_text(
+        contact_rows_snapshot([ROW_NAMES[k] for k in order], [" ".join(str(row[k]) for k in order)])
+        + contact_rows_snapshot(ROW_NAMES, [" ".join(str(v) for v in row)]))
+    rows = read_rows(tmp_path)
+    assert list(rows["peak"]) == [0.01, 0.01] and list(rows["id_j"]) == [2, 2]
+    assert list(rows["duration"]) == [0.005, 0.005]
+    (tmp_path / "contacts.txt").write_text(
+        contact_rows_snapshot(ROW_NAMES[:7] + ["c_other"], [" ".join(str(v) for v in row)]))
+    with pytest.raises(DataError, match=r"contacts.txt:9: the header .* names no column f_c\[8\]"):
         read_rows(tmp_path)
 
 
