@@ -3,6 +3,7 @@
 // restitution and duration must equal the analytic ones to within the integration error.
 #include "mn_contact.h"
 #include "mn_integration.h"
+#include "rk4_contact.h"
 
 #include <gtest/gtest.h>
 
@@ -96,32 +97,8 @@ double overlap(const Scene &q)
 // scene after separation.
 double collide(const mn::Law &law, Scene &s, double tau, double resolution = 2e4)
 {
-  const double h = tau / resolution;
-  double t = 0.0, t_start = -1.0;
-  for (int step = 0; step < 4000000; step++) {
-    const double before = overlap(s);
-    const Rates k1 = rates(law, s);
-    const Rates k2 = rates(law, advance(s, k1, 0.5 * h));
-    const Rates k3 = rates(law, advance(s, k2, 0.5 * h));
-    const Rates k4 = rates(law, advance(s, k3, h));
-    Rates sum;
-    for (int i = 0; i < 2; i++) {
-      sum.vx[i] = (k1.vx[i] + 2 * k2.vx[i] + 2 * k3.vx[i] + k4.vx[i]) / 6;
-      sum.vy[i] = (k1.vy[i] + 2 * k2.vy[i] + 2 * k3.vy[i] + k4.vy[i]) / 6;
-      sum.ax[i] = (k1.ax[i] + 2 * k2.ax[i] + 2 * k3.ax[i] + k4.ax[i]) / 6;
-      sum.ay[i] = (k1.ay[i] + 2 * k2.ay[i] + 2 * k3.ay[i] + k4.ay[i]) / 6;
-      sum.alpha[i] = (k1.alpha[i] + 2 * k2.alpha[i] + 2 * k3.alpha[i] + k4.alpha[i]) / 6;
-    }
-    sum.dut = (k1.dut + 2 * k2.dut + 2 * k3.dut + k4.dut) / 6;
-    s = advance(s, sum, h);
-    const double after = overlap(s);
-    if (before <= 0 && after > 0) t_start = t + h * (-before) / (after - before);
-    t += h;
-    if (t_start >= 0 && before > 0 && after <= 0)
-      return t - h + h * before / (before - after) - t_start;
-  }
-  ADD_FAILURE() << "contact never ended";
-  return 0.0;
+  return rk4_contact_duration(
+      s, tau / resolution, [&law](const Scene &q) { return rates(law, q); }, advance, overlap);
 }
 
 // The contact as LAMMPS integrates it: fix nve/sphere disc (velocity Verlet) or fix nve/ab2 moves
