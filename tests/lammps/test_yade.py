@@ -116,7 +116,7 @@ def test_yade_impacts_follow_the_analysis(fresh, case):
     ref = fresh[case]
     assert impact_problems(ref) == []
     for name in yc.IMPACTS:     # the contacts stuck, and stayed in their plane
-        assert ref[name]["beta_perp"] < 0.01
+        assert ref[name]["beta_perp"] < 1e-3  # measured <= 3.3e-4: the twist over tc
 
 
 @needs_yade
