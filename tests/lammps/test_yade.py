@@ -135,14 +135,19 @@ def test_yade_differs_from_our_law_by_the_clamp(fresh, case):
 
 
 @needs_yade
-def test_rolling_down_an_incline(fresh):
+def test_rolling_and_sliding_down_an_incline(fresh):
+    """mu = 0.5: rolls without slip at 5/7 g sin(theta); mu = 0.05 < (2/7) tan(theta): slides
+    at g (sin - mu cos), its spin driven by mu m g cos(theta)."""
     for ref in fresh.values():
-        r = ref["rolling"]
-        assert r["in_contact"]
+        r, s = ref["rolling"], ref["sliding"]
+        assert r["in_contact"] and s["in_contact"]
         assert r["max_slip_speed"] < 1e-6 * r["v_end"] + 1e-9
+        assert s["max_slip_speed"] > 0.1 * s["v_end"]
         a = yc.rolling_acceleration(r["theta"], r["g"])
         assert a == pytest.approx(5.0 / 7.0 * math.sin(r["theta"]), rel=1e-14)
-        assert r["acceleration"] == pytest.approx(a, rel=yc.ROLLING_RTOL)
+        assert yc.incline(r["theta"], r["mu"])["rolls"]
+        assert not yc.incline(s["theta"], s["mu"])["rolls"]
+        assert yc.incline_problems(r) == [] and yc.incline_problems(s) == []
 
 
 @needs_yade
@@ -153,7 +158,8 @@ def test_the_committed_numbers_are_yades(fresh, committed):
         old = committed[name]
         for scene in yc.IMPACTS:
             assert yc.check_impact(ref[scene], old[scene], STEPS_PER_TC, TC) == []
-        assert ref["rolling"]["acceleration"] == pytest.approx(old["rolling"]["acceleration"],
+        for scene in ("rolling", "sliding"):
+            assert ref[scene]["acceleration"] == pytest.approx(old[scene]["acceleration"],
                                                                rel=yc.ROLLING_RTOL)
 
 
@@ -186,13 +192,17 @@ def test_mutated_mappings_fail(committed, mutation):
         assert impact_problems(ref, pred=pred) != []
 
 
-def test_the_committed_numbers_pass_and_a_slipping_roll_fails(committed):
+def test_the_committed_numbers_pass_and_wrong_inclines_fail(committed):
     for ref in committed.values():
         assert mapping_problems(ref) == []
         assert impact_problems(ref) == []
-        slipping = dict(ref["rolling"], acceleration=ref["rolling"]["acceleration"] * 1.001)
-        a = yc.rolling_acceleration(slipping["theta"], slipping["g"])
-        assert not abs(slipping["acceleration"] - a) <= yc.ROLLING_RTOL * a
+        assert yc.incline_problems(ref["rolling"]) == []
+        assert yc.incline_problems(ref["sliding"]) == []
+        # 0.1 % off, a rolling sphere's numbers given as the sliding one's, and the reverse
+        off = dict(ref["rolling"], acceleration=ref["rolling"]["acceleration"] * 1.001)
+        assert yc.incline_problems(off) != []
+        assert yc.incline_problems(dict(ref["rolling"], mu=ref["sliding"]["mu"])) != []
+        assert yc.incline_problems(dict(ref["sliding"], mu=ref["rolling"]["mu"])) != []
 
 
 # ------------------------------------------------ the hook for the LAMMPS 3D side
@@ -207,9 +217,12 @@ def our_law_numbers(ref, steps_per_tc, q=yc.SOLID_SPHERE_Q, clamp=False):
         forces = yc.mn_forces(law, s["m1"], s["m2"]) if "m1" in s else yc.mn_forces(law, s["m"],
                                                                                      None)
         out[name] = yc.predict(**forces, m_n=m_n, m_t=m_t, clamp=clamp)
-    a = yc.rolling_acceleration(ref["rolling"]["theta"], ref["rolling"]["g"])
-    out["rolling"] = {"theta": ref["rolling"]["theta"], "g": ref["rolling"]["g"],
-                      "acceleration": a}
+    for scene in ("rolling", "sliding"):
+        m = ref[scene]
+        p = yc.incline(m["theta"], m["mu"], m["g"], m["r"], q)
+        out[scene] = {k: m[k] for k in ("theta", "mu", "g", "r")}
+        out[scene].update(acceleration=p["acceleration"],
+                          angular_acceleration=p["angular_acceleration"])
     return out
 
 
@@ -225,7 +238,7 @@ def test_hook_accepts_our_law_and_rejects_the_disc_mapping(committed):
         # an engine with Yade's clamp taken for ours: e off by the clamp
         problems = yc.compare_engine(our_law_numbers(ref, 200.0, clamp=True), ref, 200.0)
         assert any(p.startswith("pair_equal (other engine): e") for p in problems), problems
-        # a sphere rolling like a disc (a = 2/3 g sin theta)
-        wrong = our_law_numbers(ref, 200.0)
-        wrong["rolling"]["acceleration"] *= (2.0 / 3.0) / (5.0 / 7.0)
-        assert any("rolling" in p for p in yc.compare_engine(wrong, ref, 200.0))
+        # spheres rolling and sliding like discs (a = 2/3 g sin theta, a disc's spin-up)
+        problems = yc.compare_engine(our_law_numbers(ref, 200.0, q=3.0), ref, 200.0)
+        assert any(p.startswith("rolling (other engine)") for p in problems), problems
+        assert any(p.startswith("sliding (other engine)") for p in problems), problems

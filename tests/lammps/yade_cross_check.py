@@ -139,6 +139,31 @@ def rolling_acceleration(theta, g=1.0, q=SOLID_SPHERE_Q):
     return g * math.sin(theta) * (q - 1.0) / q
 
 
+def incline(theta, mu, g=1.0, r=0.5, q=SOLID_SPHERE_Q):
+    """A sphere released at rest on a plane inclined by theta: it rolls without slip at
+    rolling_acceleration if mu >= tan(theta)/q, the friction needed being g sin(theta)/q; else it
+    slides with friction mu m g cos(theta) against the motion: a = g (sin - mu cos), and the
+    spin at mu m g cos(theta) r / I = mu g cos(theta) (q - 1)/r."""
+    if mu * q >= math.tan(theta):
+        a = rolling_acceleration(theta, g, q)
+        return {"rolls": True, "acceleration": a, "angular_acceleration": a / r}
+    return {"rolls": False, "acceleration": g * (math.sin(theta) - mu * math.cos(theta)),
+            "angular_acceleration": mu * g * math.cos(theta) * (q - 1.0) / r}
+
+
+def incline_problems(measured, who="", rtol=None):
+    """Problems of a measured incline record ('rolling' or 'sliding' of yade_reference.py)."""
+    rtol = ROLLING_RTOL if rtol is None else rtol
+    p = incline(measured["theta"], measured["mu"], measured.get("g", 1.0),
+                measured.get("r", 0.5))
+    problems = []
+    for k in ("acceleration", "angular_acceleration"):
+        if k in measured and not abs(measured[k] - p[k]) <= rtol * abs(p[k]):
+            problems.append(f"{who} mu {measured['mu']}: {k} {measured[k]:.8g}, predicted "
+                            f"{p[k]:.8g} ({'rolling' if p['rolls'] else 'sliding'})")
+    return problems
+
+
 # ------------------------------------------------------------------------------------ tolerances
 def tolerance(steps_per_tc, quantity):
     """Yade's NewtonIntegrator is leapfrog: the force at step n sees the velocity of half a step
@@ -193,7 +218,7 @@ def check_impact(measured, predicted, steps_per_tc, tau_unit):
 
 def compare_engine(other, ref, other_steps_per_tc, clamp=False):
     """THE HOOK for the LAMMPS 3D side (not implemented here). `other` is
-    {impact: {'e': .., 'beta': .., 'tau': ..}, 'rolling': {'acceleration': .., 'theta': ..}}
+    {impact: {'e': .., 'beta': .., 'tau': ..}, 'rolling': {..}, 'sliding': {..}}
     measured by another engine with the same (tc, en, et) = (tau_c, e, beta) as the Yade
     reference `ref` (run_reference's JSON), impacts named as in IMPACTS and set up as in
     yade_reference.py (the facet is a plane like the wall). It returns a list of problems
@@ -205,7 +230,9 @@ def compare_engine(other, ref, other_steps_per_tc, clamp=False):
       side of the comparison is itself checked;
     - the difference other - Yade against the predicted difference (the clamp's effect, 0 when
       clamp=True), within the sum of both tolerances;
-    - the rolling acceleration of both against 5/7 g sin(theta)."""
+    - on the incline ('rolling', mu = 0.5, and 'sliding', mu = 0.05: {theta, mu, g, r,
+      acceleration, angular_acceleration}) both against `incline`: rolling at 5/7 g sin(theta),
+      sliding at g (sin - mu cos)."""
     problems = []
     pred = predictions(ref)
     for name in IMPACTS:
@@ -227,19 +254,18 @@ def compare_engine(other, ref, other_steps_per_tc, clamp=False):
             if not abs(diff - expect) <= tol:
                 problems.append(f"{name}: {q} other - Yade = {diff:.4g}, predicted "
                                 f"{expect:.4g} (tolerance {tol:.3g})")
-    if "rolling" in other:
-        for who, r in (("other engine", other["rolling"]), ("Yade", ref["rolling"])):
-            a = rolling_acceleration(r["theta"], r.get("g", 1.0))
-            if not abs(r["acceleration"] - a) <= ROLLING_RTOL * a:
-                problems.append(f"rolling ({who}): acceleration {r['acceleration']:.6g}, "
-                                f"5/7 g sin(theta) = {a:.6g}")
+    for scene in ("rolling", "sliding"):
+        if scene in other:
+            problems += incline_problems(other[scene], f"{scene} (other engine)")
+            problems += incline_problems(ref[scene], f"{scene} (Yade)")
     return problems
 
 
-# The rolling sphere's acceleration is fitted over ~400 tc of steady rolling, where the
+# The incline's accelerations are fitted over 200..400 tc of steady rolling or sliding, where the
 # integration error of a constant-force motion is nil and the only deviation is the damped
 # tangential oscillation of the start (its velocity amplitude ~ (2/7) g sin(theta) tc / pi):
-# 1e-4 relative is ample, and 2/7 (a disc's 2/3, or a slipping sphere) is far outside it.
+# 1e-4 relative is ample (measured: 2e-9), and a disc's 2/3 (or sliding for rolling) is far
+# outside it.
 ROLLING_RTOL = 1e-4
 
 

@@ -9,7 +9,8 @@
 #   wall: a sphere hitting a fixed plane (a Wall body: mass 0) obliquely, spinning;
 #   facet: the same against a large Facet (mass 0);
 #   rolling: a sphere resting on a plane under gravity tilted by theta (the plane inclined),
-#            friction large enough to roll without slip: its centre's acceleration;
+#            friction large enough to roll without slip (mu = 0.5): its centre's acceleration;
+#   sliding: the same with mu = 0.05 < (2/7) tan(theta): it slides from the start;
 # each impact with e = -v_n'/v_n, beta = -v_t'.v_t/|v_t|^2 (v_t: the tangential velocity of the
 # contact points), the duration of the geometric overlap (entry and exit times from the free
 # flights before and after, so not rounded to dt) and the force-carrying duration (steps with a
@@ -175,10 +176,18 @@ def plane(kind):
     }
 
 
+def slope(ts, ys):
+    """Least-squares slope of ys(ts)."""
+    tm, ym = sum(ts) / len(ts), sum(ys) / len(ys)
+    return (sum((a - tm) * (b - ym) for a, b in zip(ts, ys))
+            / sum((a - tm) ** 2 for a in ts))
+
+
 def rolling(mu=0.5, samples=40):
     """The plane z = 0 inclined by THETA: gravity (g sin, 0, -g cos). The sphere starts at rest
-    at its static overlap (no bounce); the slope x(t) of v_x over the second half of the run is
-    its acceleration. Rolls without slip while mu > (2/7) tan(theta). 400 tc: the tangential
+    at its static overlap (no bounce); the slopes of v_x and of the spin omega_y over the second
+    half of the run are its accelerations. It rolls without slip while mu > (2/7) tan(theta),
+    and slides (the contact at the Coulomb limit throughout) below. 400 tc: the tangential
     oscillation of the start has decayed by exp(-400 |ln et| / 2) long before the fit."""
     duration = 400 * TC
     g = 1.0
@@ -191,25 +200,26 @@ def rolling(mu=0.5, samples=40):
     S.pos = Vector3(0, 0, r - S.mass * g * math.cos(THETA) / kn)
     steps = int(round(duration / O.dt))
     per = steps // samples
-    ts, vs, slips = [], [], []
+    ts, vs, ws, slips = [], [], [], []
     for _ in range(samples):
         O.run(per, True)
         ts.append(O.time)
         vs.append(S.vel[0])
+        ws.append(S.angVel[1])
         slips.append(S.vel[0] - r * S.angVel[1])   # contact-point velocity (x) on the plane
     half = samples // 2
-    t, v = ts[half:], vs[half:]
-    tm, vm = sum(t) / len(t), sum(v) / len(v)
-    slope = sum((a - tm) * (b - vm) for a, b in zip(t, v)) / sum((a - tm) ** 2 for a in t)
-    return {"theta": THETA, "mu": mu, "g": g, "time": ts[-1], "v_end": vs[-1],
-            "acceleration": slope, "max_slip_speed": max(abs(x) for x in slips[half:]),
+    return {"theta": THETA, "mu": mu, "g": g, "r": r, "time": ts[-1], "v_end": vs[-1],
+            "acceleration": slope(ts[half:], vs[half:]),
+            "angular_acceleration": slope(ts[half:], ws[half:]),
+            "max_slip_speed": max(abs(x) for x in slips[half:]),
             "in_contact": O.interactions.has(w, s) and O.interactions[w, s].isReal}
 
 
 result = {"yade_version": yade.config.version,
           "tc": TC, "en": EN, "et": ET, "steps_per_tc": STEPS_PER_TC, "dt": TC / STEPS_PER_TC,
           "pair_equal": pair(0.5, 0.5), "pair_unequal": pair(0.5, 0.3),
-          "wall": plane("wall"), "facet": plane("facet"), "rolling": rolling()}
+          "wall": plane("wall"), "facet": plane("facet"), "rolling": rolling(0.5),
+          "sliding": rolling(0.05)}
 with open(OUT, "w") as f:
     json.dump(result, f, indent=1)
 print("yade_reference: wrote", OUT)
