@@ -9,7 +9,8 @@ Here:
 - Yade's measured e, beta, overlap and force durations of oblique, spinning impacts (equal and
   unequal spheres, a wall, a facet) are the analytic predictions for its law, within tolerances
   of 1 dt/tc (yade_cross_check.tolerance says why);
-- a sphere rolls down an incline at 5/7 g sin(theta);
+- a sphere rolls down an incline at 5/7 g sin(theta), and slides at g (sin - mu cos) where
+  mu < (2/7) tan(theta);
 - the hook for the LAMMPS 3D side, yade_cross_check.compare_engine, accepts numbers that follow
   this project's law and rejects a wrong mapping (every check here is shown to fail on one).
 The Yade runs are skipped with a message where `yade` is absent (scripts/setup.sh installs it);

@@ -168,10 +168,10 @@ def incline_problems(measured, who="", rtol=None):
 def tolerance(steps_per_tc, quantity):
     """Yade's NewtonIntegrator is leapfrog: the force at step n sees the velocity of half a step
     earlier, so the dashpots act with a lag of dt/2 and the contact starts and ends inside a
-    step. Both errors are first order in dt/tc: the measured error of e, beta and tau is below
-    C dt/tc with C about 0.25 (docs/cross_checks_3d.md: the table at 50 ... 800 steps per tc).
-    The tolerance is 1 dt/tc (4x that), and tau_force, counted in whole steps, gets 2 dt/tc
-    more. At the default 200 steps per tc: 0.005 on e and beta, 0.005 tc on tau."""
+    step. Both errors are first order in dt/tc: measured at 50 ... 800 steps per tc, the error
+    of e, beta and tau is at most 0.3 dt/tc, of tau_force (whole steps) 0.9 dt/tc
+    (docs/cross_checks_3d.md). The tolerance is 1 dt/tc (over 3x that), tau_force 3 dt/tc.
+    At the default 200 steps per tc: 0.005 on e and beta, 0.005 tc on tau."""
     base = 1.0 / steps_per_tc
     return base + (2.0 / steps_per_tc if quantity == "tau_force" else 0.0)
 
