@@ -3,7 +3,7 @@
 set -euo pipefail
 
 packages=(cmake g++ make dpkg-dev libopenmpi-dev openmpi-bin libgtest-dev
-          python3-numpy python3-matplotlib python3-pytest liggghts)
+          python3-numpy python3-matplotlib python3-pytest liggghts yade)
 
 missing=()
 for p in "${packages[@]}"; do
