@@ -188,3 +188,139 @@ def test_sphere_on_the_boundary_has_e_w_and_tau_w(tmp_path, boundary, e):
         assert abs(e_measured - ref["e_w"]) <= bound
         assert abs(beta_measured - ref["e_w"]) <= bound + 2 * e * abs(np.log(e)) * fraction
         assert abs(duration - tau) <= dt
+
+
+# A 3D pile: 50 spheres (diameters 0.8-1.0) falling onto the floor of a box periodic in x and y,
+# fixed bumps on the floor, a ceiling (fix wall/gran/mn zplane), gravity tilted so that the pile
+# slides and rolls (mu = 0.5: contacts stick and slide), with fix contacts/mn. Every variant
+# starts from one data file (atom IDs as one rank numbers them) and runs PILE_STEPS in two
+# runs with a restart file written between them (a run's setup re-evaluates the forces with
+# the full-step velocities: two runs are not one run, in 2D as in 3D). As in the 2D
+# consistency tests (test_consistency.py), runs that sum forces in other orders agree "to
+# rounding": states are compared as (x, v/omega, r w/omega) against 1e-8 (measured: ~1e-13
+# with newton off, 0 with shuffled lists); counts exactly.
+PILE_KN = 2e5
+PILE_STEPS = 2000
+PILE_OMEGA = (2 * PILE_KN) ** 0.5
+
+PILE_START = f"""
+region box block 0 5 0 5 -1 8
+create_box 2 box
+lattice sc 1.0 origin 0.5 0.5 0.5
+region pile block 0 5 0 5 0 2 units lattice
+create_atoms 1 region pile
+lattice none 1.0
+create_atoms 2 single 1.0 1.0 -0.45
+create_atoms 2 single 3.5 1.0 -0.45
+create_atoms 2 single 1.0 3.5 -0.45
+create_atoms 2 single 3.5 3.5 -0.45
+group mobile type 1
+group bumps type 2
+variable diameter atom "0.8 + 0.2*((id*7919)%100)/100"
+set group mobile diameter v_diameter
+set group bumps diameter 1.0
+set type * density {SPHERE_DENSITY!r}
+velocity mobile create 0.5 4928459 loop geom
+write_data start.data
+"""
+
+PILE_FIXES = """
+fix integrate mobile nve/sphere
+fix gravity mobile gravity 1.0 vector 0.3 0.2 -1
+fix floor mobile wall/gran/mn zplane 0.0 7.5
+fix c mobile contacts/mn
+compute contacts mobile contact/atom
+compute ncontacts mobile reduce sum c_contacts
+thermo_style custom step ke c_ncontacts
+thermo 500
+"""
+
+PILE_FINAL = ("write_dump mobile custom final.txt id x y z vx vy vz omegax omegay omegaz radius "
+              "f_c[1] f_c[2] modify sort id format float %.17g\n"
+              "print \"RESULT sums $(f_c[1]) $(f_c[2]) $(f_c[3]) $(f_c[4]) $(f_c[5])\"\n")
+
+
+@pytest.fixture(scope="module")
+def pile_start(tmp_path_factory):
+    run = run_lammps(HEADER_3D + PILE_START, tmp_path_factory.mktemp("start"), header=False)
+    return run.workdir / "start.data"
+
+
+def pile_run(start, workdir, newton="on", nprocs=1, shuffle=False, mu=0.5):
+    dt = law(PILE_KN, 0.7, 0.7)["tau_c"] / 50
+    shuffle_settings = ("atom_modify sort 7 0.5\nneigh_modify every 1 delay 0 check no\n"
+                        if shuffle else "")
+    deck = f"""
+newton {newton}
+processors * 1 1
+read_data {start}
+{shuffle_settings}group mobile type 1
+pair_style gran/mn kn {PILE_KN} e 0.7 beta 0.7 mu {mu} wall_types 2
+pair_coeff * *
+timestep {dt!r}
+{PILE_FIXES}
+run {PILE_STEPS // 2}
+write_restart mid.restart
+run {PILE_STEPS // 2}
+{PILE_FINAL}"""
+    return run_lammps(HEADER_3D + deck, workdir, nprocs=nprocs, header=False)
+
+
+def pile_state(run):
+    a = run.atoms()
+    columns = [a[c] for c in ("x", "y", "z")]
+    columns += [a[c] / PILE_OMEGA for c in ("vx", "vy", "vz")]
+    columns += [a["radius"] * a[c] / PILE_OMEGA for c in ("omegax", "omegay", "omegaz")]
+    return np.column_stack(columns), np.column_stack([a["f_c[1]"], a["f_c[2]"]])
+
+
+@pytest.fixture(scope="module")
+def pile_reference(pile_start, tmp_path_factory):
+    return pile_run(pile_start, tmp_path_factory.mktemp("pile"))
+
+
+def test_pile_has_lasting_pair_and_wall_contacts(pile_reference):
+    state, counts = pile_state(pile_reference)
+    print(f"contacts begun: particle {counts[:, 0].sum():.0f}, boundary {counts[:, 1].sum():.0f}")
+    assert counts[:, 0].sum() > 100 and counts[:, 1].sum() > 10
+    # the pile has fallen onto the floor and touches it
+    assert state[:, 2].min() < 0.6
+    assert "3D: solid spheres, q = 7/2" in pile_reference.output
+
+
+@pytest.mark.parametrize("newton, nprocs, shuffle", [("off", 1, False), ("on", 2, False),
+                                                     ("off", 2, False), ("on", 1, True)])
+def test_pile_the_same_with_newton_ranks_and_shuffled_lists(pile_start, pile_reference, tmp_path,
+                                                            newton, nprocs, shuffle):
+    """Newton off and two ranks store a contact's history on both atoms' sides and hand it
+    over (u_t is a vector: the partner's copy is -u_t); shuffled lists hand contacts between
+    the atoms' lists at every step."""
+    run = pile_run(pile_start, tmp_path, newton, nprocs, shuffle)
+    state, counts = pile_state(run)
+    reference_state, reference_counts = pile_state(pile_reference)
+    difference = np.abs(state - reference_state).max()
+    print(f"newton {newton}, {nprocs} ranks, shuffle {shuffle}: largest difference {difference:.1e}")
+    assert difference < 1e-8
+    assert np.array_equal(counts, reference_counts)
+    assert run.result("sums")[:2] == pile_reference.result("sums")[:2]
+
+
+def test_pile_continues_across_a_restart(pile_reference, tmp_path):
+    """u_t (3 values per contact in the pair's history, 3 per side in the wall's state) and
+    the counters come back from the restart file."""
+    deck = (f"read_restart {pile_reference.workdir / 'mid.restart'}\n"
+            "neighbor 0.1 bin\ncomm_modify vel yes\n" + PILE_FIXES +
+            f"run {PILE_STEPS // 2}\n" + PILE_FINAL)
+    run = run_lammps(HEADER_3D + deck, tmp_path, header=False)
+    state, counts = pile_state(run)
+    reference_state, reference_counts = pile_state(pile_reference)
+    difference = np.abs(state - reference_state).max()
+    print(f"restarted: largest difference {difference:.1e}")
+    assert difference < 1e-8
+    assert np.array_equal(counts, reference_counts)
+
+
+def test_pile_without_friction_is_another_pile(pile_start, pile_reference, tmp_path):
+    """The tolerance above sees physics: mu = 0 moves the spheres by far more than 1e-8."""
+    run = pile_run(pile_start, tmp_path, mu=0.0)
+    assert np.abs(pile_state(run)[0] - pile_state(pile_reference)[0]).max() > 1e-3
