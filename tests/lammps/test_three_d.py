@@ -21,6 +21,14 @@ KN = 256e5    # stiff: the line of centres turns little during a contact
 AXIS = np.array([0.8, 0.36, 0.48])    # |AXIS| = 1
 
 
+def sphere_kt(kn, e, beta):
+    """k_t for solid spheres (q = 7/2, docs/model.md 3.1), from the disc law's tau_c and
+    eta_n (which do not depend on q)."""
+    ref, q = law(kn, e, beta), 3.5
+    eta_t = -np.log(beta) / (q * ref["tau_c"])
+    return (2 * kn - ref["eta_n"] ** 2 + q * q * eta_t ** 2) / (2 * q)
+
+
 def _vector(values):
     return " ".join(repr(float(v)) for v in values)
 
@@ -198,7 +206,8 @@ def test_sphere_on_the_boundary_has_e_w_and_tau_w(tmp_path, boundary, e):
 # the full-step velocities: two runs are not one run, in 2D as in 3D). As in the 2D
 # consistency tests (test_consistency.py), runs that sum forces in other orders agree "to
 # rounding": states are compared as (x, v/omega, r w/omega) against 1e-8 (measured: ~1e-13
-# with newton off, 0 with shuffled lists); counts exactly.
+# with newton off, 0 with shuffled lists); counts exactly. (These runs do not see a history
+# handed over with the wrong sign: the rolling test below does.)
 PILE_KN = 2e5
 PILE_STEPS = 2000
 PILE_OMEGA = (2 * PILE_KN) ** 0.5
@@ -324,3 +333,82 @@ def test_pile_without_friction_is_another_pile(pile_start, pile_reference, tmp_p
     """The tolerance above sees physics: mu = 0 moves the spheres by far more than 1e-8."""
     run = pile_run(pile_start, tmp_path, mu=0.0)
     assert np.abs(pile_state(run)[0] - pile_state(pile_reference)[0]).max() > 1e-3
+
+
+def test_contact_rolling_around_a_fixed_sphere_keeps_u_t_in_the_tangent_plane(tmp_path):
+    """A sphere rolling without slip around a fixed sphere (a wall_types bump) once, its centre
+    moved on the circle by fix move with exact velocities and the spin that makes v_t = 0: a
+    sticking contact whose u_t (built first by spinning in place) is only carried around.
+    From the force on the sphere (fn = m kn delta exactly, v_n = 0): the tangential force
+    F_t = F - fn n stays normal to n and keeps its magnitude m k_t |u_t| to rounding, and its
+    parts along the orbit's axis and along the orbit keep their values to the transport's
+    O(step angle) error (~1e-3 here); the torque is (-r n) x F_t. Neighbor lists are rebuilt
+    every step: as the sphere goes round, the pair changes sides in the half list, and its
+    history is handed over (in 3D as -u_t). Not rotating u_t, or handing it over unchanged,
+    turns or flips F_t (checked by hand)."""
+    kn, e, beta = 1e5, 0.7, 0.7
+    ref = law(kn, e, beta)
+    dt = ref["tau_c"] / 100
+    delta, r = 1e-3, 0.5
+    R = 1.0 - delta
+    rate = 10.0                        # orbit's angular velocity about y
+    spin = -R * rate / r               # omega_y for v_t = 0 (docs/model.md 3.2)
+    build_steps, build_w = 20, (0.0, 3.0, 4.0)    # spinning in place: u_t = r (0, -w_z, w_y) t
+    orbit_steps = int(round(2 * np.pi / rate / dt))
+    every = 50
+    deck = f"""
+region box block -3 3 -3 3 -3 3
+create_box 2 box
+create_atoms 2 single 0 0 0
+create_atoms 1 single {R!r} 0 0
+set type * diameter 1.0
+set type * density {SPHERE_DENSITY!r}
+group mobile type 1
+velocity all set 0 0 0
+set group mobile omega {_vector(build_w)}
+pair_style gran/mn kn {kn!r} e {e!r} beta {beta!r} mu 1000 wall_types 2
+pair_coeff * *
+timestep {dt!r}
+neigh_modify every 1 delay 0 check no
+thermo 0
+run {build_steps}
+set group mobile omega 0 {spin!r} 0
+variable t equal time-{build_steps * dt!r}
+variable dx equal {R!r}*cos({rate!r}*v_t)-{R!r}
+variable dz equal {R!r}*sin({rate!r}*v_t)
+variable vx equal -{R * rate!r}*sin({rate!r}*v_t)
+variable vz equal {R * rate!r}*cos({rate!r}*v_t)
+variable zero equal 0
+fix orbit mobile move variable v_dx v_zero v_dz v_vx v_zero v_vz
+dump d mobile custom {every} orbit.txt id x y z fx fy fz tqx tqy tqz
+dump_modify d format float %.17g
+run {orbit_steps}
+"""
+    run = run_lammps(HEADER_3D + deck, tmp_path, header=False)
+    lines = [l.split() for l in (tmp_path / "orbit.txt").read_text().splitlines()]
+    rows = np.array([[float(x) for x in l] for l in lines if len(l) == 10 and l[0] == "2"])
+    x, f, torque = rows[:, 1:4], rows[:, 4:7], rows[:, 7:10]
+    n = x / np.linalg.norm(x, axis=1)[:, None]
+    # the orbit went once round: every quadrant visited
+    angle = np.arctan2(x[:, 2], x[:, 0])
+    assert angle.min() < -2.5 and angle.max() > 2.5 and np.any(np.abs(angle) < 0.1)
+    fn = 1.0 * kn * (1.0 - np.linalg.norm(x, axis=1))    # mass 1, v_n = 0
+    ft = f - fn[:, None] * n
+    u_t = r * np.array([0.0, -build_w[2], build_w[1]]) * build_steps * dt
+    # built by u_t += v_t dt while spinning in place; its force once v_t = 0 is -m k_t u_t with
+    # the spheres' k_t (q = 7/2)
+    magnitude = np.linalg.norm(ft, axis=1)
+    expected = sphere_kt(kn, e, beta) * np.linalg.norm(u_t)
+    print(f"|F_t| = {magnitude.min():.12g} .. {magnitude.max():.12g}, m k_t |u_t| = "
+          f"{expected:.12g}")
+    assert np.abs(np.einsum("ij,ij->i", ft, n)).max() <= 1e-9 * magnitude.max()
+    assert magnitude.max() - magnitude.min() <= 1e-9 * magnitude.max()
+    assert abs(magnitude.mean() / expected - 1) <= 1e-9
+    # the parts along the axis (y) and along the orbit (y x n) keep their values
+    along_axis = ft[:, 1]
+    along_orbit = np.einsum("ij,ij->i", ft, np.cross([0.0, 1.0, 0.0], n))
+    assert np.abs(along_axis - along_axis[0]).max() <= 2e-3 * magnitude.max()
+    assert np.abs(along_orbit - along_orbit[0]).max() <= 2e-3 * magnitude.max()
+    assert min(abs(along_axis[0]), abs(along_orbit[0])) > 0.3 * magnitude.max()
+    # the torque on the sphere is (-r n) x F_t
+    assert np.abs(torque - np.cross(-r * n, ft)).max() <= 1e-9 * r * magnitude.max()
