@@ -382,6 +382,9 @@ variable zero equal 0
 fix orbit mobile move variable v_dx v_zero v_dz v_vx v_zero v_vz
 dump d mobile custom {every} orbit.txt id x y z fx fy fz tqx tqy tqz
 dump_modify d format float %.17g
+compute pair all pair/local p1 p5
+dump p all local {orbit_steps} pair.txt c_pair[1] c_pair[2]
+dump_modify p format float %.17g
 run {orbit_steps}
 """
     run = run_lammps(HEADER_3D + deck, tmp_path, header=False)
@@ -412,3 +415,9 @@ run {orbit_steps}
     assert min(abs(along_axis[0]), abs(along_orbit[0])) > 0.3 * magnitude.max()
     # the torque on the sphere is (-r n) x F_t
     assert np.abs(torque - np.cross(-r * n, ft)).max() <= 1e-9 * r * magnitude.max()
+    # compute pair/local (single()) in 3D: |F_t| and |u_t|, at the orbit's start (the run's setup)
+    local = [l.split() for l in (tmp_path / "pair.txt").read_text().splitlines()]
+    values = [[float(v) for v in l] for l in local if len(l) == 2 and not l[0].startswith("I")]
+    (ft_single, ut_single), = values[-1:]
+    assert abs(ut_single / np.linalg.norm(u_t) - 1) <= 1e-9
+    assert abs(ft_single / magnitude[0] - 1) <= 1e-9
