@@ -421,3 +421,67 @@ run {orbit_steps}
     (ft_single, ut_single), = values[-1:]
     assert abs(ut_single / np.linalg.norm(u_t) - 1) <= 1e-9
     assert abs(ft_single / magnitude[0] - 1) <= 1e-9
+
+
+def test_sphere_launched_sliding_on_the_floor_rolls_with_the_cutback_law(tmp_path):
+    """Coulomb friction in 3D (cap on |F_t| along the trial force, coulomb_cutback): a solid
+    sphere resting on the zplane floor is launched with a velocity and a spin on three axes.
+    While it slides, the contact point's velocity v_t keeps its direction and its magnitude
+    falls at (1 + m r^2/I) mu g = 7/2 mu g; it sticks at T = |v_t0|/(7/2 mu g) and rolls from
+    then on, with the angular momentum about the contact point it started with (the contact
+    force acts there): w_xy = L_xy/(I + m r^2), v = r w x n. Sampling and the spring's settling
+    put the sticking time within 2 % of T, as in 2D (test_sliding.py)."""
+    kn, mu, g, r = 2e5, 0.5, 1.0, 0.5
+    v0, w0 = np.array([1.5, 0.5, 0.0]), np.array([2.0, -1.0, 3.0])
+    dt = law(kn, 0.7, 0.7)["tau_c"] / 50
+    settle = int(round(2.0 / dt))
+    z = np.array([0.0, 0.0, 1.0])
+    vt0 = v0 + np.cross(z, r * w0)
+    T = np.linalg.norm(vt0) / (3.5 * mu * g)
+    deck = f"""
+boundary p p fm
+region box block 0 10 0 10 -1 5
+create_box 1 box
+create_atoms 1 single 5 5 0.5 units box
+set atom 1 diameter 1.0 density {SPHERE_DENSITY!r}
+pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu {mu!r} coulomb_cutback
+pair_coeff * *
+timestep {dt!r}
+fix gravity all gravity {g!r} vector 0 0 -1
+fix integrate all nve/sphere
+fix floor all wall/gran/mn zplane 0.0 NULL
+thermo 0
+run {settle}
+velocity all set {_vector(v0)}
+set atom 1 omega {_vector(w0)}
+variable t equal step*dt-{settle * dt!r}
+compute spin all property/atom omegax omegay omegaz
+compute w all reduce sum c_spin[1] c_spin[2] c_spin[3]
+variable vtx equal vx[1]-{r!r}*c_w[2]
+variable vty equal vy[1]+{r!r}*c_w[1]
+fix trace all print {max(1, int(round(0.01 / dt)))} "$(v_t) $(v_vtx:%.15g) $(v_vty:%.15g) $(vx[1]:%.15g) $(vy[1]:%.15g) $(c_w[1]:%.15g) $(c_w[2]:%.15g) $(c_w[3]:%.15g)" file trace.txt screen no
+run {int(round(3 * T / dt))}
+"""
+    run_lammps(HEADER_3D + deck, tmp_path, header=False)
+    trace = np.loadtxt(tmp_path / "trace.txt", ndmin=2)
+    t, vt = trace[:, 0], trace[:, 1:3]
+    speed = np.linalg.norm(vt, axis=1)
+    before = t < 0.9 * T
+    direction = vt[before] / speed[before][:, None]
+    assert np.abs(direction - vt0[:2] / np.linalg.norm(vt0)).max() < 1e-3
+    assert np.allclose(speed[before], np.linalg.norm(vt0) - 3.5 * mu * g * t[before],
+                       atol=0.01 * np.linalg.norm(vt0))
+    stuck = t[np.argmax(speed < 1e-3 * np.linalg.norm(vt0))]
+    assert abs(stuck - T) < 0.02 * T
+    late = t > 1.2 * T
+    assert np.all(speed[late] < 1e-3 * np.linalg.norm(vt0))
+    m, inertia = 1.0, 0.4 * r * r
+    L = inertia * w0 + m * r * np.cross(z, v0)
+    w_roll = L[:2] / (inertia + m * r * r)
+    v_roll = np.cross(r * np.array([w_roll[0], w_roll[1], 0.0]), z)[:2]
+    print(f"T = {T:.4f}, stuck at {stuck:.4f}; rolling v {trace[-1, 3:5]} (predicted {v_roll}), "
+          f"w_z {trace[-1, 7]:.6f}")
+    assert np.allclose(trace[late][:, 3:5], v_roll, atol=1e-3 * np.linalg.norm(v0))
+    assert np.allclose(trace[late][:, 5:7], w_roll, atol=1e-3 * np.linalg.norm(w0))
+    # a twist about n is untouched by a force at the contact point
+    assert np.allclose(trace[:, 7], w0[2], rtol=1e-9)
