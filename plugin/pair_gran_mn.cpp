@@ -487,8 +487,9 @@ void PairGranMN::coeff(int narg, char **arg)
 
 void PairGranMN::init_style()
 {
-  // The law was derived for the dimension's shape of inertia when the pair style was given;
-  // a deck may give it before the dimension command
+  // The law was derived for the dimension's shape of inertia when the pair style was given
+  // (after the box, and so after the dimension command: its constructor adds a fix); kept
+  // right here should the dimension ever be known only later
   if (law.q != granmn::dimension_q(lmp)) {
     law = granmn::checked_law(lmp, "pair_style gran/mn", law.material, law.options,
                               granmn::dimension_q(lmp));
