@@ -19,6 +19,7 @@
 #include "mn_integration.h"
 
 #include <cstring>
+#include <string>
 
 namespace granmn {
 
@@ -110,11 +111,15 @@ inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, c
                         "that last gain energy; velocity Verlet keeps them", who);
   const mn::StabilityLimit limit = mn::stability_limit(law, integrator);
   const double paper_dt = 0.01 * law.tau_c;
+  // the modes are named for disks; in 3D they are those of spheres (and do not depend on q)
+  std::string mode = mn::mode_name(limit.mode);
+  const size_t disks = mode.find("disks");
+  if (lmp->domain->dimension == 3 && disks != std::string::npos) mode.replace(disks, 5, "spheres");
   if (dt > limit.dt)
     lmp->error->all(FLERR,
                     "{}: timestep {} exceeds the stability limit {:.6g} of {} for the stiffest "
                     "contact mode, {}: use a timestep below {:.6g} ({})",
-                    who, dt, limit.dt, integrator_name(integrator), mn::mode_name(limit.mode),
+                    who, dt, limit.dt, integrator_name(integrator), mode,
                     limit.dt,
                     limit.dt < paper_dt
                         ? fmt::format("the paper's tau_c/100 = {:.6g} is too coarse here: e or "

@@ -129,6 +129,10 @@ ERRORS = {
         deck(pair="pair_style gran/mn kn 2e5 e 0.7 beta 1e-40 mu 0.5",
              timestep="timestep $(v_mn_tau_c/100)"),
         "the tangential (sticking) mode of two disks: use a timestep below 4.49"),
+    "beta near zero at tau_c/100 in three dimensions": (
+        deck(pair="pair_style gran/mn kn 2e5 e 0.7 beta 1e-40 mu 0.5", dimension="dimension 3",
+             z="-3 3", timestep="timestep $(v_mn_tau_c/100)"),
+        "the tangential (sticking) mode of two spheres: use a timestep below 4.49"),
     "e near zero at tau_c/100": (
         deck(pair="pair_style gran/mn kn 2e5 e 1e-40 beta 0.7 mu 0.5",
              timestep="timestep $(v_mn_tau_c/100)"),
