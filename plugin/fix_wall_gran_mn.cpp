@@ -22,27 +22,35 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-// fix ID group wall/gran/mn xplane|yplane lo hi [kn K] [e E] [beta B] [mu MU]
+// fix ID group wall/gran/mn xplane|yplane|zplane lo hi [kn K] [e E] [beta B] [mu MU]
 //                                                  [limit_damping] [coulomb_cutback]
+// (zplane in dimension 3 only)
 FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), own_law(false), use_history(false),
     integrator(mn::Integrator::VelocityVerlet), counters(nullptr),
     force_per_mass_acceleration(1.0), force_reduced(false)
 {
-  if (domain->dimension != 2)
-    error->all(FLERR, "Fix wall/gran/mn is a 2D law: it requires dimension 2");
+  const bool three_d = domain->dimension == 3;
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "Fix wall/gran/mn requires atom attributes radius, rmass, omega, torque "
                       "(atom_style sphere)");
-  if (narg < 6) error->all(FLERR, "Illegal fix wall/gran/mn command: expected xplane|yplane lo hi");
+  if (narg < 6)
+    error->all(FLERR, "Illegal fix wall/gran/mn command: expected {} lo hi",
+               three_d ? "xplane|yplane|zplane" : "xplane|yplane");
 
   if (strcmp(arg[3], "xplane") == 0)
     axis = 0;
   else if (strcmp(arg[3], "yplane") == 0)
     axis = 1;
+  else if (strcmp(arg[3], "zplane") == 0 && three_d)
+    axis = 2;
+  else if (strcmp(arg[3], "zplane") == 0)
+    error->all(FLERR, "Illegal fix wall/gran/mn command: zplane needs dimension 3 (in 2D the "
+                      "walls are xplane or yplane)");
   else
     error->all(FLERR, "Illegal fix wall/gran/mn command: unknown wall style {} "
-                      "(expected xplane or yplane)", arg[3]);
+                      "(expected {}; planes only)", arg[3],
+               three_d ? "xplane, yplane or zplane" : "xplane or yplane");
   has_lo = strcmp(arg[4], "NULL") != 0;
   has_hi = strcmp(arg[5], "NULL") != 0;
   lo = has_lo ? utils::numeric(FLERR, arg[4], false, lmp) : 0.0;
@@ -62,12 +70,12 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
   use_history = law.material.mu > 0.0;
 
   vector_flag = 1;
-  size_vector = 2;    // force exerted by the particles on the walls (x, y)
+  size_vector = three_d ? 3 : 2;    // force exerted by the particles on the walls (x, y[, z])
   global_freq = 1;
   extvector = 1;
   // the columns come at init, where what is kept is known
   register_state(0);
-  wall_force[0] = wall_force[1] = 0.0;
+  wall_force[0] = wall_force[1] = wall_force[2] = 0.0;
 }
 
 int FixWallGranMN::setmask()
@@ -103,7 +111,7 @@ void FixWallGranMN::init()
   // its own, with fix contacts/mn), and the previous v_t of Adams-Bashforth 2's rule for u_t,
   // which is kept from then on (current under either integrator).
   granmn::ContactLayout all[2];
-  granmn::wall_state_layout(all);
+  granmn::wall_state_layout(all, granmn::ut_width(lmp));
   const granmn::ContactLayout &last = all[1];
   if (use_history) widen_state(last.ut + last.ut_width);
   if (counters) widen_state(last.touching + 1);
@@ -140,8 +148,12 @@ void FixWallGranMN::setup(int vflag)
   post_force(vflag);
 }
 
-void FixWallGranMN::post_force(int)
+void FixWallGranMN::post_force(int vflag)
 {
+  if (domain->dimension == 3) {
+    post_force_3d(vflag);
+    return;
+  }
   const double dt_history = granmn::history_dt(update);
   double **x = atom->x;
   double **v = atom->v;
@@ -208,10 +220,73 @@ void FixWallGranMN::post_force(int)
   force_reduced = false;
 }
 
+// post_force() in dimension 3: planes normal to x, y or z, u_t a vector (mn::contact_force3).
+void FixWallGranMN::post_force_3d(int)
+{
+  const double dt_history = granmn::history_dt(update);
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
+  const double *radius = atom->radius;
+  const double *rmass = atom->rmass;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const mn::Law contact = law;
+  FixContactsMN *const tally = counters;
+  double **history = state;
+  const double to_force = force_per_mass_acceleration;
+  const int first_side = has_lo ? 0 : 1, last_side = has_hi ? 1 : 0;
+  const granmn::ContactLayout layouts[2] = {side_layout[0], side_layout[1]};
+  double on_walls[3] = {0.0, 0.0, 0.0};
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    for (int side = first_side; side <= last_side; side++) {
+      const double dist = side == 0 ? x[i][axis] - lo : hi - x[i][axis];
+      const double normal = side == 0 ? 1.0 : -1.0;
+      const bool in_contact = dist < radius[i];
+      const granmn::ContactLayout &layout = layouts[side];
+      double *row = history[i];
+      if (tally)
+        tally->wall_state(i, row + layout.record, row[layout.touching], in_contact,
+                          radius[i] - dist, normal * v[i][axis]);
+      double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
+      if (!in_contact) {
+        for (int k = 0; ut && k < layout.ut_width; k++)
+          if (ut[k] != 0.0) ut[k] = 0.0;
+        continue;
+      }
+      if (dist <= 0.0)
+        error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the wall at {} "
+                          "(time step too large for the contact stiffness?)",
+                   atom->tag[i], side == 0 ? lo : hi);
+      double d[3] = {0.0, 0.0, 0.0};
+      d[axis] = normal * dist;
+      const double lever[3] = {radius[i] * omega[i][0], radius[i] * omega[i][1],
+                               radius[i] * omega[i][2]};
+      const mn::Kinematics3 kin = mn::kinematics3(d, dist, radius[i], v[i], lever);
+      const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
+      const mn::Force3 fc = mn::contact_force3(contact, scale, kin, ut, dt_history);
+      double fxyz[3], tor[3];
+      mn::cartesian3(kin, fc, fxyz);
+      mn::torque3(kin, fc, radius[i], tor);
+      for (int c = 0; c < 3; c++) {
+        f[i][c] += fxyz[c];
+        torque[i][c] += tor[c];
+        on_walls[c] -= fxyz[c];
+      }
+    }
+  }
+  for (int c = 0; c < 3; c++) wall_force[c] = on_walls[c];
+  force_reduced = false;
+}
+
 double FixWallGranMN::compute_vector(int n)
 {
   if (!force_reduced) {
-    MPI_Allreduce(wall_force, wall_force_all, 2, MPI_DOUBLE, MPI_SUM, world);
+    MPI_Allreduce(wall_force, wall_force_all, size_vector, MPI_DOUBLE, MPI_SUM, world);
     force_reduced = true;
   }
   return wall_force_all[n];

@@ -1,5 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   fix wall/gran/mn: flat walls with the boundary rule of the gran/mn law.
+   fix wall/gran/mn: flat walls with the boundary rule of the gran/mn law (2D: xplane,
+   yplane; 3D: also zplane).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_WALL_GRAN_MN_H
@@ -23,7 +24,7 @@ class FixWallGranMN : public FixPerAtomState {
   int sides_in_contact(int i) const;
 
  private:
-  int axis;                   // 0: xplane, 1: yplane
+  int axis;                   // 0: xplane, 1: yplane, 2: zplane (dimension 3)
   double lo, hi;              // wall positions; only those flagged exist
   bool has_lo, has_hi;
   // Law keywords given on the fix line; what is not given comes from pair_style gran/mn.
@@ -35,11 +36,12 @@ class FixWallGranMN : public FixPerAtomState {
   // Where each side's values sit in an atom's row of the state: side 0 lower, 1 upper
   granmn::ContactLayout side_layout[2];
   class FixContactsMN *counters;    // nullptr unless fix contacts/mn is defined
-  double wall_force[2], wall_force_all[2];
+  double wall_force[3], wall_force_all[3];    // x, y (and z in dimension 3)
   double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units
   bool force_reduced;
 
   void resolve_law();
+  void post_force_3d(int);
 };
 
 }    // namespace LAMMPS_NS

@@ -5,6 +5,7 @@
 #ifndef LMP_GRANMN_GLUE_H
 #define LMP_GRANMN_GLUE_H
 
+#include "domain.h"
 #include "error.h"
 #include "fix_contacts_mn.h"
 #include "fix_nve_disc_mn.h"
@@ -18,6 +19,7 @@
 #include "mn_integration.h"
 
 #include <cstring>
+#include <string>
 
 namespace granmn {
 
@@ -56,16 +58,39 @@ struct NVESphereInertia : LAMMPS_NS::FixNVESphere {
   }
 };
 
-// The law's tangential parameters assume disks (I = m sigma^2/8): a fix nve/sphere without
-// 'disc' integrates the spins of spheres, and beta comes out wrong (0.661 for 0.7).
+// The shape of inertia the law is derived for (mn::derive's q): the dimension decides it, as
+// it decides what atom_style sphere's particles are. In 2D disks (I = m r^2/2, the paper's
+// law), in 3D solid spheres (I = 2 m r^2/5, what fix nve/sphere integrates in 3D).
+inline double dimension_q(LAMMPS_NS::LAMMPS *lmp)
+{
+  return lmp->domain->dimension == 3 ? mn::SOLID_SPHERE_Q : mn::DISC_Q;
+}
+
+// u_t's components: a scalar along t in 2D, a vector in the tangent plane in 3D.
+inline int ut_width(LAMMPS_NS::LAMMPS *lmp)
+{
+  return lmp->domain->dimension == 3 ? 3 : 1;
+}
+
+// The law's tangential parameters assume the dimension's shape of inertia (dimension_q). In
+// 2D a fix nve/sphere without 'disc' integrates the spins of spheres, and beta comes out wrong
+// (0.661 for 0.7); in 3D it integrates spheres, as the law assumes (LAMMPS refuses 'disc' in 3D).
 inline void check_disc_integration(LAMMPS_NS::LAMMPS *lmp, const char *who)
 {
-  for (LAMMPS_NS::Fix *fix : fixes_by_style(lmp->modify, "^nve/sphere$"))
-    if (NVESphereInertia::of(fix) != 0.5)
+  const bool three_d = lmp->domain->dimension == 3;
+  for (LAMMPS_NS::Fix *fix : fixes_by_style(lmp->modify, "^nve/sphere$")) {
+    const double inertia = NVESphereInertia::of(fix);
+    if (!three_d && inertia != 0.5)
       lmp->error->all(FLERR,
                       "{}: fix {} (nve/sphere) integrates spheres; the law is for disks: add "
                       "the keyword disc (fix {} ... nve/sphere disc)",
                       who, fix->id, fix->id);
+    if (three_d && inertia != 0.4)
+      lmp->error->all(FLERR,
+                      "{}: fix {} (nve/sphere) integrates a moment of inertia {} m r^2; in "
+                      "dimension 3 the law is derived for solid spheres (2/5 m r^2): leave out "
+                      "the keyword disc", who, fix->id, inertia);
+  }
 }
 
 inline const char *integrator_name(mn::Integrator integrator)
@@ -86,11 +111,15 @@ inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, c
                         "that last gain energy; velocity Verlet keeps them", who);
   const mn::StabilityLimit limit = mn::stability_limit(law, integrator);
   const double paper_dt = 0.01 * law.tau_c;
+  // the modes are named for disks; in 3D they are those of spheres (and do not depend on q)
+  std::string mode = mn::mode_name(limit.mode);
+  const size_t disks = mode.find("disks");
+  if (lmp->domain->dimension == 3 && disks != std::string::npos) mode.replace(disks, 5, "spheres");
   if (dt > limit.dt)
     lmp->error->all(FLERR,
                     "{}: timestep {} exceeds the stability limit {:.6g} of {} for the stiffest "
                     "contact mode, {}: use a timestep below {:.6g} ({})",
-                    who, dt, limit.dt, integrator_name(integrator), mn::mode_name(limit.mode),
+                    who, dt, limit.dt, integrator_name(integrator), mode,
                     limit.dt,
                     limit.dt < paper_dt
                         ? fmt::format("the paper's tau_c/100 = {:.6g} is too coarse here: e or "
@@ -109,7 +138,7 @@ inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, c
 // wall fix's per-atom state for each wall side (wall_state_layout). The styles hand the
 // record and the flag to fix contacts/mn, which knows what a record holds, not where it is.
 struct ContactLayout {
-  int ut_width = 1;        // u_t's components: one in 2D
+  int ut_width = 1;        // u_t's components: one in 2D, three in 3D (granmn::ut_width)
   int ut = -1;             // u_t, ut_width values (mu > 0)
   int vt_previous = -1;    // v_t at the previous force evaluation, ut_width values: Adams-
                            // Bashforth 2's rule for u_t (mu > 0)
@@ -120,9 +149,11 @@ struct ContactLayout {
 
 // A contact's neighbour history: its parts one after the other, only those kept (restart files
 // hold the history in this order).
-inline ContactLayout pair_history_layout(bool friction, bool adams_bashforth, bool counters)
+inline ContactLayout pair_history_layout(bool friction, bool adams_bashforth, bool counters,
+                                         int ut_width = 1)
 {
   ContactLayout layout;
+  layout.ut_width = ut_width;
   auto take = [&layout](bool kept, int width) {
     if (!kept) return -1;
     layout.size += width;
@@ -137,9 +168,11 @@ inline ContactLayout pair_history_layout(bool friction, bool adams_bashforth, bo
 // An atom's row in the wall fix, both sides: each part at a place of its own whether kept or
 // not (u_t of both sides, each side's record and flag, the previous v_t of both), so that a
 // part kept from a later run on moves no other (restart files hold the rows so); `size` is
-// the whole row's. A style keeps the row up to its last part kept.
-inline void wall_state_layout(ContactLayout side[2])
+// the whole row's. A style keeps the row up to its last part kept. u_t and v_t have
+// ut_width values each.
+inline void wall_state_layout(ContactLayout side[2], int ut_width = 1)
 {
+  side[0].ut_width = side[1].ut_width = ut_width;
   int next = 0;
   for (int s : {0, 1}) {
     side[s].ut = next;
@@ -207,13 +240,14 @@ inline int parse_law_keyword(LAMMPS_NS::LAMMPS *lmp, const char *command, int na
   return 0;
 }
 
-// The law of a material and options, checked: an error of `command` says what is wrong.
+// The law of a material and options for particles of shape q (dimension_q), checked: an
+// error of `command` says what is wrong.
 inline mn::Law checked_law(LAMMPS_NS::LAMMPS *lmp, const char *command,
-                           const mn::Material &material, const mn::Options &options)
+                           const mn::Material &material, const mn::Options &options, double q)
 {
   const char *problem = mn::material_error(material);
   if (problem) lmp->error->all(FLERR, "Illegal {} command: {}", command, problem);
-  const mn::Law law = mn::derive(material, options, mn::DISC_Q);    // the styles require dimension 2
+  const mn::Law law = mn::derive(material, options, q);
   problem = mn::law_error(law);
   if (problem)
     lmp->error->all(FLERR, "Illegal {} command: {} (kn = {})", command, problem, material.kn);
@@ -236,7 +270,7 @@ inline mn::Law law_from_arguments(LAMMPS_NS::LAMMPS *lmp, const char *command,
     else if (keyword.number)
       lmp->error->all(FLERR, "Illegal {} command: {} must be given", command, keyword.name);
   }
-  return checked_law(lmp, command, material, options);
+  return checked_law(lmp, command, material, options, dimension_q(lmp));
 }
 
 }    // namespace granmn

@@ -35,7 +35,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 
   plugin.style = "pair";
   plugin.name = "gran/mn";
-  plugin.info = "Mitarai-Nakanishi 2D linear spring-dashpot granular pair style";
+  plugin.info = "Mitarai-Nakanishi linear spring-dashpot granular pair style (2D disks, 3D spheres)";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &pair_gran_mn_creator;
   (*register_plugin)(&plugin, lmp);
 
@@ -44,7 +44,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
     const char *name, *info;
     lammpsplugin_factory2 *creator;
   } fixes[] = {
-      {"wall/gran/mn", "Flat walls with the Mitarai-Nakanishi boundary contact law",
+      {"wall/gran/mn", "Flat walls (2D, 3D) with the Mitarai-Nakanishi boundary contact law",
        (lammpsplugin_factory2 *) &fix_creator<FixWallGranMN>},
       {"contacts/mn", "Per-contact counters for the gran/mn styles",
        (lammpsplugin_factory2 *) &fix_creator<FixContactsMN>},

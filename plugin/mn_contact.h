@@ -1,4 +1,5 @@
-// The Mitarai-Nakanishi 2D linear spring-dashpot contact law (PRE 67, 021301 (2003)),
+// The Mitarai-Nakanishi 2D linear spring-dashpot contact law (PRE 67, 021301 (2003)), and its 3D
+// form for spheres (at the end: a vector u_t kept in the tangent plane),
 // free of LAMMPS so that the pair style, the wall fix and the unit tests share one copy. The
 // integrators' steps and their stability on a contact are in mn_integration.h.
 //
@@ -224,6 +225,112 @@ inline Cartesian cartesian(const Kinematics &k, const Force &f)
 inline double torque(const Force &f, double radius)
 {
   return -radius * f.ft;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The law in 3D (spheres; docs/model.md section 3.2). The same conventions with vectors: n from
+// j to i, v_ij = dv + n x (r_i w_i + r_j w_j) (the full radii as lever arms), v_n = n.v_ij, the
+// vector v_t = v_ij - v_n n, and u_t a vector in the tangent plane. The force on i is
+// fn n + F_t, the torque on i is (-r_i n) x F_t and on j (-r_j n) x F_t (the 2D torque -r ft
+// about z is this with F_t = ft t, t = z x n). The 2D functions above are not used here.
+
+// Relative motion at one contact in 3D.
+struct Kinematics3 {
+  double n[3];     // unit normal, from partner to i
+  double delta;    // overlap
+  double vn;       // normal relative velocity
+  double vt[3];    // tangential relative velocity (in the plane normal to n)
+};
+
+// Sphere i against sphere j (or a flat wall: radius_j = 0, omega_j = 0, v_j = wall velocity).
+// d = r_i - r_j for a sphere, or the wall-to-centre vector along the wall normal; dist = |d| > 0;
+// contact_distance = radius_i + radius_j; dv = v_i - v_j; lever = radius_i w_i + radius_j w_j.
+inline Kinematics3 kinematics3(const double d[3], double dist, double contact_distance,
+                               const double dv[3], const double lever[3])
+{
+  Kinematics3 k;
+  const double inv = 1.0 / dist;
+  for (int c = 0; c < 3; c++) k.n[c] = d[c] * inv;
+  k.delta = contact_distance - dist;
+  const double vij[3] = {dv[0] + k.n[1] * lever[2] - k.n[2] * lever[1],
+                         dv[1] + k.n[2] * lever[0] - k.n[0] * lever[2],
+                         dv[2] + k.n[0] * lever[1] - k.n[1] * lever[0]};
+  k.vn = k.n[0] * vij[0] + k.n[1] * vij[1] + k.n[2] * vij[2];
+  for (int c = 0; c < 3; c++) k.vt[c] = vij[c] - k.vn * k.n[c];
+  return k;
+}
+
+// Keeps a contact's u_t in the tangent plane as the contact turns (Luding, Granular Matter 10,
+// 235 (2008), eq. 17; LAMMPS GRANULAR's tangential linear_history): the part along the current
+// normal is taken out and what is left rescaled to the old magnitude. A u_t along n (no part
+// left in the plane) becomes zero.
+inline void rotate_into_tangent_plane(const double n[3], double ut[3])
+{
+  const double before = ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2];
+  if (before == 0.0) return;
+  const double along = ut[0] * n[0] + ut[1] * n[1] + ut[2] * n[2];
+  for (int c = 0; c < 3; c++) ut[c] -= along * n[c];
+  const double after = ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2];
+  const double rescale = after > 0.0 ? std::sqrt(before / after) : 0.0;
+  for (int c = 0; c < 3; c++) ut[c] *= rescale;
+}
+
+struct Force3 {
+  double fn;      // along n, positive = repulsive
+  double ft[3];   // tangential force on i
+  bool sliding;   // the Coulomb cap was active
+};
+
+// Force of one contact in 3D, as contact_force in 2D: ut (3 values; nullptr when mu = 0) is
+// first turned into the current tangent plane and advanced by u_t += v_t dt (velocity Verlet's
+// midpoint rule; Adams-Bashforth 2 is a 2D integrator here), both only when dt_history > 0 (a
+// re-evaluation, as in LAMMPS's setup, leaves u_t as it is, so that it gives the last step's
+// force again). The trial force -scale (k_t u_t + eta_t v_t) is capped at mu |fn| in
+// magnitude; with coulomb_cutback u_t is then set so that the trial force is the capped one.
+inline Force3 contact_force3(const Law &law, double force_scale, const Kinematics3 &k, double *ut,
+                             double dt_history)
+{
+  Force3 f;
+  f.fn = force_scale * (law.material.kn * k.delta - law.eta_n * k.vn);
+  if (law.options.limit_damping && f.fn < 0.0) f.fn = 0.0;
+  f.ft[0] = f.ft[1] = f.ft[2] = 0.0;
+  f.sliding = false;
+  if (!ut) return f;
+
+  if (dt_history > 0.0) {
+    rotate_into_tangent_plane(k.n, ut);
+    for (int c = 0; c < 3; c++) ut[c] += k.vt[c] * dt_history;
+  }
+  double trial[3];
+  for (int c = 0; c < 3; c++) trial[c] = -force_scale * (law.kt * ut[c] + law.eta_t * k.vt[c]);
+  const double magnitude =
+      std::sqrt(trial[0] * trial[0] + trial[1] * trial[1] + trial[2] * trial[2]);
+  const double cap = law.material.mu * std::fabs(f.fn);
+  if (magnitude > cap) {
+    f.sliding = true;
+    const double shrink = cap / magnitude;
+    for (int c = 0; c < 3; c++) f.ft[c] = shrink * trial[c];
+    if (law.options.coulomb_cutback && law.kt > 0.0)
+      for (int c = 0; c < 3; c++) ut[c] = -(f.ft[c] / force_scale + law.eta_t * k.vt[c]) / law.kt;
+  } else {
+    for (int c = 0; c < 3; c++) f.ft[c] = trial[c];
+  }
+  return f;
+}
+
+// The contact's force on i in Cartesian components.
+inline void cartesian3(const Kinematics3 &k, const Force3 &f, double out[3])
+{
+  for (int c = 0; c < 3; c++) out[c] = f.fn * k.n[c] + f.ft[c];
+}
+
+// The torque (-radius n) x F_t about the centre of i (radius_i) or of j (radius_j): both turn
+// the same way, as in 2D.
+inline void torque3(const Kinematics3 &k, const Force3 &f, double radius, double out[3])
+{
+  out[0] = -radius * (k.n[1] * f.ft[2] - k.n[2] * f.ft[1]);
+  out[1] = -radius * (k.n[2] * f.ft[0] - k.n[0] * f.ft[2]);
+  out[2] = -radius * (k.n[0] * f.ft[1] - k.n[1] * f.ft[0]);
 }
 
 }    // namespace mn

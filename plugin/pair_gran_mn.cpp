@@ -92,6 +92,22 @@ void PairGranMN::report_end(int i, int j, double dx, double dy, double rsq, cons
   double **v = atom->v;
   const double r = sqrt(rsq);
   const double vn = (dx * (v[i][0] - v[j][0]) + dy * (v[i][1] - v[j][1])) / r;
+  report_end_vn(i, j, vn, state, tag);
+}
+
+// The same in 3D: d = x_i - x_j.
+void PairGranMN::report_end(int i, int j, const double *d, double rsq, const double *state,
+                            const tagint *tag)
+{
+  double **v = atom->v;
+  const double r = sqrt(rsq);
+  const double vn = (d[0] * (v[i][0] - v[j][0]) + d[1] * (v[i][1] - v[j][1]) +
+                     d[2] * (v[i][2] - v[j][2])) / r;
+  report_end_vn(i, j, vn, state, tag);
+}
+
+void PairGranMN::report_end_vn(int i, int j, double vn, const double *state, const tagint *tag)
+{
   const bool tally_j = force->newton_pair || j < atom->nlocal;
   const bool record = tally_j || tag[i] < tag[j];
   counters->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
@@ -117,8 +133,9 @@ void PairGranMN::report_passed_through(int i, int j, double r)
                       "smaller radius {:.6g}: the centre of one is inside the other (placed so?)",
                       tag[i], tag[j], delta, radius_min);
   double **x = atom->x, **v = atom->v;
-  const double vn = fabs((x[i][0] - x[j][0]) * (v[i][0] - v[j][0]) +
-                         (x[i][1] - x[j][1]) * (v[i][1] - v[j][1])) / r;
+  double dot = 0.0;
+  for (int c = 0; c < domain->dimension; c++) dot += (x[i][c] - x[j][c]) * (v[i][c] - v[j][c]);
+  const double vn = fabs(dot) / r;
   const bool boundary = is_wall_type[atom->type[i]] || is_wall_type[atom->type[j]];
   const double dt = update->dt;
   std::string cause;
@@ -142,12 +159,18 @@ void PairGranMN::report_passed_through(int i, int j, double r)
                     "{}: the centre of one is inside the other (overlap {:.6g} > {:.6g}, the "
                     "smaller radius); they met at a relative speed of about {:.6g} ({}); {}",
              tag[i], tag[j], update->ntimestep, delta, radius_min, speed,
-             boundary ? "a disk and a bump" : "two disks", cause);
+             boundary ? (domain->dimension == 3 ? "a sphere and a bump" : "a disk and a bump")
+                      : (domain->dimension == 3 ? "two spheres" : "two disks"),
+             cause);
 }
 
 void PairGranMN::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
+  if (domain->dimension == 3) {
+    compute_3d();
+    return;
+  }
 
   const double dt_history = granmn::history_dt(update);
 
@@ -238,6 +261,104 @@ void PairGranMN::compute(int eflag, int vflag)
         torque[j][2] += mn::torque(fc, radius[j]);
       }
       if (evflag) ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fx, fy, 0.0, dx, dy, 0.0);
+    }
+  }
+}
+
+// compute() in dimension 3: spheres, u_t a vector (mn::contact_force3), forces and torques in
+// three components. The same structure as the 2D loop, which stays as it was.
+void PairGranMN::compute_3d()
+{
+  const double dt_history = granmn::history_dt(update);
+
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
+  const double *radius = atom->radius;
+  const double *rmass = atom->rmass;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  const bool history = layout.size > 0;
+  int **firsttouch = history ? fix_history->firstflag : nullptr;
+  double **firstslots = history ? fix_history->firstvalue : nullptr;
+  const int *type = atom->type;
+  const tagint *tag = atom->tag;
+
+  const mn::Law contact = law;
+  const char *is_wall = is_wall_type.data();
+  const double to_force = force_per_mass_acceleration;
+  FixContactsMN *const tally = counters;
+  const int stride = layout.size, ut_slot = layout.ut, record_slot = layout.record;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double radi = radius[i];
+    const bool i_wall = is_wall[type[i]];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    int *touch = history ? firsttouch[i] : nullptr;
+    double *slots_all = history ? firstslots[i] : nullptr;
+
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      const double radsum = radi + radius[j];
+      double *slots = history ? &slots_all[stride * jj] : nullptr;
+
+      if (rsq >= radsum * radsum) {
+        if (history && touch[jj]) {
+          if (tally) report_end(i, j, d, rsq, slots + record_slot, tag);
+          touch[jj] = 0;
+          for (int k = 0; k < stride; k++) slots[k] = 0.0;
+        }
+        continue;
+      }
+
+      const double r = sqrt(rsq);
+      if (r <= MAX(radi, radius[j])) report_passed_through(i, j, r);
+      const double dv[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
+      const double lever[3] = {radi * omega[i][0] + radius[j] * omega[j][0],
+                               radi * omega[i][1] + radius[j] * omega[j][1],
+                               radi * omega[i][2] + radius[j] * omega[j][2]};
+      const mn::Kinematics3 kin = mn::kinematics3(d, r, radsum, dv, lever);
+      const bool j_wall = is_wall[type[j]];
+      if (tally)
+        tally->pair_touching(i, j, j_wall, i_wall, slots + record_slot, !touch[jj], kin.delta,
+                             kin.vn, newton_pair || j < nlocal);
+      if (history) touch[jj] = 1;
+      double *ut = ut_slot >= 0 ? slots + ut_slot : nullptr;
+      const double scale = contact_mass_scale(i_wall, j_wall, rmass[i], rmass[j]) * to_force;
+      const mn::Force3 fc = mn::contact_force3(contact, scale, kin, ut, dt_history);
+
+      double fxyz[3], tor[3];
+      mn::cartesian3(kin, fc, fxyz);
+      f[i][0] += fxyz[0];
+      f[i][1] += fxyz[1];
+      f[i][2] += fxyz[2];
+      mn::torque3(kin, fc, radi, tor);
+      torque[i][0] += tor[0];
+      torque[i][1] += tor[1];
+      torque[i][2] += tor[2];
+      if (newton_pair || j < nlocal) {
+        f[j][0] -= fxyz[0];
+        f[j][1] -= fxyz[1];
+        f[j][2] -= fxyz[2];
+        mn::torque3(kin, fc, radius[j], tor);
+        torque[j][0] += tor[0];
+        torque[j][1] += tor[1];
+        torque[j][2] += tor[2];
+      }
+      if (evflag)
+        ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fxyz[0], fxyz[1], fxyz[2], d[0], d[1],
+                     d[2]);
     }
   }
 }
@@ -366,8 +487,14 @@ void PairGranMN::coeff(int narg, char **arg)
 
 void PairGranMN::init_style()
 {
-  if (domain->dimension != 2)
-    error->all(FLERR, "Pair style gran/mn is a 2D law: it requires dimension 2");
+  // The law was derived for the dimension's shape of inertia when the pair style was given
+  // (after the box, and so after the dimension command: its constructor adds a fix); kept
+  // right here should the dimension ever be known only later
+  if (law.q != granmn::dimension_q(lmp)) {
+    law = granmn::checked_law(lmp, "pair_style gran/mn", law.material, law.options,
+                              granmn::dimension_q(lmp));
+    publish_law();
+  }
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "Pair style gran/mn requires atom attributes radius, rmass, omega, torque "
                       "(atom_style sphere)");
@@ -389,11 +516,13 @@ void PairGranMN::init_style()
   integrator = granmn::integrator_in_use(modify);
   if (!law_reported && comm->me == 0) {
     utils::logmesg(lmp,
-                   "pair_style gran/mn: kn = {:.8g} e = {} beta = {} mu = {}\n"
+                   "pair_style gran/mn: kn = {:.8g} e = {} beta = {} mu = {} ({})\n"
                    "  eta_n = {:.8g} kt = {:.8g} eta_t = {:.8g}\n"
                    "  tau_c = {:.8g} tau_w = {:.8g} e_w = {:.8g}\n"
                    "  largest stable dt: {:.6g} (velocity Verlet), {:.6g} (Adams-Bashforth 2)\n",
-                   law.material.kn, law.material.e, law.material.beta, law.material.mu, law.eta_n, law.kt, law.eta_t,
+                   law.material.kn, law.material.e, law.material.beta, law.material.mu,
+                   domain->dimension == 3 ? "3D: solid spheres, q = 7/2" : "2D: disks, q = 3",
+                   law.eta_n, law.kt, law.eta_t,
                    law.tau_c, law.tau_w, law.e_w,
                    mn::max_stable_dt(law, mn::Integrator::VelocityVerlet),
                    mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
@@ -405,7 +534,8 @@ void PairGranMN::init_style()
   // previous v_t its rule for u_t needs), then the counters' record if asked.
   counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
   const granmn::ContactLayout needed = granmn::pair_history_layout(
-      law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, counters);
+      law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, counters,
+      granmn::ut_width(lmp));
   if (fix_history && needed.size != layout.size)
     error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
                       "mu, fix contacts/mn or integrator (Adams-Bashforth 2, fix nve/ab2 or fix "
@@ -531,7 +661,7 @@ void PairGranMN::read_restart_settings(FILE *fp)
   options.limit_damping = flags[0];
   options.coulomb_cutback = flags[1];
   law = granmn::checked_law(lmp, "pair_style gran/mn", {values[0], values[1], values[2], values[3]},
-                            options);
+                            options, granmn::dimension_q(lmp));
   publish_law();
 }
 
@@ -556,12 +686,18 @@ void PairGranMN::read_restart(FILE *fp)
 
 /* ---------------------------------------------------------------------- */
 
+// In 2D u_t is a component along t, which flips with n as v_t does: the pair (j, i) has the
+// same u_t. In 3D it is a vector, the integral of i's v_t relative to j: the pair (j, i) has
+// -u_t (LAMMPS's default transfer for shear vectors). The counters' record is symmetric.
 void PairGranMN::GRANMN_TRANSFER_HISTORY(source, target)
 {
   for (int k = 0; k < layout.size; k++) target[k] = source[k];
+  if (layout.ut >= 0 && layout.ut_width == 3)
+    for (int k = layout.ut; k < layout.ut + 3; k++) target[k] = -source[k];
 }
 
-// For compute pair/local: fforce*(dx,dy) is the normal force; svector = ft, delta, vn, vt, ut.
+// For compute pair/local: fforce*(dx,dy) is the normal force; svector = ft, delta, vn, vt, ut
+// (in 3D the magnitudes |F_t|, |v_t|, |u_t|).
 double PairGranMN::single(int i, int j, int, int, double rsq, double, double, double &fforce)
 {
   const double radsum = atom->radius[i] + atom->radius[j];
@@ -570,6 +706,7 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
     for (int m = 0; m < single_extra; m++) svector[m] = 0.0;
     return 0.0;
   }
+  if (domain->dimension == 3) return single_3d(i, j, rsq, fforce);
   double **x = atom->x;
   double **v = atom->v;
   double **omega = atom->omega;
@@ -601,6 +738,46 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
   svector[2] = kin.vn;
   svector[3] = kin.vt;
   svector[4] = ut;
+  return 0.0;
+}
+
+// single() in 3D, for a pair in contact.
+double PairGranMN::single_3d(int i, int j, double rsq, double &fforce)
+{
+  double **x = atom->x;
+  double **v = atom->v;
+  double **omega = atom->omega;
+  const double ri = atom->radius[i], rj = atom->radius[j];
+  const double r = sqrt(rsq);
+  const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+  const double dv[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
+  const double lever[3] = {ri * omega[i][0] + rj * omega[j][0], ri * omega[i][1] + rj * omega[j][1],
+                           ri * omega[i][2] + rj * omega[j][2]};
+  const mn::Kinematics3 kin = mn::kinematics3(d, r, ri + rj, dv, lever);
+
+  double ut[3] = {0.0, 0.0, 0.0};    // a copy: single() must not alter the stored history
+  if (layout.ut >= 0) {
+    const int jnum = list->numneigh[i];
+    const int *jlist = list->firstneigh[i];
+    for (int jj = 0; jj < jnum; jj++)
+      if ((jlist[jj] & NEIGHMASK) == j) {
+        for (int c = 0; c < 3; c++) ut[c] = fix_history->firstvalue[i][layout.size * jj + layout.ut + c];
+        break;
+      }
+  }
+  const double ut_magnitude = sqrt(ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2]);
+  const mn::Force3 fc =
+      mn::contact_force3(law,
+                         contact_mass_scale(is_wall_type[atom->type[i]], is_wall_type[atom->type[j]],
+                                            atom->rmass[i], atom->rmass[j]) *
+                             force_per_mass_acceleration,
+                         kin, law.material.mu > 0.0 ? ut : nullptr, 0.0);
+  fforce = fc.fn / r;
+  svector[0] = sqrt(fc.ft[0] * fc.ft[0] + fc.ft[1] * fc.ft[1] + fc.ft[2] * fc.ft[2]);
+  svector[1] = kin.delta;
+  svector[2] = kin.vn;
+  svector[3] = sqrt(kin.vt[0] * kin.vt[0] + kin.vt[1] * kin.vt[1] + kin.vt[2] * kin.vt[2]);
+  svector[4] = ut_magnitude;
   return 0.0;
 }
 

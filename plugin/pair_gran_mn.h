@@ -1,5 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   pair_style gran/mn: the Mitarai-Nakanishi 2D linear spring-dashpot law.
+   pair_style gran/mn: the Mitarai-Nakanishi 2D linear spring-dashpot law (and its 3D form for
+   spheres in dimension 3).
    The LAMMPS side of the law (neighbour history, bumps, checks, restart files); the law
    itself is in mn_contact.h.
 ------------------------------------------------------------------------- */
@@ -65,6 +66,10 @@ class PairGranMN : public Pair {
   void remove_exclusions();
   void report_passed_through(int, int, double);
   void report_end(int, int, double, double, double, const double *, const tagint *);
+  void report_end(int, int, const double *, double, const double *, const tagint *);
+  void report_end_vn(int, int, double, const double *, const tagint *);
+  void compute_3d();
+  double single_3d(int, int, double, double &);
 };
 
 }    // namespace LAMMPS_NS

@@ -67,7 +67,15 @@ ERRORS = {
                                      "pair_coeff * * with no further arguments"),
     "atom style without radius": (deck(atom_style="atom_style atomic"),
                                   "requires atom attributes radius, rmass, omega, torque"),
-    "three dimensions": (deck(dimension="dimension 3", z="-3 3"), "requires dimension 2"),
+    "discs integrated in three dimensions": (
+        deck(dimension="dimension 3", z="-3 3", fix="unfix integrate\nfix spin all nve/sphere disc"),
+        "Fix nve/sphere disc requires 2d simulation"),
+    "wall fix zplane in two dimensions": (deck(fix="fix floor all wall/gran/mn zplane 0.0 NULL"),
+                                          "zplane needs dimension 3"),
+    "wall fix unknown wall style in three dimensions": (
+        deck(dimension="dimension 3", z="-3 3",
+             fix="fix floor all wall/gran/mn zcylinder 0.0 NULL"),
+        "unknown wall style zcylinder (expected xplane, yplane or zplane; planes only)"),
     "ghost velocities off": (deck(comm="comm_modify vel no"),
                              "requires ghost atoms store velocity"),
     "time step above stability limit": (deck(timestep="timestep 0.003"),
@@ -76,8 +84,8 @@ ERRORS = {
         deck(pair="pair_style zero 1.0", coeff="pair_coeff * *",
              fix="fix floor all wall/gran/mn yplane 0.0 NULL"),
         "takes its kn, e, beta, mu from pair_style gran/mn"),
-    "wall fix unknown wall style": (deck(fix="fix floor all wall/gran/mn zplane 0.0 NULL"),
-                                    "unknown wall style zplane"),
+    "wall fix unknown wall style": (deck(fix="fix floor all wall/gran/mn zcylinder 0.0 NULL"),
+                                    "unknown wall style zcylinder (expected xplane or yplane"),
     "wall fix unknown keyword": (deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL shear 1"),
                                  "unknown keyword shear"),
     "wall fix walls in wrong order": (deck(fix="fix floor all wall/gran/mn yplane 2.0 1.0"),
@@ -121,6 +129,10 @@ ERRORS = {
         deck(pair="pair_style gran/mn kn 2e5 e 0.7 beta 1e-40 mu 0.5",
              timestep="timestep $(v_mn_tau_c/100)"),
         "the tangential (sticking) mode of two disks: use a timestep below 4.49"),
+    "beta near zero at tau_c/100 in three dimensions": (
+        deck(pair="pair_style gran/mn kn 2e5 e 0.7 beta 1e-40 mu 0.5", dimension="dimension 3",
+             z="-3 3", timestep="timestep $(v_mn_tau_c/100)"),
+        "the tangential (sticking) mode of two spheres: use a timestep below 4.49"),
     "e near zero at tau_c/100": (
         deck(pair="pair_style gran/mn kn 2e5 e 1e-40 beta 0.7 mu 0.5",
              timestep="timestep $(v_mn_tau_c/100)"),

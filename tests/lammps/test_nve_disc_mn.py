@@ -202,6 +202,9 @@ BAD = {
     "nve/disc/mn in three dimensions": (
         bad_deck("nve/disc/mn", dimension="dimension 3"),
         "Fix nve/disc/mn integrates disks: it requires dimension 2"),
+    "nve/ab2 in three dimensions": (
+        bad_deck("nve/ab2", dimension="dimension 3"),
+        "Fix nve/ab2 integrates disks: it requires dimension 2"),
     "nve/disc/mn without disk attributes": (
         bad_deck("nve/disc/mn", atom_style="atom_style atomic"),
         "Fix nve/disc/mn requires atom attributes radius, rmass, omega, torque"),

@@ -1,9 +1,11 @@
 // Unit tests of the mapping (k_n, e, beta) -> coefficients for any shape of inertia
 // (mn::derive with q = 1 + m r^2/I, docs/model.md section 3.1), on spheres in 3D: a sticking
 // contact (mu large), its tangential displacement a vector, integrated with RK4 at tau/2e4 so
-// that what is measured is the law's, not the integrator's. The force is the law's, written here
-// in 3D from the derived coefficients: F_n = 2M (k_n delta - eta_n v_n) n,
-// F_t = -2M (k_t u_t + eta_t v_t), du_t/dt = v_t (2M -> m against a plane).
+// that what is measured is the law's, not the integrator's. The force is mn::contact_force3's
+// (F_n = 2M (k_n delta - eta_n v_n) n, F_t = -2M (k_t u_t + eta_t v_t), 2M -> m against a
+// plane) on u_t turned into the tangent plane (mn::rotate_into_tangent_plane), du_t/dt = v_t.
+// Then the 3D law's pieces: the rotation of u_t, the Coulomb cap and cut-back in 3D, and the 3D
+// law on a planar contact against the 2D one.
 #include "mn_contact.h"
 
 #include <gtest/gtest.h>
@@ -91,14 +93,35 @@ Rates rates(const mn::Law &law, const Scene &s)
   Rates d{{s.a.v, s.b.v}, {zero, zero}, {zero, zero}, zero};
   const Contact c = contact(s);
   if (c.delta <= 0.0) return d;
-  const Vec fn = (c.mass_scale * (law.material.kn * c.delta - law.eta_n * c.vn)) * c.n;
-  const Vec ft = (-c.mass_scale) * (law.kt * s.ut + law.eta_t * c.vt);
-  const Vec f = fn + ft;
+  // the law's kinematics and force (u_t turned into this stage's tangent plane, not advanced)
+  const Vec dx = s.plane ? Vec{0, 0, s.a.x[2]} : s.a.x - s.b.x;
+  const Vec dv = s.plane ? s.a.v : s.a.v - s.b.v;
+  const Vec lever = s.plane ? s.a.r * s.a.w : s.a.r * s.a.w + s.b.r * s.b.w;
+  const mn::Kinematics3 k = mn::kinematics3(dx.data(), norm(dx), s.plane ? s.a.r : s.a.r + s.b.r,
+                                            dv.data(), lever.data());
+  EXPECT_NEAR(k.delta, c.delta, 1e-15);
+  EXPECT_NEAR(k.vn, c.vn, 1e-12);
+  Vec ut = s.ut;
+  mn::rotate_into_tangent_plane(k.n, ut.data());
+  const mn::Force3 force = mn::contact_force3(law, c.mass_scale, k, ut.data(), 0.0);
+  EXPECT_FALSE(force.sliding);
+  const Vec ft{force.ft[0], force.ft[1], force.ft[2]};
+  Vec f;
+  mn::cartesian3(k, force, f.data());
+  Vec torque_a, torque_b;
+  mn::torque3(k, force, s.a.r, torque_a.data());
+  mn::torque3(k, force, s.b.r, torque_b.data());
+  // the law's torques are (-r_a n) x F_t on a and (r_b n) x (-F_t) on b
+  const Vec expected_a = (-s.a.r) * cross(c.n, ft), expected_b = (-s.b.r) * cross(c.n, ft);
+  for (int m = 0; m < 3; m++) {
+    EXPECT_NEAR(torque_a[m], expected_a[m], 1e-12 * (1.0 + norm(expected_a)));
+    EXPECT_NEAR(torque_b[m], expected_b[m], 1e-12 * (1.0 + norm(expected_b)));
+  }
   d.v[0] = (1.0 / s.a.m) * f;
-  d.w[0] = (-s.a.r / s.a.inertia) * cross(c.n, ft);    // torque (-r_a n) x F_t
+  d.w[0] = (1.0 / s.a.inertia) * torque_a;
   if (!s.plane) {
     d.v[1] = (-1.0 / s.b.m) * f;
-    d.w[1] = (-s.b.r / s.b.inertia) * cross(c.n, ft);    // torque (r_b n) x (-F_t)
+    d.w[1] = (1.0 / s.b.inertia) * torque_b;
   }
   d.ut = c.vt;
   return d;
@@ -137,6 +160,8 @@ double collide(const mn::Law &law, Scene &s, double tau)
     }
     sum.ut = (1.0 / 6) * (k1.ut + 2.0 * k2.ut + 2.0 * k3.ut + k4.ut);
     s = advance(s, sum, h);
+    const Contact now = contact(s);
+    mn::rotate_into_tangent_plane(now.n.data(), s.ut.data());
     const double after = contact(s).delta;
     if (before <= 0 && after > 0) t_start = t + h * (-before) / (after - before);
     t += h;
@@ -271,4 +296,158 @@ TEST(SphereMapping, PlaneImpactHasBoundaryDurationAndRestitutions)
     EXPECT_NEAR(o.duration / law.tau_w, 1.0, 1e-4) << "e=" << e;
     EXPECT_NEAR(o.beta, law.e_w, 1e-3) << "e=" << e;
   }
+}
+
+// The rotation of u_t (Luding 2008 eq. 17): into the plane normal to n, magnitude kept; one
+// already in the plane is left as it is (to rounding); one along n has nothing left and is zero.
+TEST(Law3D, RotationKeepsMagnitudeInTheTangentPlane)
+{
+  const Vec n = (1.0 / std::sqrt(1.0 + 4.0 + 0.25)) * Vec{1.0, -2.0, 0.5};
+  for (const Vec &start : {Vec{0.3, 0.1, -0.7}, Vec{1e-9, 2e-9, 0.0}, Vec{-5.0, 4.0, 3.0}}) {
+    Vec ut = start;
+    mn::rotate_into_tangent_plane(n.data(), ut.data());
+    EXPECT_NEAR(dot(ut, n), 0.0, 1e-15 * norm(start));
+    EXPECT_NEAR(norm(ut), norm(start), 1e-15 * norm(start));
+    const Vec again_from = ut;
+    mn::rotate_into_tangent_plane(n.data(), ut.data());
+    for (int c = 0; c < 3; c++) EXPECT_NEAR(ut[c], again_from[c], 1e-15 * norm(start));
+  }
+  Vec along = 0.2 * n;
+  mn::rotate_into_tangent_plane(n.data(), along.data());
+  EXPECT_LT(norm(along), 1e-16);
+  Vec zero{0, 0, 0};
+  mn::rotate_into_tangent_plane(n.data(), zero.data());
+  EXPECT_EQ(norm(zero), 0.0);
+}
+
+// A sticking contact carried around a fixed sphere without slip (v_t = 0): the normal turns by a
+// quarter turn about a tilted axis in 2000 steps of contact_force3. u_t stays in the tangent
+// plane and keeps its magnitude (and so the tangential force its size); without the rotation it
+// would keep its direction and, after a quarter turn, lie along the old normal's perpendicular
+// only by chance: its part along n would grow to ~|u_t|.
+TEST(Law3D, ContactTurningAroundAFixedSphereKeepsUtInTheTangentPlane)
+{
+  const mn::Law law = mn::derive({1e5, 0.8, 0.6, 0.5}, mn::Options(), mn::SOLID_SPHERE_Q);
+  const Vec axis = (1.0 / std::sqrt(1.0 + 0.09 + 0.04)) * Vec{0.3, 1.0, 0.2};
+  Vec n0 = cross(axis, Vec{0, 0, 1});
+  n0 = (1.0 / norm(n0)) * n0;
+  const Vec b0 = cross(axis, n0);
+  Vec ut = 1e-4 * (0.6 * axis + 0.8 * b0);    // in the plane normal to n0
+  const double magnitude = norm(ut);
+  const int steps = 2000;
+  const Vec zero{0, 0, 0};
+  double ft_first = 0.0;
+  for (int step = 1; step <= steps; step++) {
+    const double angle = 0.5 * mn::PI * step / steps;
+    const Vec n = std::cos(angle) * n0 + std::sin(angle) * b0;
+    const mn::Kinematics3 k = mn::kinematics3(n.data(), 1.0, 1.0 + 1e-4, zero.data(), zero.data());
+    const mn::Force3 f = mn::contact_force3(law, 1.0, k, ut.data(), 1e-5);
+    EXPECT_FALSE(f.sliding);
+    EXPECT_NEAR(dot(ut, n), 0.0, 1e-15 * magnitude) << "step " << step;
+    EXPECT_NEAR(norm(ut), magnitude, 1e-13 * magnitude) << "step " << step;
+    const double ft = norm(Vec{f.ft[0], f.ft[1], f.ft[2]});
+    if (step == 1) ft_first = ft;
+    EXPECT_NEAR(ft, ft_first, 1e-12 * ft_first);
+  }
+  // the turn (n0 -> b0 about axis) carried the part along b0 to -n0 and kept the one along axis
+  EXPECT_NEAR(dot(ut, n0), -0.8 * magnitude, 2e-3 * magnitude);
+  EXPECT_NEAR(dot(ut, axis), 0.6 * magnitude, 2e-3 * magnitude);
+}
+
+// The Coulomb cap in 3D: a trial force beyond mu |fn| is cut to that magnitude along its own
+// direction; the literal law keeps u_t as advanced, the cut-back one sets it so that the trial
+// force is the capped force.
+TEST(Law3D, CoulombCapAndCutback)
+{
+  const Vec n = (1.0 / 3.0) * Vec{1.0, 2.0, 2.0};
+  const Vec dv{0.4, -1.3, 0.2}, lever{0.1, 0.3, -0.2};
+  const double dt = 1e-3;
+  for (bool cutback : {false, true}) {
+    mn::Options options;
+    options.coulomb_cutback = cutback;
+    const mn::Law law = mn::derive({1e4, 0.7, 0.5, 0.3}, options, mn::SOLID_SPHERE_Q);
+    const mn::Kinematics3 k =
+        mn::kinematics3((2.0 * n).data(), 2.0, 2.0 + 1e-3, dv.data(), lever.data());
+    EXPECT_NEAR(dot(Vec{k.vt[0], k.vt[1], k.vt[2]}, n), 0.0, 1e-15);
+    Vec ut = 0.02 * cross(n, Vec{0, 0, 1});
+    Vec advanced = ut;
+    mn::rotate_into_tangent_plane(n.data(), advanced.data());
+    for (int c = 0; c < 3; c++) advanced[c] += k.vt[c] * dt;
+    const double scale = 2.5;
+    Vec trial;
+    for (int c = 0; c < 3; c++) trial[c] = -scale * (law.kt * advanced[c] + law.eta_t * k.vt[c]);
+    const mn::Force3 f = mn::contact_force3(law, scale, k, ut.data(), dt);
+    ASSERT_TRUE(f.sliding);
+    const Vec ft{f.ft[0], f.ft[1], f.ft[2]};
+    EXPECT_NEAR(norm(ft), 0.3 * std::fabs(f.fn), 1e-12 * norm(ft));
+    EXPECT_NEAR(dot(ft, trial) / (norm(ft) * norm(trial)), 1.0, 1e-14);
+    if (!cutback) {
+      for (int c = 0; c < 3; c++) EXPECT_EQ(ut[c], advanced[c]);
+    } else {
+      for (int c = 0; c < 3; c++)
+        EXPECT_NEAR(-scale * (law.kt * ut[c] + law.eta_t * k.vt[c]), ft[c], 1e-12 * norm(ft));
+      EXPECT_NEAR(dot(ut, n), 0.0, 1e-15);
+    }
+    // below the cap: the trial force itself
+    Vec small = 1e-7 * cross(n, Vec{1, 0, 0});
+    const mn::Kinematics3 slow = mn::kinematics3((2.0 * n).data(), 2.0, 2.0 + 1e-3,
+                                                 (1e-6 * n).data(), Vec{0, 0, 0}.data());
+    const mn::Force3 g = mn::contact_force3(law, scale, slow, small.data(), 0.0);
+    EXPECT_FALSE(g.sliding);
+    for (int c = 0; c < 3; c++)
+      EXPECT_EQ(g.ft[c], -scale * (law.kt * small[c] + law.eta_t * slow.vt[c]));
+  }
+}
+
+// A contact in the xy plane with spins about z: the 3D law gives the 2D law's force, torque and
+// u_t (u_t = u t, t = z x n) step after step, with and without sliding and cut-back, for a pair
+// and against a wall. This fixes the 3D signs (v_t, the torque) to the 2D ones.
+TEST(Law3D, PlanarContactIsThe2DLaw)
+{
+  for (bool cutback : {false, true})
+    for (double mu : {0.1, 10.0})
+      for (bool wall : {false, true}) {
+        mn::Options options;
+        options.coulomb_cutback = cutback;
+        const mn::Law law = mn::derive({2e4, 0.7, 0.4, mu}, options, mn::SOLID_SPHERE_Q);
+        const double ri = 0.5, rj = wall ? 0.0 : 0.4, dt = law.tau_c / 200;
+        double xi[2] = {0.03, 0.88}, vi[2] = {0.3, -1.0}, wi = 2.0;
+        const double wj = wall ? 0.0 : -1.5;
+        double ut2 = 0.0;
+        Vec ut3{0, 0, 0};
+        for (int step = 0; step < 60; step++) {
+          const double dx = wall ? 0.0 : xi[0], dy = xi[1];
+          const double dist = std::sqrt(dx * dx + dy * dy);
+          if (dist >= ri + rj) break;
+          const mn::Kinematics k2 =
+              mn::kinematics(dx, dy, dist, ri + rj, vi[0], vi[1], ri * wi + rj * wj);
+          const mn::Force f2 = mn::contact_force(law, 1.3, k2, &ut2, dt);
+          const Vec d{dx, dy, 0}, dv{vi[0], vi[1], 0}, lever{0, 0, ri * wi + rj * wj};
+          const mn::Kinematics3 k3 = mn::kinematics3(d.data(), dist, ri + rj, dv.data(),
+                                                     lever.data());
+          const mn::Force3 f3 = mn::contact_force3(law, 1.3, k3, ut3.data(), dt);
+          const mn::Cartesian c2 = mn::cartesian(k2, f2);
+          Vec c3, t3;
+          mn::cartesian3(k3, f3, c3.data());
+          mn::torque3(k3, f3, ri, t3.data());
+          const double size = std::fabs(f2.fn) + 1.0;
+          EXPECT_EQ(f3.sliding, f2.sliding);
+          EXPECT_NEAR(c3[0], c2.fx, 1e-12 * size);
+          EXPECT_NEAR(c3[1], c2.fy, 1e-12 * size);
+          EXPECT_EQ(c3[2], 0.0);
+          EXPECT_NEAR(t3[2], mn::torque(f2, ri), 1e-12 * size);
+          EXPECT_EQ(t3[0], 0.0);
+          EXPECT_EQ(t3[1], 0.0);
+          mn::torque3(k3, f3, rj, t3.data());
+          EXPECT_NEAR(t3[2], mn::torque(f2, rj), 1e-12 * size);
+          const Vec t{-k2.ny, k2.nx, 0};
+          for (int c = 0; c < 3; c++) EXPECT_NEAR(ut3[c], ut2 * t[c], 1e-12);
+          // move i a little (j and the wall stay): a contact that turns and slides
+          vi[0] += dt * c2.fx;
+          vi[1] += dt * c2.fy;
+          wi += dt * 5.0 * mn::torque(f2, ri);
+          xi[0] += dt * vi[0];
+          xi[1] += dt * vi[1];
+        }
+      }
 }
