@@ -1,6 +1,6 @@
 // RK4 through one contact, for the unit tests' reference integrations (disks in 2D, spheres in
-// 3D): a scene type S with
-//   rates(s)          its time derivatives, D
+// 3D), of a scene type S with
+//   rates(s)          its time derivatives
 //   advance(s, d, h)  s + h d (linear in d)
 //   overlap(s)        the contact's overlap (> 0 while in contact)
 #ifndef GRANMN_TESTS_RK4_CONTACT_H
@@ -23,15 +23,16 @@ S rk4_step(const S &s, double h, Rates rates, Advance advance)
   return advance(next, k4, h / 6);
 }
 
-// RK4 by steps of h through the whole contact; returns its duration (the overlap's zeros,
-// interpolated linearly within a step) and leaves s after separation.
-template <class S, class Rates, class Advance, class Overlap>
-double rk4_contact_duration(S &s, double h, Rates rates, Advance advance, Overlap overlap)
+// Steps of h through the whole contact (step(s, h): the scene a step later, e.g. rk4_step);
+// returns the contact's duration (the overlap's zeros, interpolated linearly within a step) and
+// leaves s after separation.
+template <class S, class Step, class Overlap>
+double contact_duration(S &s, double h, Step step, Overlap overlap)
 {
   double t = 0.0, t_start = -1.0;
-  for (int step = 0; step < 4000000; step++) {
+  for (int n = 0; n < 4000000; n++) {
     const double before = overlap(s);
-    s = rk4_step(s, h, rates, advance);
+    s = step(s, h);
     const double after = overlap(s);
     if (before <= 0 && after > 0) t_start = t + h * (-before) / (after - before);
     t += h;

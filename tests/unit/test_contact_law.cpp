@@ -97,8 +97,10 @@ double overlap(const Scene &q)
 // scene after separation.
 double collide(const mn::Law &law, Scene &s, double tau, double resolution = 2e4)
 {
-  return rk4_contact_duration(
-      s, tau / resolution, [&law](const Scene &q) { return rates(law, q); }, advance, overlap);
+  auto rk4 = [&law](const Scene &q, double h) {
+    return rk4_step(q, h, [&law](const Scene &r) { return rates(law, r); }, advance);
+  };
+  return contact_duration(s, tau / resolution, rk4, overlap);
 }
 
 // The contact as LAMMPS integrates it: fix nve/sphere disc (velocity Verlet) or fix nve/ab2 moves

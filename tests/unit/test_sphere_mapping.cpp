@@ -7,6 +7,7 @@
 // Then the 3D law's pieces: the rotation of u_t, the Coulomb cap and cut-back in 3D, and the 3D
 // law on a planar contact against the 2D one.
 #include "mn_contact.h"
+#include "rk4_contact.h"
 
 #include <gtest/gtest.h>
 
@@ -140,36 +141,17 @@ Scene advance(const Scene &s, const Rates &d, double h)
   return n;
 }
 
-// RK4 through the whole contact with steps of tau/2e4; returns the contact's duration (the
-// overlap's zeros, interpolated linearly) and leaves the scene after separation.
+// RK4 through the whole contact with steps of tau/2e4, u_t turned into the tangent plane after
+// each step as the styles do; returns the contact's duration and leaves the scene after
+// separation.
 double collide(const mn::Law &law, Scene &s, double tau)
 {
-  const double h = tau / 2e4;
-  double t = 0.0, t_start = -1.0;
-  for (int step = 0; step < 1000000; step++) {
-    const double before = contact(s).delta;
-    const Rates k1 = rates(law, s);
-    const Rates k2 = rates(law, advance(s, k1, 0.5 * h));
-    const Rates k3 = rates(law, advance(s, k2, 0.5 * h));
-    const Rates k4 = rates(law, advance(s, k3, h));
-    Rates sum;
-    for (int i = 0; i < 2; i++) {
-      sum.x[i] = (1.0 / 6) * (k1.x[i] + 2.0 * k2.x[i] + 2.0 * k3.x[i] + k4.x[i]);
-      sum.v[i] = (1.0 / 6) * (k1.v[i] + 2.0 * k2.v[i] + 2.0 * k3.v[i] + k4.v[i]);
-      sum.w[i] = (1.0 / 6) * (k1.w[i] + 2.0 * k2.w[i] + 2.0 * k3.w[i] + k4.w[i]);
-    }
-    sum.ut = (1.0 / 6) * (k1.ut + 2.0 * k2.ut + 2.0 * k3.ut + k4.ut);
-    s = advance(s, sum, h);
-    const Contact now = contact(s);
-    mn::rotate_into_tangent_plane(now.n.data(), s.ut.data());
-    const double after = contact(s).delta;
-    if (before <= 0 && after > 0) t_start = t + h * (-before) / (after - before);
-    t += h;
-    if (t_start >= 0 && before > 0 && after <= 0)
-      return t - h + h * before / (before - after) - t_start;
-  }
-  ADD_FAILURE() << "contact never ended";
-  return 0.0;
+  auto step = [&law](const Scene &q, double h) {
+    Scene next = rk4_step(q, h, [&law](const Scene &r) { return rates(law, r); }, advance);
+    mn::rotate_into_tangent_plane(contact(next).n.data(), next.ut.data());
+    return next;
+  };
+  return contact_duration(s, tau / 2e4, step, [](const Scene &q) { return contact(q).delta; });
 }
 
 struct Outcome {
