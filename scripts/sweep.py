@@ -82,8 +82,9 @@ SCENE_ATOMS = {"single_disk": 11, "collisional_flow": 100, "frictional_flow": 10
                "chute_3d": lambda v: (int(float(v["spheres"]))
                                       + int(float(v["length"])) * int(float(v["width"])))}
 # Seconds per step by the scene's dimension: a fixed part and a part per atom; refined as points
-# finish. 3D: measured on the dense chute (docs/scenes.md), ~2x a 2D disk's (more neighbours).
-STEP_COST = {2: (4e-7, 4e-8), 3: (4e-7, 8e-8)}
+# finish. 3D: the dense chute's CPU seconds per atom-step, measured (docs/scenes.md): 9.9e-8 at
+# kn 2e4, 6.2e-8 at 2e5, 5.6e-8 at 2e6 (the stiff points, where a series' time goes).
+STEP_COST = {2: (4e-7, 4e-8), 3: (4e-7, 6e-8)}
 
 
 class SweepError(Exception):
