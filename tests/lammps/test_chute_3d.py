@@ -108,3 +108,21 @@ def test_the_chute_preset_is_known_to_the_runner_and_within_budget(tmp_path):
     points = proc.stdout.count(" todo chute_3d/")
     print(proc.stdout.splitlines()[0])
     assert points >= 2 * 4 * 2 and 0.5 < hours <= 3.0
+
+
+def first_frame(path):
+    """The first frame of a dump as a sorted list of atoms (type, x, y, z, ..., radius), ids left
+    out: LAMMPS numbers the atoms by processor."""
+    frame = path.read_text().split("ITEM: TIMESTEP")[1].splitlines()
+    start = next(i for i, line in enumerate(frame) if line.startswith("ITEM: ATOMS"))
+    return sorted(tuple(line.split()[1:]) for line in frame[start + 1:])
+
+
+def test_the_start_does_not_depend_on_the_number_of_processors(tmp_path):
+    """The sites kept, the sizes, the jitter and the base's heights come from positions, not
+    atom ids: one and two ranks start from the same spheres (a partial top layer included)."""
+    short = {**SMALL, "spheres": 70, "run_time": 0.2, "average_start": 0.1}
+    one = run_scene("chute_3d", tmp_path / "np1", **short)
+    two = run_scene("chute_3d", tmp_path / "np2", nprocs=2, **short)
+    assert first_frame(one.workdir / "snapshots.lammpstrj") == \
+        first_frame(two.workdir / "snapshots.lammpstrj")
