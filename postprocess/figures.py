@@ -173,15 +173,20 @@ def snapshot_figure(scene, point, path):
         atoms = np.loadtxt(lines[start + 1:], ndmin=2)
     except (StopIteration, ValueError, IndexError):
         raise DataError(f"{point}/snapshots.lammpstrj: the last frame is truncated")
+    # the height is y in 2D, z in 3D (a side view: spheres as circles of their radius)
+    columns = lines[start].split()[2:]
+    height = "z" if "z" in columns else "y"
+    column_x, column_h = columns.index("x"), columns.index(height)
     fig, ax = plt.subplots(figsize=(10, 3.2))
-    for _, atom_type, x, y, *_, radius in atoms:
+    for atom in atoms:
         # atom type 2: the bumps (inputs/*.lmp)
-        ax.add_patch(plt.Circle((x, y), radius, color="0.6" if atom_type == 2 else "tab:blue",
-                                alpha=0.8))
+        ax.add_patch(plt.Circle((atom[column_x], atom[column_h]), atom[-1],
+                                color="0.6" if atom[1] == 2 else "tab:blue", alpha=0.8))
     ax.set_xlim(*bounds)
-    ax.set_ylim(-1, max(atoms[:, 3].max() + 1, 3))
+    ax.set_ylim(-1, max(atoms[:, column_h].max() + 1, 3))
     ax.set_aspect("equal")
-    ax.set(xlabel="x (along the slope)", ylabel="y", title=f"{scene_of(scene).title}: last snapshot")
+    ax.set(xlabel="x (along the slope)", ylabel=height,
+           title=f"{scene_of(scene).title}: last snapshot")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)

@@ -49,6 +49,17 @@ SCENES = {s.name: s for s in (
           notes=("N_w and t_w are per disk of the bottom layer (disks that touched the floor in "
                  "the averaging window; the paper: during the averaging span).",),
           base="flat base, 100 polydisperse disks"),
+    # inputs/chute_3d.lmp: a dense frictional flow and a dilute collisional one are two
+    # parameter sets of one deck (inputs/sweeps/chute_3d.toml), averaged alike: over the window
+    # after average_start (the 2D frictional flow's energy range [0.4, 0.8] and spans > 500
+    # belong to that scene), a run that came to rest refused; per flowing sphere, N_w and t_w
+    # per sphere that touched the base (in the dilute flow, all of them)
+    Scene("chute_3d", "3D chute", boundary_per_bottom_layer=True,
+          guides=(Guide("rates", "N_c", 0.4, "k_n^0.4 guide (the 2D paper's)"),
+                  Guide("times", "t_c", -0.5, "k_n^-1/2 guide")),
+          notes=("Spheres (3D). N_w and t_w are per sphere that touched the base (the fixed "
+                 "spheres) in the averaging window.",),
+          base="rough base of fixed spheres, 3D"),
 )}
 
 

@@ -9,7 +9,7 @@ Config (TOML):
     [defaults]                    # deck variables for every point
     run_time = 100
     [[grid]]                      # every list is a dimension; points = the cartesian product
-    scene = "single_disk"         # single_disk, collisional_flow or frictional_flow
+    scene = "single_disk"         # single_disk, collisional_flow, frictional_flow or chute_3d
     kn = [5e4, 2e5]
     seed = [1, 2]
     integrator = ["verlet", "ab2"]
@@ -76,10 +76,15 @@ RESERVED = {"plugin", "lib", "out", "run_token", "resume"}
 # quotes, $ (a variable) and # (a comment) are syntax.
 PATH_SYNTAX = {" ": "a space", "\t": "a tab", "\n": "a newline", '"': "a quote (\")",
                "'": "a quote (')", "$": "a $", "#": "a #"}
-# Atoms each scene integrates or pairs with: the cost model's size (bumps included).
-SCENE_ATOMS = {"single_disk": 11, "collisional_flow": 100, "frictional_flow": 100}
-# Seconds per step: a fixed part and a part per atom; refined as points finish.
-STEP_COST = (4e-7, 4e-8)
+# Atoms each scene integrates or pairs with: the cost model's size (bumps included); where the
+# size is a deck variable, a function of the point's variables (the deck's defaults filled in).
+SCENE_ATOMS = {"single_disk": 11, "collisional_flow": 100, "frictional_flow": 100,
+               "chute_3d": lambda v: (int(float(v["spheres"]))
+                                      + int(float(v["length"])) * int(float(v["width"])))}
+# Seconds per step by the scene's dimension: a fixed part and a part per atom; refined as points
+# finish. 3D: the dense chute's CPU seconds per atom-step, measured (docs/scenes.md): 9.9e-8 at
+# kn 2e4, 6.2e-8 at 2e5, 5.6e-8 at 2e6 (the stiff points, where a series' time goes).
+STEP_COST = {2: (4e-7, 4e-8), 3: (4e-7, 6e-8)}
 
 
 class SweepError(Exception):
@@ -198,6 +203,20 @@ def deck_defaults(scene):
     return {name: value for name, value in defaults.items() if name not in RESERVED}
 
 
+def scene_atoms(point):
+    """The cost model's size of a point: SCENE_ATOMS of its scene."""
+    atoms = SCENE_ATOMS[point["scene"]]
+    return atoms({**deck_defaults(point["scene"]), **point}) if callable(atoms) else atoms
+
+
+@functools.lru_cache(maxsize=None)
+def scene_dimension(scene):
+    """2, or 3 where the scene deck says `variable dimension string 3` (inputs/lib/begin.lmp)."""
+    found = re.search(r"^variable dimension string (\d)", (ROOT / "inputs" / f"{scene}.lmp")
+                      .read_text(), re.M)
+    return int(found.group(1)) if found else 2
+
+
 def deck_commands(path):
     """The commands of a LAMMPS input file and of the files it includes from ${lib}: comments
     dropped, continuation lines and triple-quoted strings joined into their command."""
@@ -266,7 +285,8 @@ class CostModel:
         self.factor, self.samples = 1.0, 0
 
     def predict(self, point, steps):
-        return steps * (STEP_COST[0] + STEP_COST[1] * SCENE_ATOMS[point["scene"]]) * self.factor
+        fixed, per_atom = STEP_COST[scene_dimension(point["scene"])]
+        return steps * (fixed + per_atom * scene_atoms(point)) * self.factor
 
     def learn(self, predicted, measured):
         ratio = measured / max(predicted, 1e-9)

@@ -407,7 +407,7 @@ def left_out_of_a_sweep(tmp_path, scene, point_json):
 def test_a_point_of_an_unknown_scene_is_listed_not_dropped(tmp_path):
     point, left_out = left_out_of_a_sweep(tmp_path, "avalanche", "{}")
     assert left_out == [(point, "unknown scene 'avalanche' (expected one of single_disk, "
-                                "collisional_flow, frictional_flow)")]
+                                "collisional_flow, frictional_flow, chute_3d)")]
 
 
 def test_a_broken_point_json_is_named(tmp_path):

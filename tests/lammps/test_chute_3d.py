@@ -1,0 +1,128 @@
+"""inputs/chute_3d.lmp, the 3D chute (issue 23, docs/scenes.md): a small chute runs in 3D, its
+outputs are read by the post-processing (N_c, N_w, t_c, t_w per sphere per unit time), its
+kinetic energies are those of solid spheres, and refused variables stop it with a message;
+the sweep runner's preset is known and within its budget."""
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from granmn_run import PLUGIN, ROOT, run_scene
+
+from postprocess.observables import point_observables
+
+# dt = dt_cap = 1e-3 (tau_c/16): the snapshots (every 6000 steps) fall on lines of energy.txt
+# (every 100)
+SMALL = dict(kn=2e4, dt_fraction=0.1, dt_cap=1e-3, spheres=60, length=5, width=5,
+             sin_theta=0.40, run_time=12, average_start=6, snapshot_interval=6)
+
+
+def last_frame(path):
+    """The last frame of a LAMMPS text dump as {column: array}."""
+    frame = path.read_text().split("ITEM: TIMESTEP")[-1].splitlines()
+    start = next(i for i, line in enumerate(frame) if line.startswith("ITEM: ATOMS"))
+    data = np.loadtxt(frame[start + 1:], ndmin=2)
+    return int(frame[1]), {name: data[:, k] for k, name in enumerate(frame[start].split()[2:])}
+
+
+def test_small_chute_runs_in_3d_and_the_pipeline_reads_it(tmp_path):
+    run = run_scene("chute_3d", tmp_path, **SMALL)
+    params = dict(line.split() for line in (tmp_path / "params.txt").read_text().splitlines())
+    assert params["scene"] == "chute_3d" and params["dimension"] == "3"
+    assert int(params["n_mobile"]) == 60
+    assert "3D: solid spheres, q = 7/2" in run.output
+
+    # the energies of the last line are those of the last snapshot's solid spheres
+    # (mass d^3, I = 2 m r^2/5), per flowing sphere
+    step, atoms = last_frame(tmp_path / "snapshots.lammpstrj")
+    energy = run.table("energy.txt")
+    assert step == 12000
+    line = energy[energy[:, 0] == step][0]
+    mobile = atoms["type"] == 1
+    mass = (2 * atoms["radius"][mobile]) ** 3
+    v2 = sum(atoms[c][mobile] ** 2 for c in ("vx", "vy", "vz"))
+    w2 = sum(atoms[c][mobile] ** 2 for c in ("omegax", "omegay", "omegaz"))
+    e_trans = 0.5 * mass @ v2 / 60
+    e_rot = 0.5 * 0.4 * (mass * atoms["radius"][mobile] ** 2) @ w2 / 60
+    # (the dump prints 6 digits; a disc inertia would be 25 % off)
+    assert line[1] == pytest.approx(e_trans, rel=1e-4)
+    assert line[2] == pytest.approx(e_rot, rel=1e-4)
+    # sensible: it moves, it has not blown up, no sphere fell through the base (heights
+    # 0.5 - 1.0, base_rough 0.5) and the fixed spheres did not move
+    assert np.all(np.isfinite(energy[:, 1:4])) and 0.01 < line[3] < 10
+    assert atoms["z"][mobile].min() > 0.9
+    base = atoms["type"] == 2
+    assert base.sum() == 25 and np.all(atoms["vx"][base] == 0) and np.all(atoms["vz"][base] == 0)
+    assert atoms["z"][base].min() >= 0.5 and atoms["z"][base].max() < 1.0
+
+    counts = run.atoms("counts.txt")
+    assert len(counts["id"]) == 60
+    assert 0.9 <= counts["diameter"].min() and counts["diameter"].max() <= 1.1
+    assert counts["f_c[1]"].sum() > 0 and counts["f_c[2]"].sum() > 0
+
+    # the post-processing: per flowing sphere per unit time, N_w per sphere that touched
+    # the base; a profile binned along z
+    o = point_observables(tmp_path)
+    assert o["scene"] == "chute_3d" and 0 < o["n_boundary"] <= 60
+    for name in ("N_c", "N_w", "t_c", "t_w"):
+        assert np.isfinite(o[name]) and o[name] > 0, (name, o[name])
+    assert o["t_c"] <= 1 and o["t_w"] <= 1
+    assert o["E_total"] == pytest.approx(energy[energy[:, 0] * float(params["dt"]) >= 6, 3]
+                                         .mean(), rel=0.05)
+    profile = [l.split() for l in (tmp_path / "profile.txt").read_text().splitlines()
+               if l.strip() and not l.startswith("#")][1:]
+    assert max(float(p[1]) for p in profile) > 1.5       # bins of height z above the base
+
+
+BAD_3D = {
+    "fused integration": (dict(integration="fused"),
+                          "in 3D only integration = separate with integrator = verlet"),
+    "ab2": (dict(integrator="ab2"), "in 3D only integration = separate with integrator = verlet"),
+    "no spheres": (dict(spheres=0), "deck variable spheres = 0 must be a positive integer"),
+    "narrow base": (dict(width=2), "must be integers >= 3"),
+    "base too rough": (dict(base_rough=0.8), "base_rough = 0.8 must lie in [0, 0.5]"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_3D))
+def test_bad_chute_variables_stop_with_a_message(tmp_path, case):
+    variables, message = BAD_3D[case]
+    run = run_scene("chute_3d", tmp_path, check=False, **{**SMALL, **variables})
+    assert run.returncode != 0 and message in run.output, run.output[-1500:]
+
+
+def test_the_chute_preset_is_known_to_the_runner_and_within_budget(tmp_path):
+    """inputs/sweeps/chute_3d.toml: every point is a chute_3d point the runner accepts; the
+    predicted cost (its cost model: spheres + base atoms, the 3D per-atom cost) stays under
+    the issue's ~3 CPU-hours."""
+    build = Path(PLUGIN).resolve().parents[1]    # as tests/lammps/test_sweep.py
+    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"),
+                           str(ROOT / "inputs" / "sweeps" / "chute_3d.toml"), "--output",
+                           str(tmp_path / "out"), "--build", str(build), "--dry-run"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    hours = float(re.search(r"\(([\d.]+) CPU-hours\)", proc.stdout).group(1))
+    points = proc.stdout.count(" todo chute_3d/")
+    print(proc.stdout.splitlines()[0])
+    assert points >= 2 * 4 * 2 and 0.5 < hours <= 3.0
+
+
+def first_frame(path):
+    """The first frame of a dump as a sorted list of atoms (type, x, y, z, ..., radius), ids left
+    out: LAMMPS numbers the atoms by processor."""
+    frame = path.read_text().split("ITEM: TIMESTEP")[1].splitlines()
+    start = next(i for i, line in enumerate(frame) if line.startswith("ITEM: ATOMS"))
+    return sorted(tuple(line.split()[1:]) for line in frame[start + 1:])
+
+
+def test_the_start_does_not_depend_on_the_number_of_processors(tmp_path):
+    """The sites kept, the sizes, the jitter and the base's heights come from positions, not
+    atom ids: one and two ranks start from the same spheres (a partial top layer included)."""
+    short = {**SMALL, "spheres": 70, "run_time": 0.2, "average_start": 0.1}
+    one = run_scene("chute_3d", tmp_path / "np1", **short)
+    two = run_scene("chute_3d", tmp_path / "np2", nprocs=2, **short)
+    assert first_frame(one.workdir / "snapshots.lammpstrj") == \
+        first_frame(two.workdir / "snapshots.lammpstrj")
