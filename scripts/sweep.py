@@ -211,8 +211,9 @@ def scene_atoms(point):
 
 @functools.lru_cache(maxsize=None)
 def scene_dimension(scene):
-    """2, or 3 where the scene deck says `variable dimension string 3` (inputs/lib/begin.lmp)."""
-    found = re.search(r"^variable dimension string (\d)", (ROOT / "inputs" / f"{scene}.lmp")
+    """2, or 3 where the scene deck says `variable scene_dimension string 3`
+    (inputs/lib/begin.lmp)."""
+    found = re.search(r"^variable scene_dimension string (\d)", (ROOT / "inputs" / f"{scene}.lmp")
                       .read_text(), re.M)
     return int(found.group(1)) if found else 2
 

@@ -87,6 +87,15 @@ BAD_3D = {
 }
 
 
+@pytest.mark.parametrize("scene, dimension", [("frictional_flow", 3), ("single_disk", 3)])
+def test_a_dimension_other_than_the_scenes_is_refused(tmp_path, scene, dimension):
+    """A 2D scene's geometry in a 3D box would run, wrongly: the decks refuse it."""
+    run = run_scene(scene, tmp_path, check=False, dimension=dimension)
+    assert run.returncode != 0, run.output[-1500:]
+    assert (f"inputs/{scene}.lmp is a 2D scene: -var dimension {dimension} does not apply"
+            in run.output), run.output[-1500:]
+
+
 @pytest.mark.parametrize("case", sorted(BAD_3D))
 def test_bad_chute_variables_stop_with_a_message(tmp_path, case):
     variables, message = BAD_3D[case]
