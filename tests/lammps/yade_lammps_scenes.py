@@ -23,6 +23,7 @@ from granmn_run import HEADER, PLUGIN, run_lammps
 HEADER_3D = HEADER.format(plugin=PLUGIN).replace("dimension 2", "dimension 3")
 SPHERE_DENSITY = 6 / math.pi
 THETA = math.radians(20.0)          # yade_reference.THETA
+IMPACTS_MEASURED = ("pair_equal", "pair_unequal", "wall")
 
 
 @dataclass
@@ -205,3 +206,36 @@ def impacts(styles_pair_equal, styles_pair_unequal, styles_plane, workdir, tc, d
            "wall": plane(styles_plane, workdir / "wall", tc, dt)}
     out["facet"] = out["wall"]
     return out
+
+
+if __name__ == "__main__":
+    # The dt dependence quoted in docs/cross_checks_3d.md: gran/mn's errors against this law's
+    # predictions at several steps per tc, in units of dt/tc. Run from tests/lammps with
+    # GRANMN_LMP and GRANMN_PLUGIN set and PYTHONPATH=.:../../scripts:
+    #     python3 yade_lammps_scenes.py WORKDIR [STEPS_PER_TC ...]
+    import json
+    import sys
+    from pathlib import Path
+
+    import yade_cross_check as yc
+
+    work = Path(sys.argv[1])
+    steps = [float(s) for s in sys.argv[2:]] or [50.0, 100.0, 200.0, 400.0]
+    numbers = json.loads(yc.NUMBERS.read_text())
+    for case, ref in numbers.items():
+        pred = yc.predictions(ref)
+        law = yc.mn_sphere_law(ref["tc"], ref["en"], ref["et"])
+        for extra, key in (("", "mn"), ("limit_damping", "yade")):
+            styles = Styles(f"pair_style gran/mn kn {law['kn']!r} e {ref['en']!r} beta "
+                            f"{ref['et']!r} mu 1e6 {extra}\npair_coeff * *",
+                            "wall/gran/mn zplane 0.0 NULL")
+            for n in steps:
+                tc = ref["tc"]
+                got = impacts(styles, styles, styles, work / f"{case}_{key}_{n:g}", tc, tc / n)
+                row = []
+                for name in IMPACTS_MEASURED:
+                    p = pred[name][key]
+                    row += [f"{(got[name][q] - p[q]) / (tc if q == 'tau' else 1.0) * n:+.3f}"
+                            for q in ("e", "beta", "tau")]
+                print(case, extra or "plain", f"{n:g} steps/tc", "err/(dt/tc) e beta tau for",
+                      " / ".join(IMPACTS_MEASURED), ":", " ".join(row), flush=True)
