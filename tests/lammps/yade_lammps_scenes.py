@@ -198,6 +198,48 @@ run {per * samples}
             "max_slip_speed": float(np.max(np.abs(vx[half:] - r * wy[half:])))}
 
 
+def discs(styles, workdir, tc, dt, r1=0.5, r2=0.3, m1=1.0, m2=0.36):
+    """The 2D analogue of `pair` (no Yade scene): discs (fix nve/sphere disc, I = m r^2/2) of
+    radii r1, r2 and masses m1, m2 set directly, c_1 - c_2 = (-1, 0.4) (approach speed 1 along
+    x), spins 12 (0.5/r1) and -7 (0.5/r2) about z."""
+    R = r1 + r2
+    V = np.array([-1.0, 0.4, 0.0])
+    w1, w2 = np.array([0.0, 0.0, 12.0 * 0.5 / r1]), np.array([0.0, 0.0, -7.0 * 0.5 / r2])
+    x1, x2 = np.array([R + 2 * tc, 0.0, 0.0]), np.zeros(3)
+    v1, v2 = V * (m2 / (m1 + m2)), -V * (m1 / (m1 + m2))
+    steps = int(round(5 * tc / dt))
+    deck = f"""
+region box block -5 5 -5 5 -0.5 0.5
+create_box 2 box
+create_atoms 1 single {_vec(x1)}
+create_atoms 2 single {_vec(x2)}
+set atom 1 diameter {2 * r1!r}
+set atom 2 diameter {2 * r2!r}
+set atom 1 mass {m1!r}
+set atom 2 mass {m2!r}
+velocity all set 0 0 0
+set atom 1 vx {v1[0]!r} vy {v1[1]!r} omega {_vec(w1)}
+set atom 2 vx {v2[0]!r} vy {v2[1]!r} omega {_vec(w2)}
+{styles.pair}
+timestep {dt!r}
+fix integrate all nve/sphere disc
+fix flat all enforce2d
+thermo 0
+run {steps}
+{DUMP}"""
+    run = run_lammps(deck, workdir)          # granmn_run's 2D header
+    x, v, w = _final(run)
+    T = steps * dt
+    t_in, _ = _entry_exit(x1, x2, v1, v2, 0.0, R)
+    _, t_out = _entry_exit(x[0], x[1], v[0], v[1], T, R)
+    n_in, vc_in = _relative(x1 + v1 * t_in, x2 + v2 * t_in, v1, v2, w1, w2, r1, r2)
+    n_out, vc_out = _relative(x[0] + v[0] * (t_out - T), x[1] + v[1] * (t_out - T),
+                              v[0], v[1], w[0], w[1], r1, r2)
+    rec = _record(vc_in, n_in, vc_out, n_out, t_in, t_out)
+    rec["output"] = run.output
+    return rec
+
+
 def impacts(styles_pair_equal, styles_pair_unequal, styles_plane, workdir, tc, dt):
     """The hook's `other` record for the impacts: pair_equal, pair_unequal, wall, and the facet
     as the wall's run."""
