@@ -17,8 +17,8 @@ e on the wall where this law's boundary rule gives e_w.
 
 dt = tc/200, as Yade's reference: velocity Verlet's dashpots see the velocity of half a step
 earlier, like Yade's leapfrog, so the errors are first order in dt/tc and the hook's tolerance
-(1 dt/tc = 0.005 on e and beta, 0.005 tc on tau; measured here at most 0.35 dt/tc, see
-docs/cross_checks_3d.md) applies unchanged. Each check is shown to fail on a wrong law:
+(1 dt/tc = 0.005 on e and beta, 0.005 tc on tau; measured here at most 0.39 dt/tc at 200
+steps per tc and 0.56 over 50..400, see docs/cross_checks_3d.md) applies unchanged. Each check is shown to fail on a wrong law:
 pair granular given the disc mapping's k_t (q = 3), gran/mn's clamped numbers taken for its
 unclamped law and the reverse, a sliding sphere taken for a rolling one; by hand, gran/mn with
 the disc q in 3D (docs/cross_checks_3d.md)."""
