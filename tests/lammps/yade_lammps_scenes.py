@@ -77,46 +77,86 @@ def _record(vc_in, n_in, vc_out, n_out, t_in, t_out):
     return rec
 
 
-def pair(styles, workdir, tc, dt, r1=0.5, r2=0.5, oblique=True):
-    """yade_reference.pair: c_1 - c_2 = (-1, 0.4, -0.25) (approach speed 1 along x), spins
-    (3, 5, -12) 0.5/r1 and (-7, 2, 9) 0.5/r2; oblique=False: head-on, no spin (a normal impact)."""
-    m1, m2 = (2 * r1) ** 3, (2 * r2) ** 3
-    R = r1 + r2
-    V = np.array([-1.0, 0.4, -0.25]) if oblique else np.array([-1.0, 0.0, 0.0])
-    w1 = np.array([3.0, 5.0, -12.0]) * (0.5 / r1) if oblique else np.zeros(3)
-    w2 = np.array([-7.0, 2.0, 9.0]) * (0.5 / r2) if oblique else np.zeros(3)
-    x1, x2 = np.array([R + 2 * tc, 0.0, 0.0]), np.zeros(3)
-    v1, v2 = V * (m2 / (m1 + m2)), -V * (m1 / (m1 + m2))
-    steps = int(round(5 * tc / dt))
-    deck = f"""
-region box block -5 5 -5 5 -5 5
-create_box 2 box
-create_atoms 1 single {_vec(x1)}
-create_atoms 2 single {_vec(x2)}
-set atom 1 diameter {2 * r1!r}
-set atom 2 diameter {2 * r2!r}
-set group all density {SPHERE_DENSITY!r}
-velocity all set 0 0 0
-set atom 1 vx {v1[0]!r} vy {v1[1]!r} vz {v1[2]!r} omega {_vec(w1)}
-set atom 2 vx {v2[0]!r} vy {v2[1]!r} vz {v2[2]!r} omega {_vec(w2)}
-{styles.pair}
+def run_3d(workdir, setup, dt, steps):
+    """Runs `setup` (box, atoms, styles) in 3D with fix nve/sphere for `steps` steps of dt and
+    dumps the final state (DUMP)."""
+    deck = f"""{setup}
 timestep {dt!r}
 fix integrate all nve/sphere
 thermo 0
 run {steps}
 {DUMP}"""
-    run = run_lammps(HEADER_3D + deck, workdir, header=False)
+    return run_lammps(HEADER_3D + deck, workdir, header=False)
+
+
+def approach(V, R, m1, m2, tc):
+    """Two bodies (masses m1, m2, contact distance R) 2 tc of flight apart along x, their
+    relative velocity V shared so that the total momentum is zero: x1, x2, v1, v2."""
+    return np.array([R + 2 * tc, 0.0, 0.0]), np.zeros(3), V * (m2 / (m1 + m2)), -V * (m1 / (m1 + m2))
+
+
+def two_atoms(x1, x2, r1, r2, v1, v2, w1, w2, masses=None):
+    """The LAMMPS lines that make atoms 1 and 2 (types 1 and 2) at x1, x2 with radii r1, r2,
+    velocities v1, v2 and spins w1, w2; masses (m1, m2) or, by default, the solid spheres'
+    density."""
+    mass = (f"set atom 1 mass {masses[0]!r}\nset atom 2 mass {masses[1]!r}" if masses else
+            f"set group all density {SPHERE_DENSITY!r}")
+    return f"""create_atoms 1 single {_vec(x1)}
+create_atoms 2 single {_vec(x2)}
+set atom 1 diameter {2 * r1!r}
+set atom 2 diameter {2 * r2!r}
+{mass}
+velocity all set 0 0 0
+set atom 1 vx {v1[0]!r} vy {v1[1]!r} vz {v1[2]!r} omega {_vec(w1)}
+set atom 2 vx {v2[0]!r} vy {v2[1]!r} vz {v2[2]!r} omega {_vec(w2)}"""
+
+
+def pair_impact(run, x1, x2, v1, v2, w1, w2, r1, r2, T):
+    """e, beta, tau of the impact of atoms 1 and 2 started at x1, x2, v1, v2, w1, w2, from the
+    run's final state at time T (entry and exit from the free flights before and after)."""
     x, v, w = _final(run)
-    T = steps * dt
+    R = r1 + r2
     t_in, _ = _entry_exit(x1, x2, v1, v2, 0.0, R)
     _, t_out = _entry_exit(x[0], x[1], v[0], v[1], T, R)
     n_in, vc_in = _relative(x1 + v1 * t_in, x2 + v2 * t_in, v1, v2, w1, w2, r1, r2)
     n_out, vc_out = _relative(x[0] + v[0] * (t_out - T), x[1] + v[1] * (t_out - T),
                               v[0], v[1], w[0], w[1], r1, r2)
     rec = _record(vc_in, n_in, vc_out, n_out, t_in, t_out)
-    rec["momentum_error"] = float(np.linalg.norm(m1 * v[0] + m2 * v[1] - (m1 * v1 + m2 * v2)))
     rec["output"] = run.output
+    return rec, v
+
+
+def pair(styles, workdir, tc, dt, r1=0.5, r2=0.5, oblique=True):
+    """yade_reference.pair: c_1 - c_2 = (-1, 0.4, -0.25) (approach speed 1 along x), spins
+    (3, 5, -12) 0.5/r1 and (-7, 2, 9) 0.5/r2; oblique=False: head-on, no spin (a normal impact)."""
+    m1, m2 = (2 * r1) ** 3, (2 * r2) ** 3
+    V = np.array([-1.0, 0.4, -0.25]) if oblique else np.array([-1.0, 0.0, 0.0])
+    w1 = np.array([3.0, 5.0, -12.0]) * (0.5 / r1) if oblique else np.zeros(3)
+    w2 = np.array([-7.0, 2.0, 9.0]) * (0.5 / r2) if oblique else np.zeros(3)
+    x1, x2, v1, v2 = approach(V, r1 + r2, m1, m2, tc)
+    steps = int(round(5 * tc / dt))
+    setup = f"""
+region box block -5 5 -5 5 -5 5
+create_box 2 box
+{two_atoms(x1, x2, r1, r2, v1, v2, w1, w2)}
+{styles.pair}
+"""
+    run = run_3d(workdir, setup, dt, steps)
+    rec, v = pair_impact(run, x1, x2, v1, v2, w1, w2, r1, r2, steps * dt)
+    rec["momentum_error"] = float(np.linalg.norm(m1 * v[0] + m2 * v[1] - (m1 * v1 + m2 * v2)))
     return rec
+
+
+def sphere_above_plane(z0):
+    """The LAMMPS lines of a box open at z = 0 (the plane) with one sphere of diameter 1 at rest
+    at (0, 0, z0)."""
+    return f"""boundary p p f
+region box block -5 5 -5 5 -5 5
+create_box 2 box
+create_atoms 1 single 0 0 {z0!r}
+set group all diameter 1.0
+set group all density {SPHERE_DENSITY!r}
+velocity all set 0 0 0"""
 
 
 def plane(styles, workdir, tc, dt, oblique=True):
@@ -127,23 +167,13 @@ def plane(styles, workdir, tc, dt, oblique=True):
     w0 = np.array([3.0, 5.0, -12.0]) if oblique else np.zeros(3)
     z0 = r + 2 * tc
     steps = int(round(6 * tc / dt))
-    deck = f"""
-boundary p p f
-region box block -5 5 -5 5 -5 5
-create_box 2 box
-create_atoms 1 single 0 0 {z0!r}
-set group all diameter 1.0
-set group all density {SPHERE_DENSITY!r}
-velocity all set 0 0 0
+    setup = f"""
+{sphere_above_plane(z0)}
 set atom 1 vx {c[0]!r} vy {c[1]!r} vz {c[2]!r} omega {_vec(w0)}
 {styles.pair}
 fix floor all {styles.wall}
-timestep {dt!r}
-fix integrate all nve/sphere
-thermo 0
-run {steps}
-{DUMP}"""
-    run = run_lammps(HEADER_3D + deck, workdir, header=False)
+"""
+    run = run_3d(workdir, setup, dt, steps)
     x, v, w = _final(run)
     T = steps * dt
     n = np.array([0.0, 0.0, 1.0])
@@ -168,13 +198,7 @@ def incline(styles, workdir, tc, dt, k_per_mass, mu, samples=40):
     per = steps // samples
     z0 = r - g * math.cos(THETA) / k_per_mass
     deck = f"""
-boundary p p f
-region box block -5 5 -5 5 -5 5
-create_box 2 box
-create_atoms 1 single 0 0 {z0!r}
-set group all diameter 1.0
-set group all density {SPHERE_DENSITY!r}
-velocity all set 0 0 0
+{sphere_above_plane(z0)}
 {styles.pair}
 fix floor all {styles.wall}
 fix gravity all gravity {g!r} vector {math.sin(THETA)!r} 0 {-math.cos(THETA)!r}
@@ -202,24 +226,14 @@ def discs(styles, workdir, tc, dt, r1=0.5, r2=0.3, m1=1.0, m2=0.36):
     """The 2D analogue of `pair` (no Yade scene): discs (fix nve/sphere disc, I = m r^2/2) of
     radii r1, r2 and masses m1, m2 set directly, c_1 - c_2 = (-1, 0.4) (approach speed 1 along
     x), spins 12 (0.5/r1) and -7 (0.5/r2) about z."""
-    R = r1 + r2
     V = np.array([-1.0, 0.4, 0.0])
     w1, w2 = np.array([0.0, 0.0, 12.0 * 0.5 / r1]), np.array([0.0, 0.0, -7.0 * 0.5 / r2])
-    x1, x2 = np.array([R + 2 * tc, 0.0, 0.0]), np.zeros(3)
-    v1, v2 = V * (m2 / (m1 + m2)), -V * (m1 / (m1 + m2))
+    x1, x2, v1, v2 = approach(V, r1 + r2, m1, m2, tc)
     steps = int(round(5 * tc / dt))
     deck = f"""
 region box block -5 5 -5 5 -0.5 0.5
 create_box 2 box
-create_atoms 1 single {_vec(x1)}
-create_atoms 2 single {_vec(x2)}
-set atom 1 diameter {2 * r1!r}
-set atom 2 diameter {2 * r2!r}
-set atom 1 mass {m1!r}
-set atom 2 mass {m2!r}
-velocity all set 0 0 0
-set atom 1 vx {v1[0]!r} vy {v1[1]!r} omega {_vec(w1)}
-set atom 2 vx {v2[0]!r} vy {v2[1]!r} omega {_vec(w2)}
+{two_atoms(x1, x2, r1, r2, v1, v2, w1, w2, masses=(m1, m2))}
 {styles.pair}
 timestep {dt!r}
 fix integrate all nve/sphere disc
@@ -228,16 +242,7 @@ thermo 0
 run {steps}
 {DUMP}"""
     run = run_lammps(deck, workdir)          # granmn_run's 2D header
-    x, v, w = _final(run)
-    T = steps * dt
-    t_in, _ = _entry_exit(x1, x2, v1, v2, 0.0, R)
-    _, t_out = _entry_exit(x[0], x[1], v[0], v[1], T, R)
-    n_in, vc_in = _relative(x1 + v1 * t_in, x2 + v2 * t_in, v1, v2, w1, w2, r1, r2)
-    n_out, vc_out = _relative(x[0] + v[0] * (t_out - T), x[1] + v[1] * (t_out - T),
-                              v[0], v[1], w[0], w[1], r1, r2)
-    rec = _record(vc_in, n_in, vc_out, n_out, t_in, t_out)
-    rec["output"] = run.output
-    return rec
+    return pair_impact(run, x1, x2, v1, v2, w1, w2, r1, r2, steps * dt)[0]
 
 
 def impacts(styles_pair_equal, styles_pair_unequal, styles_plane, workdir, tc, dt):
