@@ -196,9 +196,12 @@ template <int DIM> void FixWallGranMN::post_force_loop()
       double *vt_previous = layout.vt_previous >= 0 ? row + layout.vt_previous : nullptr;
       if (!in_contact) {
         // only a contact that has just ended has any history to clear (as in the pair style)
-        for (double *values : {ut, vt_previous})
+        const auto clear = [&layout](double *values) {
           for (int k = 0; values && k < layout.ut_width; k++)
             if (values[k] != 0.0) values[k] = 0.0;
+        };
+        clear(ut);
+        clear(vt_previous);
         continue;
       }
       if (dist <= 0.0)
