@@ -156,8 +156,8 @@ void FixWallGranMN::post_force(int)
     post_force_loop<2>();
 }
 
-// The force loop in dimension DIM: 2, disks against lines (u_t a scalar, mn::contact_force);
-// 3, spheres against planes normal to x, y or z (u_t a vector, mn::contact_force3).
+// The force loop in dimension DIM: 2, disks against lines (u_t a scalar); 3, spheres against
+// planes normal to x, y or z (u_t a vector). Each contact as in the pair style's loop.
 template <int DIM> void FixWallGranMN::post_force_loop()
 {
   const double dt_history = granmn::history_dt(update);

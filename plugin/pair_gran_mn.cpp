@@ -164,8 +164,9 @@ void PairGranMN::compute(int eflag, int vflag)
     compute_loop<2>();
 }
 
-// The force loop in dimension DIM: 2, disks (u_t a scalar, mn::contact_force; torques about z);
-// 3, spheres (u_t a vector, mn::contact_force3; forces and torques in three components).
+// The force loop in dimension DIM: 2, disks (u_t a scalar; torques about z); 3, spheres (u_t a
+// vector; forces and torques in three components). The overloads of mn::kinematics and
+// mn::force_and_torques (mn_contact.h) take each contact through the dimension's law.
 template <int DIM> void PairGranMN::compute_loop()
 {
   const double dt_history = granmn::history_dt(update);
