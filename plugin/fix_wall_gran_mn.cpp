@@ -148,12 +148,18 @@ void FixWallGranMN::setup(int vflag)
   post_force(vflag);
 }
 
-void FixWallGranMN::post_force(int vflag)
+void FixWallGranMN::post_force(int)
 {
-  if (domain->dimension == 3) {
-    post_force_3d(vflag);
-    return;
-  }
+  if (domain->dimension == 3)
+    post_force_loop<3>();
+  else
+    post_force_loop<2>();
+}
+
+// The force loop in dimension DIM: 2, disks against lines (u_t a scalar); 3, spheres against
+// planes normal to x, y or z (u_t a vector). Each contact as in the pair style's loop.
+template <int DIM> void FixWallGranMN::post_force_loop()
+{
   const double dt_history = granmn::history_dt(update);
   double **x = atom->x;
   double **v = atom->v;
@@ -172,7 +178,7 @@ void FixWallGranMN::post_force(int vflag)
   const int first_side = has_lo ? 0 : 1, last_side = has_hi ? 1 : 0;
   const mn::Integrator scheme = integrator;
   const granmn::ContactLayout layouts[2] = {side_layout[0], side_layout[1]};
-  double wall_fx = 0.0, wall_fy = 0.0;
+  double on_walls[3] = {0.0, 0.0, 0.0};
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -190,96 +196,34 @@ void FixWallGranMN::post_force(int vflag)
       double *vt_previous = layout.vt_previous >= 0 ? row + layout.vt_previous : nullptr;
       if (!in_contact) {
         // only a contact that has just ended has any history to clear (as in the pair style)
-        for (double *values : {ut, vt_previous})
+        const auto clear = [&layout](double *values) {
           for (int k = 0; values && k < layout.ut_width; k++)
             if (values[k] != 0.0) values[k] = 0.0;
+        };
+        clear(ut);
+        clear(vt_previous);
         continue;
       }
       if (dist <= 0.0)
         error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the wall at {} "
                           "(time step too large for the contact stiffness?)",
                    atom->tag[i], side == 0 ? lo : hi);
-      const double dx = axis == 0 ? normal * dist : 0.0;
-      const double dy = axis == 1 ? normal * dist : 0.0;
-      const mn::Kinematics kin =
-          mn::kinematics(dx, dy, dist, radius[i], v[i][0], v[i][1], radius[i] * omega[i][2]);
-      const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
-      const mn::Force fc =
-          mn::contact_force(contact, scale, kin, ut, dt_history, scheme, vt_previous);
-      const mn::Cartesian fxy = mn::cartesian(kin, fc);
-      const double fx = fxy.fx, fy = fxy.fy;
-      f[i][0] += fx;
-      f[i][1] += fy;
-      torque[i][2] += mn::torque(fc, radius[i]);
-      wall_fx -= fx;
-      wall_fy -= fy;
-    }
-  }
-  wall_force[0] = wall_fx;
-  wall_force[1] = wall_fy;
-  force_reduced = false;
-}
-
-// post_force() in dimension 3: planes normal to x, y or z, u_t a vector (mn::contact_force3).
-void FixWallGranMN::post_force_3d(int)
-{
-  const double dt_history = granmn::history_dt(update);
-  double **x = atom->x;
-  double **v = atom->v;
-  double **f = atom->f;
-  double **omega = atom->omega;
-  double **torque = atom->torque;
-  const double *radius = atom->radius;
-  const double *rmass = atom->rmass;
-  const int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  const mn::Law contact = law;
-  FixContactsMN *const tally = counters;
-  double **history = state;
-  const double to_force = force_per_mass_acceleration;
-  const int first_side = has_lo ? 0 : 1, last_side = has_hi ? 1 : 0;
-  const granmn::ContactLayout layouts[2] = {side_layout[0], side_layout[1]};
-  double on_walls[3] = {0.0, 0.0, 0.0};
-
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    for (int side = first_side; side <= last_side; side++) {
-      const double dist = side == 0 ? x[i][axis] - lo : hi - x[i][axis];
-      const double normal = side == 0 ? 1.0 : -1.0;
-      const bool in_contact = dist < radius[i];
-      const granmn::ContactLayout &layout = layouts[side];
-      double *row = history[i];
-      if (tally)
-        tally->wall_state(i, row + layout.record, row[layout.touching], in_contact,
-                          radius[i] - dist, normal * v[i][axis]);
-      double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
-      if (!in_contact) {
-        for (int k = 0; ut && k < layout.ut_width; k++)
-          if (ut[k] != 0.0) ut[k] = 0.0;
-        continue;
-      }
-      if (dist <= 0.0)
-        error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the wall at {} "
-                          "(time step too large for the contact stiffness?)",
-                   atom->tag[i], side == 0 ? lo : hi);
-      double d[3] = {0.0, 0.0, 0.0};
-      d[axis] = normal * dist;
+      const double d[3] = {axis == 0 ? normal * dist : 0.0, axis == 1 ? normal * dist : 0.0,
+                           axis == 2 ? normal * dist : 0.0};
       const double lever[3] = {radius[i] * omega[i][0], radius[i] * omega[i][1],
                                radius[i] * omega[i][2]};
-      const mn::Kinematics3 kin = mn::kinematics3(d, dist, radius[i], v[i], lever);
+      const auto kin = mn::kinematics(mn::Dim<DIM>(), d, dist, radius[i], v[i], lever);
       const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
-      const mn::Force3 fc = mn::contact_force3(contact, scale, kin, ut, dt_history);
-      double fxyz[3], tor[3];
-      mn::cartesian3(kin, fc, fxyz);
-      mn::torque3(kin, fc, radius[i], tor);
-      for (int c = 0; c < 3; c++) {
-        f[i][c] += fxyz[c];
-        torque[i][c] += tor[c];
-        on_walls[c] -= fxyz[c];
+      double fc_xyz[3];
+      mn::force_and_torques(contact, scale, kin, ut, dt_history, scheme, vt_previous, fc_xyz,
+                            radius[i], torque[i], 0.0, nullptr);
+      for (int c = 0; c < DIM; c++) {
+        f[i][c] += fc_xyz[c];
+        on_walls[c] -= fc_xyz[c];
       }
     }
   }
-  for (int c = 0; c < 3; c++) wall_force[c] = on_walls[c];
+  for (int c = 0; c < DIM; c++) wall_force[c] = on_walls[c];
   force_reduced = false;
 }
 

@@ -41,7 +41,7 @@ class FixWallGranMN : public FixPerAtomState {
   bool force_reduced;
 
   void resolve_law();
-  void post_force_3d(int);
+  template <int DIM> void post_force_loop();
 };
 
 }    // namespace LAMMPS_NS

@@ -14,6 +14,7 @@
 #define MN_CONTACT_H
 
 #include <cmath>
+#include <type_traits>
 
 namespace mn {
 
@@ -331,6 +332,57 @@ inline void torque3(const Kinematics3 &k, const Force3 &f, double radius, double
   out[0] = -radius * (k.n[1] * f.ft[2] - k.n[2] * f.ft[1]);
   out[1] = -radius * (k.n[2] * f.ft[0] - k.n[0] * f.ft[2]);
   out[2] = -radius * (k.n[0] * f.ft[1] - k.n[1] * f.ft[0]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Either dimension, for the loops written once for both (Dim<2> or Dim<3> chooses): the functions
+// above, from the same 3-vectors, and one contact's force and torques.
+template <int DIM> using Dim = std::integral_constant<int, DIM>;
+
+// kinematics from 3-vectors: in 2D only the x and y of d and dv and the z of lever are read.
+inline Kinematics kinematics(Dim<2>, const double d[3], double dist, double contact_distance,
+                             const double dv[3], const double lever[3])
+{
+  return kinematics(d[0], d[1], dist, contact_distance, dv[0], dv[1], lever[2]);
+}
+
+inline Kinematics3 kinematics(Dim<3>, const double d[3], double dist, double contact_distance,
+                              const double dv[3], const double lever[3])
+{
+  return kinematics3(d, dist, contact_distance, dv, lever);
+}
+
+// The contact's force on i into force (Cartesian; 0 along z in 2D), and its torque added to
+// torque_i (lever arm radius_i) and, where torque_j is given, to torque_j (radius_j).
+inline void force_and_torques(const Law &law, double force_scale, const Kinematics &k, double *ut,
+                              double dt_history, Integrator integrator, double *vt_previous,
+                              double force[3], double radius_i, double *torque_i,
+                              double radius_j, double *torque_j)
+{
+  const Force f = contact_force(law, force_scale, k, ut, dt_history, integrator, vt_previous);
+  const Cartesian fxy = cartesian(k, f);
+  force[0] = fxy.fx;
+  force[1] = fxy.fy;
+  force[2] = 0.0;
+  torque_i[2] += torque(f, radius_i);
+  if (torque_j) torque_j[2] += torque(f, radius_j);
+}
+
+// The same in 3D, where the integrator is velocity Verlet (Adams-Bashforth 2 is a 2D integrator:
+// vt_previous is nullptr).
+inline void force_and_torques(const Law &law, double force_scale, const Kinematics3 &k, double *ut,
+                              double dt_history, Integrator, double *, double force[3],
+                              double radius_i, double *torque_i, double radius_j,
+                              double *torque_j)
+{
+  const Force3 f = contact_force3(law, force_scale, k, ut, dt_history);
+  cartesian3(k, f, force);
+  double t[3];
+  torque3(k, f, radius_i, t);
+  for (int c = 0; c < 3; c++) torque_i[c] += t[c];
+  if (!torque_j) return;
+  torque3(k, f, radius_j, t);
+  for (int c = 0; c < 3; c++) torque_j[c] += t[c];
 }
 
 }    // namespace mn

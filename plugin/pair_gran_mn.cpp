@@ -84,30 +84,21 @@ static inline double contact_mass_scale(bool i_wall, bool j_wall, double mi, dou
                 : mn::pair_mass_scale(mi, mj);
 }
 
-// A contact just ended: its atoms have one contact less; its row goes to the counters, once even
-// if both processes hold the pair.
-void PairGranMN::report_end(int i, int j, double dx, double dy, double rsq, const double *state,
-                            const tagint *tag)
+// d[0] * e[0] + ... over the dimension's components, in this order.
+template <int DIM> static inline double dot(const double *d, const double *e)
 {
-  double **v = atom->v;
-  const double r = sqrt(rsq);
-  const double vn = (dx * (v[i][0] - v[j][0]) + dy * (v[i][1] - v[j][1])) / r;
-  report_end_vn(i, j, vn, state, tag);
+  return DIM == 3 ? d[0] * e[0] + d[1] * e[1] + d[2] * e[2] : d[0] * e[0] + d[1] * e[1];
 }
 
-// The same in 3D: d = x_i - x_j.
+// A contact just ended: its atoms have one contact less; its row goes to the counters, once even
+// if both processes hold the pair. d = x_i - x_j.
+template <int DIM>
 void PairGranMN::report_end(int i, int j, const double *d, double rsq, const double *state,
                             const tagint *tag)
 {
   double **v = atom->v;
-  const double r = sqrt(rsq);
-  const double vn = (d[0] * (v[i][0] - v[j][0]) + d[1] * (v[i][1] - v[j][1]) +
-                     d[2] * (v[i][2] - v[j][2])) / r;
-  report_end_vn(i, j, vn, state, tag);
-}
-
-void PairGranMN::report_end_vn(int i, int j, double vn, const double *state, const tagint *tag)
-{
+  const double dv[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
+  const double vn = dot<DIM>(d, dv) / sqrt(rsq);
   const bool tally_j = force->newton_pair || j < atom->nlocal;
   const bool record = tally_j || tag[i] < tag[j];
   counters->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
@@ -167,11 +158,17 @@ void PairGranMN::report_passed_through(int i, int j, double r)
 void PairGranMN::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (domain->dimension == 3) {
-    compute_3d();
-    return;
-  }
+  if (domain->dimension == 3)
+    compute_loop<3>();
+  else
+    compute_loop<2>();
+}
 
+// The force loop in dimension DIM: 2, disks (u_t a scalar; torques about z); 3, spheres (u_t a
+// vector; forces and torques in three components). The overloads of mn::kinematics and
+// mn::force_and_torques (mn_contact.h) take each contact through the dimension's law.
+template <int DIM> void PairGranMN::compute_loop()
+{
   const double dt_history = granmn::history_dt(update);
 
   double **x = atom->x;
@@ -215,9 +212,9 @@ void PairGranMN::compute(int eflag, int vflag)
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      const double dx = x[i][0] - x[j][0];
-      const double dy = x[i][1] - x[j][1];
-      const double rsq = dx * dx + dy * dy;
+      const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1],
+                           DIM == 3 ? x[i][2] - x[j][2] : 0.0};
+      const double rsq = dot<DIM>(d, d);
       const double radsum = radi + radius[j];
       double *slots = history ? &slots_all[stride * jj] : nullptr;
 
@@ -225,7 +222,7 @@ void PairGranMN::compute(int eflag, int vflag)
         // a pair that is not touching already has zero history (FixNeighHistory hands new
         // pairs zeros): only a contact that just ended has any to clear
         if (history && touch[jj]) {
-          if (tally) report_end(i, j, dx, dy, rsq, slots + record_slot, tag);
+          if (tally) report_end<DIM>(i, j, d, rsq, slots + record_slot, tag);
           touch[jj] = 0;
           for (int k = 0; k < stride; k++) slots[k] = 0.0;
         }
@@ -235,130 +232,31 @@ void PairGranMN::compute(int eflag, int vflag)
       const double r = sqrt(rsq);
       // the centre of one inside the other: as the wall fix's centre that reached its wall
       if (r <= MAX(radi, radius[j])) report_passed_through(i, j, r);
-      const mn::Kinematics kin =
-          mn::kinematics(dx, dy, r, radsum, v[i][0] - v[j][0], v[i][1] - v[j][1],
-                         radi * omega[i][2] + radius[j] * omega[j][2]);
-      const bool j_wall = is_wall[type[j]];
-      if (tally)
-        tally->pair_touching(i, j, j_wall, i_wall, slots + record_slot, !touch[jj], kin.delta,
-                             kin.vn, newton_pair || j < nlocal);
-      if (history) touch[jj] = 1;
-      double *ut = ut_slot >= 0 ? slots + ut_slot : nullptr;
-      // the law gives mass x acceleration; LAMMPS turns force back into it with ftm2v
-      const double scale = contact_mass_scale(i_wall, j_wall, rmass[i], rmass[j]) * to_force;
-      const mn::Force fc =
-          mn::contact_force(contact, scale, kin, ut, dt_history, scheme,
-                            vt_previous_slot >= 0 ? slots + vt_previous_slot : nullptr);
-
-      const mn::Cartesian fxy = mn::cartesian(kin, fc);
-      const double fx = fxy.fx, fy = fxy.fy;
-      f[i][0] += fx;
-      f[i][1] += fy;
-      torque[i][2] += mn::torque(fc, radi);
-      if (newton_pair || j < nlocal) {
-        f[j][0] -= fx;
-        f[j][1] -= fy;
-        torque[j][2] += mn::torque(fc, radius[j]);
-      }
-      if (evflag) ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fx, fy, 0.0, dx, dy, 0.0);
-    }
-  }
-}
-
-// compute() in dimension 3: spheres, u_t a vector (mn::contact_force3), forces and torques in
-// three components. The same structure as the 2D loop, which stays as it was.
-void PairGranMN::compute_3d()
-{
-  const double dt_history = granmn::history_dt(update);
-
-  double **x = atom->x;
-  double **v = atom->v;
-  double **f = atom->f;
-  double **omega = atom->omega;
-  double **torque = atom->torque;
-  const double *radius = atom->radius;
-  const double *rmass = atom->rmass;
-  const int nlocal = atom->nlocal;
-  const int newton_pair = force->newton_pair;
-
-  const int inum = list->inum;
-  const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-  const bool history = layout.size > 0;
-  int **firsttouch = history ? fix_history->firstflag : nullptr;
-  double **firstslots = history ? fix_history->firstvalue : nullptr;
-  const int *type = atom->type;
-  const tagint *tag = atom->tag;
-
-  const mn::Law contact = law;
-  const char *is_wall = is_wall_type.data();
-  const double to_force = force_per_mass_acceleration;
-  FixContactsMN *const tally = counters;
-  const int stride = layout.size, ut_slot = layout.ut, record_slot = layout.record;
-
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const double radi = radius[i];
-    const bool i_wall = is_wall[type[i]];
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    int *touch = history ? firsttouch[i] : nullptr;
-    double *slots_all = history ? firstslots[i] : nullptr;
-
-    for (int jj = 0; jj < jnum; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-      const double radsum = radi + radius[j];
-      double *slots = history ? &slots_all[stride * jj] : nullptr;
-
-      if (rsq >= radsum * radsum) {
-        if (history && touch[jj]) {
-          if (tally) report_end(i, j, d, rsq, slots + record_slot, tag);
-          touch[jj] = 0;
-          for (int k = 0; k < stride; k++) slots[k] = 0.0;
-        }
-        continue;
-      }
-
-      const double r = sqrt(rsq);
-      if (r <= MAX(radi, radius[j])) report_passed_through(i, j, r);
       const double dv[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
       const double lever[3] = {radi * omega[i][0] + radius[j] * omega[j][0],
                                radi * omega[i][1] + radius[j] * omega[j][1],
                                radi * omega[i][2] + radius[j] * omega[j][2]};
-      const mn::Kinematics3 kin = mn::kinematics3(d, r, radsum, dv, lever);
+      const auto kin = mn::kinematics(mn::Dim<DIM>(), d, r, radsum, dv, lever);
       const bool j_wall = is_wall[type[j]];
+      const bool tally_j = newton_pair || j < nlocal;
       if (tally)
         tally->pair_touching(i, j, j_wall, i_wall, slots + record_slot, !touch[jj], kin.delta,
-                             kin.vn, newton_pair || j < nlocal);
+                             kin.vn, tally_j);
       if (history) touch[jj] = 1;
       double *ut = ut_slot >= 0 ? slots + ut_slot : nullptr;
+      // the law gives mass x acceleration; LAMMPS turns force back into it with ftm2v
       const double scale = contact_mass_scale(i_wall, j_wall, rmass[i], rmass[j]) * to_force;
-      const mn::Force3 fc = mn::contact_force3(contact, scale, kin, ut, dt_history);
 
-      double fxyz[3], tor[3];
-      mn::cartesian3(kin, fc, fxyz);
-      f[i][0] += fxyz[0];
-      f[i][1] += fxyz[1];
-      f[i][2] += fxyz[2];
-      mn::torque3(kin, fc, radi, tor);
-      torque[i][0] += tor[0];
-      torque[i][1] += tor[1];
-      torque[i][2] += tor[2];
-      if (newton_pair || j < nlocal) {
-        f[j][0] -= fxyz[0];
-        f[j][1] -= fxyz[1];
-        f[j][2] -= fxyz[2];
-        mn::torque3(kin, fc, radius[j], tor);
-        torque[j][0] += tor[0];
-        torque[j][1] += tor[1];
-        torque[j][2] += tor[2];
-      }
+      double fc_xyz[3];
+      mn::force_and_torques(contact, scale, kin, ut, dt_history, scheme,
+                            vt_previous_slot >= 0 ? slots + vt_previous_slot : nullptr, fc_xyz,
+                            radi, torque[i], radius[j], tally_j ? torque[j] : nullptr);
+      for (int c = 0; c < DIM; c++) f[i][c] += fc_xyz[c];
+      if (tally_j)
+        for (int c = 0; c < DIM; c++) f[j][c] -= fc_xyz[c];
       if (evflag)
-        ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fxyz[0], fxyz[1], fxyz[2], d[0], d[1],
-                     d[2]);
+        ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fc_xyz[0], fc_xyz[1], fc_xyz[2], d[0],
+                     d[1], d[2]);
     }
   }
 }

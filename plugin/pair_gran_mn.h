@@ -65,10 +65,9 @@ class PairGranMN : public Pair {
   void update_exclusions();
   void remove_exclusions();
   void report_passed_through(int, int, double);
-  void report_end(int, int, double, double, double, const double *, const tagint *);
-  void report_end(int, int, const double *, double, const double *, const tagint *);
-  void report_end_vn(int, int, double, const double *, const tagint *);
-  void compute_3d();
+  template <int DIM> void report_end(int, int, const double *, double, const double *,
+                                     const tagint *);
+  template <int DIM> void compute_loop();
   double single_3d(int, int, double, double &);
 };
 

@@ -283,6 +283,16 @@ def pile_state(run):
     return np.column_stack(columns), np.column_stack([a["f_c[1]"], a["f_c[2]"]])
 
 
+def assert_same_pile(run, reference, label):
+    """The state to rounding (1e-8, see above), the counts exactly."""
+    state, counts = pile_state(run)
+    reference_state, reference_counts = pile_state(reference)
+    difference = np.abs(state - reference_state).max()
+    print(f"{label}: largest difference {difference:.1e}")
+    assert difference < 1e-8
+    assert np.array_equal(counts, reference_counts)
+
+
 @pytest.fixture(scope="module")
 def pile_reference(pile_start, tmp_path_factory):
     return pile_run(pile_start, tmp_path_factory.mktemp("pile"))
@@ -305,12 +315,7 @@ def test_pile_the_same_with_newton_ranks_and_shuffled_lists(pile_start, pile_ref
     over (u_t is a vector: the partner's copy is -u_t); shuffled lists hand contacts between
     the atoms' lists at every step."""
     run = pile_run(pile_start, tmp_path, newton, nprocs, shuffle)
-    state, counts = pile_state(run)
-    reference_state, reference_counts = pile_state(pile_reference)
-    difference = np.abs(state - reference_state).max()
-    print(f"newton {newton}, {nprocs} ranks, shuffle {shuffle}: largest difference {difference:.1e}")
-    assert difference < 1e-8
-    assert np.array_equal(counts, reference_counts)
+    assert_same_pile(run, pile_reference, f"newton {newton}, {nprocs} ranks, shuffle {shuffle}")
     assert run.result("sums")[:2] == pile_reference.result("sums")[:2]
 
 
@@ -320,13 +325,8 @@ def test_pile_continues_across_a_restart(pile_reference, tmp_path):
     deck = (f"read_restart {pile_reference.workdir / 'mid.restart'}\n"
             "neighbor 0.1 bin\ncomm_modify vel yes\n" + PILE_FIXES +
             f"run {PILE_STEPS // 2}\n" + PILE_FINAL)
-    run = run_lammps(HEADER_3D + deck, tmp_path, header=False)
-    state, counts = pile_state(run)
-    reference_state, reference_counts = pile_state(pile_reference)
-    difference = np.abs(state - reference_state).max()
-    print(f"restarted: largest difference {difference:.1e}")
-    assert difference < 1e-8
-    assert np.array_equal(counts, reference_counts)
+    assert_same_pile(run_lammps(HEADER_3D + deck, tmp_path, header=False), pile_reference,
+                     "restarted")
 
 
 def test_pile_without_friction_is_another_pile(pile_start, pile_reference, tmp_path):
