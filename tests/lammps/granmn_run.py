@@ -96,11 +96,11 @@ def run_lammps(deck, workdir, nprocs=1, header=True, check=True):
     return _run(cmd, workdir, check)
 
 
-def law(kn, e, beta):
+def law(kn, e, beta, shape="disc"):
     """The coefficients of docs/model.md section 3 as the header derives them (build/plugin/mn-law,
-    next to the plugin): one copy of the mapping, checked against its definitions by the unit
-    tests."""
-    return derived(Path(PLUGIN).resolve().parent / "mn-law", kn, e, beta)
+    next to the plugin) for discs or (shape "sphere") solid spheres: one copy of the mapping,
+    checked against its definitions by the unit tests."""
+    return derived(Path(PLUGIN).resolve().parent / "mn-law", kn, e, beta, shape)
 
 
 def restitution_error_bound(e, dt_over_tau):

@@ -22,11 +22,8 @@ AXIS = np.array([0.8, 0.36, 0.48])    # |AXIS| = 1
 
 
 def sphere_kt(kn, e, beta):
-    """k_t for solid spheres (q = 7/2, docs/model.md 3.1), from the disc law's tau_c and
-    eta_n (which do not depend on q)."""
-    ref, q = law(kn, e, beta), 3.5
-    eta_t = -np.log(beta) / (q * ref["tau_c"])
-    return (2 * kn - ref["eta_n"] ** 2 + q * q * eta_t ** 2) / (2 * q)
+    """k_t for solid spheres (q = 7/2, docs/model.md 3.1), as the header derives it."""
+    return law(kn, e, beta, "sphere")["kt"]
 
 
 def _vector(values):

@@ -234,12 +234,12 @@ def test_hook_accepts_our_law_and_rejects_the_disc_mapping(committed):
         assert yc.compare_engine(our_law_numbers(ref, 200.0, clamp=True), ref, 200.0,
                                  clamp=True) == []
         # the 2D (disc, q = 3) mapping on spheres: beta 0.620 for 0.7
-        problems = yc.compare_engine(our_law_numbers(ref, 200.0, q=3.0), ref, 200.0)
+        problems = yc.compare_engine(our_law_numbers(ref, 200.0, q=yc.DISC_Q), ref, 200.0)
         assert any("beta" in p for p in problems), problems
         # an engine with Yade's clamp taken for ours: e off by the clamp
         problems = yc.compare_engine(our_law_numbers(ref, 200.0, clamp=True), ref, 200.0)
         assert any(p.startswith("pair_equal (other engine): e") for p in problems), problems
         # spheres rolling and sliding like discs (a = 2/3 g sin theta, a disc's spin-up)
-        problems = yc.compare_engine(our_law_numbers(ref, 200.0, q=3.0), ref, 200.0)
+        problems = yc.compare_engine(our_law_numbers(ref, 200.0, q=yc.DISC_Q), ref, 200.0)
         assert any(p.startswith("rolling (other engine)") for p in problems), problems
         assert any(p.startswith("sliding (other engine)") for p in problems), problems

@@ -17,9 +17,12 @@ import shutil
 import subprocess
 from pathlib import Path
 
+from granmn_run import law as header_law
+
 HERE = Path(__file__).resolve().parent
 SCRIPT = HERE / "yade_reference.py"
 SOLID_SPHERE_Q = 3.5          # q = 1 + m r^2 / I, I = 2 m r^2 / 5
+DISC_Q = 3.0                  # I = m r^2 / 2: the 2D mapping
 IMPACTS = ("pair_equal", "pair_unequal", "wall", "facet")
 # The reference runs (test_yade.py; their numbers committed in NUMBERS for the hook):
 # (en, et) equal (beta_w = e_w on a plane), and strongly damped with et != en.
@@ -88,14 +91,15 @@ def predict(kn, cn, ks, cs, m_n, m_t, clamp):
 
 
 def mn_sphere_law(tau_c, e, beta, q=SOLID_SPHERE_Q):
-    """This project's coefficients (docs/model.md sections 3 and 3.1) for the k_n that gives
-    tau_c: k_n, eta_n, k_t, eta_t per unit of 2M (or of m_i against the boundary)."""
+    """This project's coefficients (docs/model.md sections 3 and 3.1), as the header derives them
+    (mn-law), for the k_n that gives tau_c: k_n, eta_n, k_t, eta_t per unit of 2M (or of m_i
+    against the boundary). q: SOLID_SPHERE_Q, or DISC_Q for the disc mapping on spheres (the
+    mutation the checks must see)."""
+    shape = {SOLID_SPHERE_Q: "sphere", DISC_Q: "disc"}[q]
     ln_e = math.log(e)
-    kn = (math.pi ** 2 + ln_e ** 2) / (2.0 * tau_c ** 2)
-    eta_n = math.sqrt(2.0 * kn / ((math.pi / ln_e) ** 2 + 1.0))
-    eta_t = -math.log(beta) / (q * tau_c)
-    kt = (2.0 * kn - eta_n ** 2 + q * q * eta_t ** 2) / (2.0 * q)
-    return {"kn": kn, "eta_n": eta_n, "kt": kt, "eta_t": eta_t}
+    kn = (math.pi ** 2 + ln_e ** 2) / (2.0 * tau_c ** 2)    # tau_c's definition, inverted
+    derived = header_law(kn, e, beta, shape)
+    return {"kn": kn, "eta_n": derived["eta_n"], "kt": derived["kt"], "eta_t": derived["eta_t"]}
 
 
 def mn_forces(law, m1, m2):
