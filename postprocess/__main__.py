@@ -10,8 +10,10 @@ compare     the comparison table on the terminal: each claim of the paper passes
 transition  a transition sweep (inputs/sweeps/transition.toml, docs/transition.md): per base
             and inclination, how the runs ended, the stiffness exponents, the multiple
             contacts and P(tau), with figures, in DIR (default SWEEP_DIR/transition)
-limit       the hard-sphere-limit rule (docs/hard_sphere_limit.md) on the frictional main series:
-            running exponents, the two fits, the verdicts, in DIR (default SWEEP_DIR/limit)
+limit       the hard-sphere-limit rule (docs/hard_sphere_limit.md) on each series of the scenes
+            it applies to (the 2D frictional flow, the 3D chute): running exponents, the two
+            fits, the verdicts, what the multiple contacts are made of (runs with contact
+            rows), in DIR (default SWEEP_DIR/limit)
 summarize   one compact summary per run of RESULTS_DIR, DIR/<scene>/<point>.json (default
             DIR: data/<name of RESULTS_DIR> in the repository); report and compare take a
             directory of summaries as SWEEP_DIR as well as a results directory (docs/sweeps.md)
@@ -36,6 +38,7 @@ from . import figures, limit
 from .io import DataError
 from .reference import accepted, evaluate, tally
 from .report import comparison_line, fmt, write_report, write_transition_report
+from .scenes import SCENES, scene as scene_of
 from .selection import Selection
 from .study import analyse, label, main_series, varying_variables
 from .summary import write_summaries
@@ -102,7 +105,7 @@ def main(argv=None):
         print(f"left out {point}: {reason}", file=sys.stderr)
     if args.command == "limit":
         return write_limit(args.sweep, scenes, args.output or args.sweep / "limit", selection,
-                           completed.get("frictional_flow", []))
+                           completed)
     if args.command == "report":
         path = write_report(args.sweep, scenes, left_out, completed,
                                      args.output or args.sweep / "report", runs, selection)
@@ -119,16 +122,10 @@ def main(argv=None):
 
 
 def contact_splits(runs):
-    """[(kn, {3.0: split, 10.0: split})] of the runs whose raw outputs have contact rows."""
-    out = []
-    for o in runs:
-        point = Path(o.get("point", ""))
-        rows_time = float(o.get("variables", {}).get("rows_time", 0) or 0)
-        if not (point / "contacts.txt").exists() or rows_time <= 1.0:
-            continue
-        out.append((o["kn"], {lasting: limit.run_split(o["outputs"], rows_time, lasting)
-                              for lasting in (3.0, 10.0)}))
-    return out
+    """[(kn, {3.0: split, 10.0: split})] of the runs whose contact rows cover a window
+    (measured by durations.run_contacts, raw or from summaries)."""
+    return [(o["kn"], {float(k): v for k, v in o["contacts"]["split"].items()})
+            for o in runs if o.get("contacts") and "split" in o["contacts"]]
 
 
 def runaway_lines(records):
@@ -151,44 +148,61 @@ def runaway_lines(records):
     return lines + [""]
 
 
-def write_limit(sweep, scenes, out, selection, records=()):
-    """The limit command: limit.md and a figure per series in out (the main series first, then
-    each variant with enough k_n); the verdicts on the terminal. records: the completed
-    frictional runs (RunRecords), for the runaway events."""
-    rows = scenes.get("frictional_flow", [])
-    if not rows:
-        print(f"postprocess: {sweep}: no usable frictional points", file=sys.stderr)
+def write_limit(sweep, scenes, out, selection, completed):
+    """The limit command: limit.md and a figure per series in out, for each scene the rule
+    applies to (Scene.decides_limit): its main series first, then each variant with enough
+    k_n; the verdicts on the terminal. completed: {scene: [RunRecord of each completed run]},
+    for the runaway events."""
+    names = [name for name in scenes if scene_of(name).decides_limit and scenes[name]]
+    if not names:
+        print(f"postprocess: {sweep}: no usable points of a scene the rule applies to ("
+              + ", ".join(n for n, s in SCENES.items() if s.decides_limit) + ")",
+              file=sys.stderr)
         return 2
-    main = main_series(rows)
-    labels = [main[0]["label"]] + sorted({o["label"] for o in rows} - {main[0]["label"]})
     out.mkdir(parents=True, exist_ok=True)
     lines = [f"# The hard-sphere-limit rule on {sweep}", "", f"Selection: {selection.describe()}.",
              ""]
-    for number, name in enumerate(labels):
-        runs = [run for o in rows if o["label"] == name for run in o.get("runs", [o])]
+    for name in names:
+        lines += limit_scene_lines(name, scenes[name], out, completed.get(name, []))
+    (out / "limit.md").write_text("\n".join(lines))
+    print(f"limit report: {out / 'limit.md'}")
+    return 0
+
+
+def limit_scene_lines(name, rows, out, records):
+    """limit.md's lines for one scene (its series, figures written to out); the verdicts
+    printed."""
+    scene_def = scene_of(name)
+    levels = dict(scene_def.limit_levels)
+    main = main_series(rows)
+    labels = [main[0]["label"]] + sorted({o["label"] for o in rows} - {main[0]["label"]})
+    lines = [f"# {scene_def.title}", ""]
+    for number, label in enumerate(labels):
+        runs = [run for o in rows if o["label"] == label for run in o.get("runs", [o])]
         decisions = [limit.decide(runs, q) for q in limit.QUANTITIES]
         if number and all(d.verdict.startswith("not applied") for d in decisions):
             continue    # a variant at too few k_n (a check of the step at one k_n)
-        levels = {q: limit.decide_within_levels(runs, q) for q in limit.QUANTITIES}
-        title = f"{'main series' if number == 0 else 'variant'} {name or '(no variable varies)'}"
+        within = {q: limit.decide_within_levels(runs, q, levels) for q in limit.QUANTITIES}
+        title = (f"{'main series' if number == 0 else 'variant'} "
+                 f"{label or '(no variable varies)'}")
         lines += [f"## {title}: {len(runs)} selected runs", ""]
-        lines += limit.report_lines(decisions, levels)
+        lines += limit.report_lines(decisions, within, levels)
         if any(d.fits for d in decisions):
-            figure = f"limit{number}.png"
+            figure = f"limit_{name}_{number}.png"
             figures.limit_figure([d for d in decisions if d.fits], out / figure)
             lines += [f"![the rule's data and fits]({figure})", ""]
         splits = contact_splits(runs)
         if splits:
             lines += ["### What the time with two or more contacts is made of", "",
-                      "Per disk and unit time over each run's contact-rows window (the span's "
-                      "first rows_time, less 0.5 at its end), the mean over the runs with rows: "
-                      "the part during which one of the contacts lasts more than 3 (or 10) "
-                      "binary durations, and the part made of short contacts only (bursts); "
-                      "`unseen`: the counters' time not in the rows (contacts longer than the "
-                      "rows window, lasting ones).", ""]
+                      f"Per {scene_def.particle} and unit time over each run's contact-rows "
+                      "window (the span's first rows_time, less 0.5 at its end), the mean over "
+                      "the runs with rows: the part during which one of the contacts lasts more "
+                      "than 3 (or 10) binary durations, and the part made of short contacts "
+                      "only (bursts); `unseen`: the counters' time not in the rows (contacts "
+                      "longer than the rows window, lasting ones).", ""]
             lines += limit.split_lines(splits)
         for d in decisions:
-            print(f"{title}: {limit.NAMES[d.quantity]}: {d.verdict}" +
+            print(f"{scene_def.title}, {title}: {limit.NAMES[d.quantity]}: {d.verdict}" +
                   (f" ({d.why})" if d.why else ""))
     if records:
         lines += ["## Runaway events", "",
@@ -196,9 +210,7 @@ def write_limit(sweep, scenes, out, selection, records=()):
                   f"times the run's median and above {limit.RUNAWAY_ENERGY:g} after t = "
                   f"{limit.SETTLED:g}, in every completed run (selected or not):", ""]
         lines += runaway_lines(records)
-    (out / "limit.md").write_text("\n".join(lines))
-    print(f"limit report: {out / 'limit.md'}")
-    return 0
+    return lines
 
 
 if __name__ == "__main__":

@@ -24,18 +24,19 @@ def stiffness(scene, rows, path, variants=()):
     fig, axes = plt.subplots(2, 2, figsize=(10, 8))
     a, b, c, d = axes.flat
     inverse = lambda k: 1.0 / k
+    scene_def = scene_of(scene)
+    particle = scene_def.particle
     for q, label in (("E_total", "E"), ("E_trans", "translational"), ("E_rot", "rotational")):
         _errorbar(a, q, rows, label, x=inverse)
-    a.set(xscale="log", xlabel="1/k_n", ylabel="E per disk", title="(a) kinetic energy")
-    for q, label in (("N_c", "N_c (disks)"), ("N_w", "N_w (boundary)")):
+    a.set(xscale="log", xlabel="1/k_n", ylabel=f"E per {particle}", title="(a) kinetic energy")
+    for q, label in (("N_c", f"N_c ({particle}s)"), ("N_w", "N_w (boundary)")):
         _errorbar(b, q, rows, label)
     kn = np.array([o["kn"] for o in rows])
-    scene_def = scene_of(scene)
     if scene_def.rates_log_law:
         b.set(xscale="log", yscale="linear", title="(b) collision rates (N_w ~ ln k_n)")
     else:
         b.set(xscale="log", yscale="log", title="(b) collision rates")
-    b.set(xlabel="k_n", ylabel="collisions per disk per unit time")
+    b.set(xlabel="k_n", ylabel=f"collisions per {particle} per unit time")
     for q, label in (("t_c", "t_c"), ("t_w", "t_w"), ("t_multiple", "two or more contacts")):
         _errorbar(c, q, rows, label)
     for guide in scene_def.guides if len(kn) > 1 else ():
@@ -124,7 +125,8 @@ def energy_figure(scene, curves, path, selection=Selection()):
         for kn, runs in series_by_kn.items():
             for energy in runs:
                 ax.plot(energy["time"], energy["e_total"], lw=0.8, label=f"k_n = {kn:g}")
-        ax.set(xlabel="time", ylabel="E per disk", title=f"{scene_of(scene).title}: E(t)")
+        ax.set(xlabel="time", ylabel=f"E per {scene_of(scene).particle}",
+               title=f"{scene_of(scene).title}: E(t)")
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
     else:
@@ -149,7 +151,8 @@ def energy_figure(scene, curves, path, selection=Selection()):
         for ax in axes[-1]:
             ax.set_xlabel("time")
         for ax in axes[:, 0]:
-            ax.set_ylabel(f"E per disk (means over {selection.resolution:g})")
+            ax.set_ylabel(f"E per {scene_of(scene).particle} (means over "
+                          f"{selection.resolution:g})")
         low, high = selection.energy_range
         fig.suptitle(f"{scene_of(scene).title}: E(t); thick: selected steady parts; grey band: "
                      f"[{low:g}, {high:g}]", fontsize=10)
@@ -275,6 +278,37 @@ def duration_figure(densities, edges, path):
             ax.grid(alpha=0.3, which="both")
             ax.legend(fontsize=7)
     fig.suptitle("contact durations at the stiffest flowing k_n (a binary contact lasts 1)",
+                 fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def duration_stiffness(scene, series, edges, path):
+    """P(tau/tau_c) of particle contacts and P(tau/tau_w) of boundary contacts (columns) of each
+    series of a scene (rows), one line per k_n, log-log; series: [(label, [(kn, pooled)])]
+    with durations.pooled's result per k_n."""
+    from .durations import density_of_counts
+    particle = scene_of(scene).particle
+    fig, axes = plt.subplots(len(series), 2, figsize=(10, 3.8 * len(series)), squeeze=False)
+    centres = np.sqrt(edges[1:] * edges[:-1])
+    for row, (label, points) in enumerate(series):
+        colours = plt.cm.viridis(np.linspace(0, 0.9, len(points)))
+        for column, (kind, unit, name) in enumerate((
+                ("disk", "tau_c", f"{particle}-{particle}"), ("boundary", "tau_w", "boundary"))):
+            ax = axes[row, column]
+            for (kn, pooled), colour in zip(points, colours):
+                counts, total = pooled[kind]["histogram"], pooled[kind]["contacts"]
+                density = density_of_counts(counts, total, edges)
+                if np.any(density > 0):
+                    ax.plot(centres, np.where(density > 0, density, np.nan), "-", marker=".",
+                            lw=1, color=colour, label=f"k_n {kn:g} ({total} contacts)")
+            ax.axvline(1.0, color="k", lw=0.6, ls=":")
+            ax.set(xscale="log", yscale="log", xlabel=f"tau / {unit}",
+                   ylabel=f"P(tau / {unit})", title=f"{label or 'main series'}: {name} contacts")
+            ax.grid(alpha=0.3, which="both")
+            ax.legend(fontsize=6)
+    fig.suptitle(f"{scene_of(scene).title}: contact durations (a binary contact lasts 1)",
                  fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)

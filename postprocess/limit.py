@@ -5,13 +5,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .io import CONTACT_KINDS
+from .durations import LASTING, LASTING_ALSO
 
 # The quantities the rule decides on: the paper's two multiple-contact times and the directly
 # measured fraction of time with two or more contacts.
 QUANTITIES = ("mc_c", "mc_w", "t_multiple")
-# Energy levels of the frictional flow (per disk): the flows sit near ~0.4, ~0.65, ~0.95.
-LEVELS = {"low": (0.3, 0.5), "middle": (0.5, 0.8), "high": (0.8, 1.2)}
 MIN_RUNS = 3               # selected runs a k_n needs to enter the fits
 MIN_RUNS_IN_LEVEL = 2      # ... within one energy level
 MIN_KN_IN_LEVEL = 4        # k_n a level needs for the rule to be applied within it
@@ -230,18 +228,20 @@ def decide(runs, quantity, min_runs=MIN_RUNS, min_kn=MIN_KN, samples=BOOTSTRAP):
                     lacking, why)
 
 
-def level_of(energy):
-    for name, (low, high) in LEVELS.items():
+def level_of(energy, levels):
+    """The name of the level (levels: {name: (low, high)}) an energy is in, or None."""
+    for name, (low, high) in levels.items():
         if low <= energy < high:
             return name
     return None
 
 
-def decide_within_levels(runs, quantity, samples=BOOTSTRAP):
-    """Step 4: {level: Decision} for the runs of each energy level (by their mean E_total)."""
+def decide_within_levels(runs, quantity, levels, samples=BOOTSTRAP):
+    """Step 4: {level: Decision} for the runs of each energy level (levels: {name: (low,
+    high)}, the scene's limit_levels; by their mean E_total)."""
     out = {}
-    for name in LEVELS:
-        members = [r for r in runs if level_of(r["E_total"]) == name]
+    for name in levels:
+        members = [r for r in runs if level_of(r["E_total"], levels) == name]
         out[name] = decide(members, quantity, MIN_RUNS_IN_LEVEL, MIN_KN_IN_LEVEL, samples)
     return out
 
@@ -250,10 +250,10 @@ NAMES = {"mc_c": "t_c - N_c tau_c", "mc_w": "t_w - N_w tau_w",
          "t_multiple": "time with two or more contacts"}
 
 
-def report_lines(decisions, levels):
+def report_lines(decisions, within, levels):
     """Markdown: per quantity the per-k_n values, running exponents, fits and verdict; then
-    the verdicts within each energy level. decisions: [Decision]; levels: {quantity: {level:
-    Decision}}."""
+    the verdicts within each energy level. decisions: [Decision]; within: {quantity: {level:
+    Decision}}; levels: {name: (low, high)} (empty: the scene's flows have no levels)."""
     lines = []
     for d in decisions:
         lines += [f"### {NAMES[d.quantity]}: **{d.verdict}**", ""]
@@ -278,15 +278,18 @@ def report_lines(decisions, levels):
                       f"- floor's bootstrap 95 % interval: [{d.floor_interval[0]:.3g}, "
                       f"{d.floor_interval[1]:.3g}]"]
         lines.append("")
+    if not levels:
+        return lines + ["The scene's flows have no energy levels to apply the rule within "
+                        "(postprocess/scenes.py, limit_levels).", ""]
     lines += ["### Within one energy level", "",
               "| quantity | " + " | ".join(f"{n} E in [{lo:g}, {hi:g})" for n, (lo, hi)
-                                           in LEVELS.items()) + " |",
-              "|---|" + "---|" * len(LEVELS)]
-    for quantity, by_level in levels.items():
+                                           in levels.items()) + " |",
+              "|---|" + "---|" * len(levels)]
+    for quantity, by_level in within.items():
         lines.append(f"| {NAMES[quantity]} | " + " | ".join(
-            by_level[n].verdict for n in LEVELS) + " |")
+            by_level[n].verdict for n in levels) + " |")
     lines.append("")
-    for quantity, by_level in levels.items():
+    for quantity, by_level in within.items():
         for n, d in by_level.items():
             if d.fits:
                 s = d.series
@@ -298,92 +301,24 @@ def report_lines(decisions, levels):
 
 # ---- what the multiple-contact time is made of (docs/hard_sphere_limit.md)
 
-LASTING = 3.0    # a contact lasting more than this many binary durations is a lasting one
-
-
-def multiple_contact_split(rows, tau_c, tau_w, start, stop, n_disks, lasting=LASTING):
-    """From contact rows (io.read_rows: id_i, id_j, kind, start, duration): per
-    disk and unit time over [start, stop], the time with two or more contacts, split into the
-    part during which at least one of the contacts is a lasting one (longer than `lasting`
-    times tau_c, or tau_w against the boundary) and the part made only of short ones (bursts of
-    overlapping collisions); and the share of all contact time in lasting contacts.
-    Rows are those of the contacts that ended within the rows window: choose [start, stop] so
-    that no contact overlapping it can end after the window (stop <= window end - the longest
-    duration of interest)."""
-    if not stop > start:
-        raise ValueError(f"an empty window [{start:g}, {stop:g}]")
-    with_disk = rows["kind"] == CONTACT_KINDS["disk"]
-    begin = rows["start"]
-    end = begin + rows["duration"]
-    unit = np.where(with_disk, tau_c, tau_w)
-    long = rows["duration"] > lasting * unit
-    # each contact belongs to disk i, and a disk-disk contact to disk j as well
-    owner = np.concatenate([rows["id_i"], rows["id_j"][with_disk]]).astype(int)
-    b = np.concatenate([begin, begin[with_disk]])
-    e = np.concatenate([end, end[with_disk]])
-    is_long = np.concatenate([long, long[with_disk]])
-    b, e = np.clip(b, start, stop), np.clip(e, start, stop)
-    keep = e > b
-    owner, b, e, is_long = owner[keep], b[keep], e[keep], is_long[keep]
-    multiple = lasting_part = 0.0
-    for disk in np.unique(owner):
-        mine = owner == disk
-        times = np.concatenate([b[mine], e[mine]])
-        step = np.concatenate([np.ones(mine.sum()), -np.ones(mine.sum())])
-        long_step = np.concatenate([is_long[mine], -1.0 * is_long[mine]])
-        order = np.lexsort((step, times))    # at equal times an end before a start
-        times, count, long_count = times[order], np.cumsum(step[order]), \
-            np.cumsum(long_step[order])
-        spans = np.diff(times)
-        several = count[:-1] >= 2
-        multiple += spans[several].sum()
-        lasting_part += spans[several & (long_count[:-1] >= 1)].sum()
-    length = n_disks * (stop - start)
-    durations = np.clip(end, start, stop) - np.clip(begin, start, stop)
-    total = durations.sum() + durations[with_disk].sum()
-    return {"t_multiple_rows": multiple / length, "lasting": lasting_part / length,
-            "bursts": (multiple - lasting_part) / length,
-            "lasting_share_of_contact_time":
-                (durations[long].sum() + durations[long & with_disk].sum()) / total
-                if total > 0 else np.nan}
-
-
-def run_split(point, rows_time, lasting=LASTING, margin=0.5):
-    """multiple_contact_split over the rows window of a run (an io.Point), [average_start,
-    average_start + rows_time - margin] (a contact overlapping it that ends after the rows
-    window lasts longer than `margin`: such contacts have no row and their part, `unseen`, is
-    the counters' time with two or more contacts over the window minus the rows': lasting by
-    construction)."""
-    params, energy = point.params, point.energy
-    start = params["average_start"]
-    stop = start + rows_time - margin
-    if not stop > start + margin:
-        raise ValueError(f"{point.directory}: no rows window longer than {2 * margin:g} "
-                         "(rows_time)")
-    split = multiple_contact_split(point.rows, params["tau_c"], params["tau_w"], start, stop,
-                                   params["n_mobile"], lasting)
-    t = energy["time"]
-    a, b = np.argmin(np.abs(t - start)), np.argmin(np.abs(t - stop))
-    counted = (energy["time_multiple"][b] - energy["time_multiple"][a]) / (
-        params["n_mobile"] * (t[b] - t[a]))
-    split["t_multiple_counters"] = counted
-    split["unseen"] = max(counted - split["t_multiple_rows"], 0.0)
-    return split
-
-
 def split_lines(splits):
-    """Markdown: per k_n the mean over runs of the split (splits: [(kn, {threshold: split})])."""
-    lines = ["| k_n | runs | >= 2 contacts (counters) | from rows | lasting (> 3 tau) | "
-             "bursts (<= 3 tau) | lasting (> 10 tau) | bursts (<= 10 tau) | unseen (> window) | "
-             "contact time in > 3 tau contacts |", "|---|" + "---|" * 9]
+    """Markdown: per k_n the mean over runs of the split (splits: [(kn, {threshold: split})],
+    thresholds durations.LASTING and LASTING_ALSO; a value a run lacks (None) is left out)."""
+    a, b = LASTING, LASTING_ALSO
+    lines = [f"| k_n | runs | >= 2 contacts (counters) | from rows | lasting (> {a:g} tau) | "
+             f"bursts (<= {a:g} tau) | lasting (> {b:g} tau) | bursts (<= {b:g} tau) | "
+             f"unseen (> window) | contact time in > {a:g} tau contacts |", "|---|" + "---|" * 9]
     for k in sorted({kn for kn, _ in splits}):
         mine = [s for kn, s in splits if kn == k]
-        mean = lambda threshold, name: np.mean([s[threshold][name] for s in mine])
-        lines.append(f"| {k:.4g} | {len(mine)} | {mean(3.0, 't_multiple_counters'):.4f} | "
-                     f"{mean(3.0, 't_multiple_rows'):.4f} | {mean(3.0, 'lasting'):.4f} | "
-                     f"{mean(3.0, 'bursts'):.4f} | {mean(10.0, 'lasting'):.4f} | "
-                     f"{mean(10.0, 'bursts'):.4f} | {mean(3.0, 'unseen'):.4f} | "
-                     f"{mean(3.0, 'lasting_share_of_contact_time'):.3f} |")
+
+        def mean(threshold, name):
+            values = [s[threshold][name] for s in mine if s[threshold][name] is not None]
+            return np.mean(values) if values else np.nan
+        lines.append(f"| {k:.4g} | {len(mine)} | {mean(a, 't_multiple_counters'):.4f} | "
+                     f"{mean(a, 't_multiple_rows'):.4f} | {mean(a, 'lasting'):.4f} | "
+                     f"{mean(a, 'bursts'):.4f} | {mean(b, 'lasting'):.4f} | "
+                     f"{mean(b, 'bursts'):.4f} | {mean(a, 'unseen'):.4f} | "
+                     f"{mean(a, 'lasting_share_of_contact_time'):.3f} |")
     return lines + [""]
 
 

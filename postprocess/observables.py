@@ -3,6 +3,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from .durations import run_contacts
 from .io import CUMULATIVE_COUNTERS, DataError, Point
 from .scenes import SCENES, scene
 from .selection import Selection, in_energy_range, steady_parts
@@ -141,6 +142,9 @@ def measure(point, resolutions=(), selection=Selection()):
       n_boundary    the disks the boundary rates are per (all, or the bottom layer)
       period, bump_time, period_problem   (scenes with has_period) the v_y period and the
                     time to pass a bump, or why there are none
+      contacts, contacts_problem   (runs with contact rows) durations.run_contacts: P(tau)'s
+                    histogram and the split of the time with two or more contacts; or why the
+                    rows could not be read (contacts None)
     where blocks is {quantity: [value in each of N_BLOCKS pieces]} (BLOCK_QUANTITIES)."""
     params, energy, stopped_at = point.params, point.energy, point.stopped_at
     inside = averaging_rows(energy, params)
@@ -207,6 +211,11 @@ def measure(point, resolutions=(), selection=Selection()):
         except DataError as error:
             measured.update(period=None, bump_time=None,
                             period_problem=relative(error, point.directory))
+    if (point.directory / "contacts.txt").exists():
+        try:
+            measured.update(contacts=run_contacts(point, first), contacts_problem=None)
+        except (DataError, ValueError) as error:
+            measured.update(contacts=None, contacts_problem=relative(error, point.directory))
     return measured
 
 

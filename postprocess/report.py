@@ -5,15 +5,16 @@ from pathlib import Path
 
 import numpy as np
 
-from . import figures, transition
+from . import durations, figures, transition
 from .io import DataError
 from .observables import N_BLOCKS
 from .reference import accepted, evaluate, tally
 from .runs import energy_curve
 from .scenes import scene as scene_of
 from .selection import Selection
-from .study import (CROSSOVER_SIGMAS, QUANTITIES, VARIANT_QUANTITIES, crossover, main_series,
-                    run_summary, same_series, series, variant_differences)
+from .limit import split_lines
+from .study import (CROSSOVER_SIGMAS, QUANTITIES, VARIANT_QUANTITIES, contact_series, crossover,
+                    main_series, run_summary, same_series, series, variant_differences)
 
 
 def fmt(value, error=None):
@@ -61,6 +62,11 @@ def make_figures(scenes, completed, out, selection):
         if rows:
             jobs.append(("stiffness dependence", f"stiffness_{scene}.png",
                          lambda p, s=scene, r=rows, v=variants: figures.stiffness(s, r, p, v)))
+        durations_by_series = contact_series(scenes.get(scene, []))
+        if durations_by_series:
+            jobs.append(("contact durations P(tau) against k_n", f"durations_{scene}.png",
+                         lambda p, s=scene, d=durations_by_series: figures.duration_stiffness(
+                             s, d, durations.DURATION_EDGES, p)))
         if rows and raw:
             jobs.append(("profiles", f"profiles_{scene}.png",
                          lambda p, s=scene, r=rows: figures.profile_figure(s, r, p)))
@@ -79,6 +85,40 @@ def make_figures(scenes, completed, out, selection):
             except DataError as error:
                 problems.append(f"{name}: {error}")
     return made, problems
+
+
+def contact_lines(scene, rows):
+    """Markdown lines: per series and k_n with contact rows, the contacts counted and the
+    fraction longer than durations.TAIL_CUT binary durations; and, where the rows cover a
+    window, what the time with two or more contacts is made of."""
+    found = contact_series(rows)
+    if not found:
+        return []
+    particle = scene_of(scene).particle
+    lines = ["### Contact durations", "",
+             f"From the contact rows (`-var rows yes`) of the contacts that ended after "
+             f"average_start: how many, and the fraction lasting longer than "
+             f"{durations.TAIL_CUT:g} binary durations (tau_c; tau_w against the boundary); "
+             "P(tau) in the figure.", "",
+             f"| series | k_n | runs with rows | {particle}-{particle} contacts | "
+             f"> {durations.TAIL_CUT:g} tau_c | boundary contacts | > {durations.TAIL_CUT:g} "
+             "tau_w |", "|---|---|---|---|---|---|---|"]
+    splits = []
+    for name, points in found:
+        for kn, p in points:
+            cells = []
+            for kind in ("disk", "boundary"):
+                total = p[kind]["contacts"]
+                cells += [str(total), fmt(p[kind]["tail"] / total) if total else "n/a"]
+            lines.append(f"| {name or '-'} | {kn:g} | {p['runs']} | " + " | ".join(cells) + " |")
+            splits += [(name, kn, s) for s in p["splits"]]
+    lines.append("")
+    for name in dict.fromkeys(n for n, _, _ in splits):
+        lines += [f"What the time with two or more contacts is made of ({name or 'main series'}; "
+                  f"per {particle} and unit time over the rows window; docs/hard_sphere_limit.md):",
+                  ""]
+        lines += split_lines([(kn, s) for n, kn, s in splits if n == name])
+    return lines
 
 
 def run_table(runs, selection):
@@ -214,6 +254,7 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
         if scene_def.selects_steady_parts:
             lines += run_table(runs, selection)
         lines += variant_lines(rows)
+        lines += contact_lines(scene, rows)
         if rows:
             notes += list(scene_def.notes)
         if scene_def.has_period and rows:
@@ -295,7 +336,7 @@ def write_transition_report(sweep_dir, runs, groups, left_out, out):
              "with flowing runs (error: the fit's). At the stiffest of those k_n: the "
              "multiple-contact fraction (t_c - N_c tau_c)/t_c, the fraction of time with two "
              "or more contacts (t_multiple), the contacts per disk z (boundary included), and "
-             f"the fractions of disk (boundary) contacts longer than {transition.TAIL_CUT:g} "
+             f"the fractions of disk (boundary) contacts longer than {durations.TAIL_CUT:g} "
              "tau_c (tau_w). Errors: across seeds, or block errors of a single seed.", ""]
     made = []
     for name, caption, job in (
@@ -303,7 +344,7 @@ def write_transition_report(sweep_dir, runs, groups, left_out, out):
              lambda p: figures.transition_figure(table, p)),
             ("durations.png", "P(tau/tau_c) for a few inclinations",
              lambda p: figures.duration_figure(_few_densities(runs, table),
-                                               transition.DURATION_EDGES, p))):
+                                               durations.DURATION_EDGES, p))):
         if any(row.get("kn_stiffest") for row in table):
             job(out / name)
             made.append((caption, name))
@@ -346,5 +387,5 @@ def _few_densities(runs, table, most=5):
             pooled = transition.pooled_durations(runs, scene, row["sin_theta"],
                                                  row["kn_stiffest"])
             densities[(scene, row["sin_theta"], row["kn_stiffest"])] = {
-                kind: transition.duration_density(d) for kind, d in pooled.items()}
+                kind: durations.duration_density(d) for kind, d in pooled.items()}
     return densities

@@ -35,6 +35,13 @@ class Scene:
     notes: tuple = ()
     # the slope and the system, as the transition study (docs/transition.md) names the scene
     base: str = ""
+    # what the flowing particles are, for labels (the observables are per particle)
+    particle: str = "disk"
+    # the hard-sphere-limit rule (postprocess limit, docs/hard_sphere_limit.md) applies to the
+    # scene's runs; limit_levels: {name: (low, high)} the energy levels per particle its flows
+    # sit at, within which the rule is applied again (empty: no levels, that step is skipped)
+    decides_limit: bool = False
+    limit_levels: tuple = ()
 
 
 SCENES = {s.name: s for s in (
@@ -48,18 +55,22 @@ SCENES = {s.name: s for s in (
           guides=(Guide("rates", "N_c", 0.4, "k_n^0.4 guide (the paper's)"),),
           notes=("N_w and t_w are per disk of the bottom layer (disks that touched the floor in "
                  "the averaging window; the paper: during the averaging span).",),
-          base="flat base, 100 polydisperse disks"),
+          base="flat base, 100 polydisperse disks", decides_limit=True,
+          # the frictional flow sits near E ~ 0.4, ~0.65, ~0.95 per disk
+          limit_levels=(("low", (0.3, 0.5)), ("middle", (0.5, 0.8)), ("high", (0.8, 1.2)))),
     # inputs/chute_3d.lmp: a dense frictional flow and a dilute collisional one are two
     # parameter sets of one deck (inputs/sweeps/chute_3d.toml), averaged alike: over the window
     # after average_start (the 2D frictional flow's energy range [0.4, 0.8] and spans > 500
     # belong to that scene), a run that came to rest refused; per flowing sphere, N_w and t_w
-    # per sphere that touched the base (in the dilute flow, all of them)
+    # per sphere that touched the base (in the dilute flow, all of them). Its dense flow's E
+    # moves smoothly with k_n (0.53 -> 0.40 per sphere over three decades, docs/three_d.md):
+    # no levels to split the limit rule's runs by
     Scene("chute_3d", "3D chute", boundary_per_bottom_layer=True,
           guides=(Guide("rates", "N_c", 0.4, "k_n^0.4 guide (the 2D paper's)"),
                   Guide("times", "t_c", -0.5, "k_n^-1/2 guide")),
           notes=("Spheres (3D). N_w and t_w are per sphere that touched the base (the fixed "
                  "spheres) in the averaging window.",),
-          base="rough base of fixed spheres, 3D"),
+          base="rough base of fixed spheres, 3D", particle="sphere", decides_limit=True),
 )}
 
 

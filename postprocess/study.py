@@ -1,6 +1,7 @@
 """A sweep's points, analysed: per-scene tables of observables, and what was left out."""
 import numpy as np
 
+from .durations import pooled
 from .observables import RESOLUTIONS
 from .runs import load_runs
 from .scenes import SCENES
@@ -28,7 +29,7 @@ def analyse(source, selection=Selection()):
             runs.append(frictional_run(record, selection, resolutions))
         if record.observables is not None:
             o = dict(record.observables, point=record.point, variables=record.variables,
-                     outputs=record.outputs)
+                     outputs=record.outputs, contacts=record.measured.get("contacts"))
             scenes.setdefault(o["scene"], []).append(o)
     scenes = {scene: combine_seeds(rows) for scene, rows in scenes.items()}
     varying = varying_variables([r["variables"] for r in runs])
@@ -240,3 +241,19 @@ def crossover(kn, values, errors, stiff_from, sigmas=CROSSOVER_SIGMAS):
                                                 float(kn[first])),
             "stiff": float(level), "stiff_err": float(level_err), "n_stiff": int(stiff.sum())}
 
+
+
+def contact_series(rows):
+    """[(label, [(kn, durations.pooled of its runs' contact rows)])] of a scene's points
+    (combine_seeds' rows), the main series first; only k_n with rows."""
+    if not rows:
+        return []
+    main = main_series(rows)[0]["label"]
+    out = []
+    for name in [main] + sorted({o["label"] for o in rows} - {main}):
+        points = [(o["kn"], pooled([m.get("contacts") for m in o.get("runs", [o])]))
+                  for o in rows if o["label"] == name]
+        points = [(k, p) for k, p in points if p is not None]
+        if points:
+            out.append((name, points))
+    return out

@@ -6,13 +6,17 @@ MB: committed under data/, they let the report and compare be redone without rer
 The file: an object with `schema` (SCHEMA), `version` (VERSION), `steady_rule` (the
 min_length and max_width the steady parts were found with), then the record's fields
 (point, scene, ended, stopped_at, failure, variables, params, measured, energy, cpu_seconds,
-reason); measured's steady parts are keyed by resolution written with %g. A file that is not
+reason); measured's steady parts are keyed by resolution written with %g; a run with contact
+rows adds measured.contacts (durations.run_contacts: the histogram of P(tau) on
+durations.DURATION_EDGES and the split of the time with two or more contacts) and
+measured.contacts_problem, which readers of older summaries do without. A file that is not
 this, or of another version, is refused by name (the run is left out, saying why)."""
 import json
 import math
 from pathlib import Path
 
-from .io import DataError, checked_params
+from .durations import DURATION_EDGES
+from .io import CONTACT_KINDS, DataError, checked_params
 from .observables import BLOCK_QUANTITIES, RESOLUTIONS
 from .runs import DRAWN_WINDOW, ENDINGS, RunRecord, read_run
 from .selection import Selection
@@ -178,7 +182,47 @@ class _Checker:
                 value = self.number(self.key(data, name, "measured"), f"measured.{name}",
                                     optional=True)
                 measured[name] = math.nan if value is None else value
+        if "contacts" in data:
+            measured["contacts"] = self.contacts(data["contacts"])
+            measured["contacts_problem"] = self.text(data.get("contacts_problem"),
+                                                     "measured.contacts_problem", optional=True)
         return measured
+
+    def contacts(self, data):
+        """measured.contacts (durations.run_contacts), or None."""
+        if data is None:
+            return None
+        data = self.mapping(data, "measured.contacts")
+        out = {"histogram": {}, "contacts": {}, "tail": {}}
+        histogram = self.mapping(self.key(data, "histogram", "measured.contacts"),
+                                 "measured.contacts.histogram")
+        contacts = self.mapping(self.key(data, "contacts", "measured.contacts"),
+                                "measured.contacts.contacts")
+        tail = self.mapping(self.key(data, "tail", "measured.contacts"), "measured.contacts.tail")
+        for kind in CONTACT_KINDS:
+            where = f"measured.contacts.histogram.{kind}"
+            counts = self.numbers(self.key(histogram, kind, "measured.contacts.histogram"), where)
+            if len(counts) != len(DURATION_EDGES) - 1 or any(c < 0 or c != int(c) for c in counts):
+                self.fail(where, f"is not {len(DURATION_EDGES) - 1} counts")
+            total = self.number(self.key(contacts, kind, "measured.contacts.contacts"),
+                                f"measured.contacts.contacts.{kind}")
+            if total < sum(counts) or total != int(total):
+                self.fail(f"measured.contacts.contacts.{kind}",
+                          f"is {total:g}, not a count of at least the histogram's {sum(counts):g}")
+            longer = self.number(self.key(tail, kind, "measured.contacts.tail"),
+                                 f"measured.contacts.tail.{kind}")
+            if not 0 <= longer <= total or longer != int(longer):
+                self.fail(f"measured.contacts.tail.{kind}", f"is {longer:g}, not a count of at "
+                          f"most {total:g}")
+            out["histogram"][kind], out["contacts"][kind] = [int(c) for c in counts], int(total)
+            out["tail"][kind] = int(longer)
+        if "split" in data:
+            split = self.mapping(data["split"], "measured.contacts.split")
+            out["split"] = {
+                key: {name: self.number(v, f"measured.contacts.split.{key}.{name}", optional=True)
+                      for name, v in self.mapping(part, f"measured.contacts.split.{key}").items()}
+                for key, part in split.items()}
+        return out
 
     def energy(self, data):
         data = self.mapping(data, "energy")

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .durations import contact_durations, tail_fraction
 from .io import CONTACT_KINDS, DataError
 from .observables import observables, relative, rest_time
 from .runs import read_run
@@ -36,12 +37,6 @@ GROWTH_LIMIT = 2.0
 DRIFT_BLOCKS, DRIFT_SIGMAS = 10, 3.0
 STATE_BLOCKS = 5
 STATES = ("flowing", "stopped", "accelerating", "drifting")
-# P(tau): log bins of tau/tau_c (tau/tau_w for boundary contacts), ten per decade; the tail
-# beyond TAIL_CUT binary durations holds the lasting contacts (a binary collision lasts 1).
-DURATION_EDGES = np.logspace(-1, 4, 51)
-TAIL_CUT = 2.0
-
-
 def flow_state(t, energy, average_start, stopped_at=None):
     """(state, growth) of a run from its E(t) per disk: state one of STATES by the rule above,
     growth the ratio of E over the last to the first fifth of the averaging span (nan where
@@ -64,32 +59,6 @@ def flow_state(t, energy, average_start, stopped_at=None):
     drifts = (abs(slope) * (end - span_t[0]) > fluctuation and
               abs(slope) > DRIFT_SIGMAS * slope_err)
     return ("drifting" if drifts else "flowing"), growth
-
-
-def contact_durations(rows, tau_c, tau_w, since):
-    """{'disk': tau/tau_c, 'boundary': tau/tau_w} of the contacts that ended at or after
-    `since`. Contacts counted by when they end have the steady state's distribution of
-    durations: no long contact is cut off at the start or the end of the stretch."""
-    ended = rows["start"] + rows["duration"] >= since
-    unit = {"disk": tau_c, "boundary": tau_w}
-    return {kind: rows["duration"][ended & (rows["kind"] == code)] / unit[kind]
-            for kind, code in CONTACT_KINDS.items()}
-
-
-def duration_density(scaled, edges=DURATION_EDGES):
-    """P(tau/tau_c) on the bins `edges`: counts / (all contacts x bin width), so that it
-    integrates to the fraction of contacts inside the bins."""
-    scaled = np.asarray(scaled, dtype=float)
-    counts, _ = np.histogram(scaled, edges)
-    if len(scaled) == 0:
-        return np.full(len(edges) - 1, np.nan)
-    return counts / (len(scaled) * np.diff(edges))
-
-
-def tail_fraction(scaled, cut=TAIL_CUT):
-    """The fraction of contacts lasting longer than `cut` binary durations."""
-    scaled = np.asarray(scaled, dtype=float)
-    return float(np.mean(scaled > cut)) if len(scaled) else np.nan
 
 
 def transition_run(record):

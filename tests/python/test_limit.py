@@ -4,7 +4,8 @@ the other physics."""
 import numpy as np
 import pytest
 
-from postprocess import limit
+from postprocess import durations, limit
+from postprocess.scenes import scene
 
 # The stiff preset's k_n (2^p x 10^5, p = 4, 6, ..., 14) and eight runs at each.
 KN = 1e5 * 2.0 ** np.arange(4, 16, 2)
@@ -84,7 +85,8 @@ def test_levels_split_the_runs_by_energy():
     runs = synthetic_runs(power, 0.1)
     for i, r in enumerate(runs):
         r["E_total"] = (0.4, 0.65, 0.95)[i % 3]
-    decisions = limit.decide_within_levels(runs, "mc_c", samples=50)
+    levels = dict(scene("frictional_flow").limit_levels)
+    decisions = limit.decide_within_levels(runs, "mc_c", levels, samples=50)
     assert set(decisions) == {"low", "middle", "high"}
     # two or three runs per level at each of six k_n: the rule applies in each level
     assert all(not d.verdict.startswith("not applied") for d in decisions.values())
@@ -121,12 +123,34 @@ def test_limit_command_writes_the_verdicts_and_the_figure(tmp_path, capsys):
                  (1 + 0.05 * np.sin(i)), E_total=(0.4, 0.65, 0.95)[i % 3])
     rows = [{"kn": k, "label": "", "runs": [r for r in runs if r["kn"] == k]}
             for k in sorted({r["kn"] for r in runs})]
-    assert write_limit(tmp_path, {"frictional_flow": rows}, tmp_path / "limit", Selection()) == 0
+    assert write_limit(tmp_path, {"frictional_flow": rows}, tmp_path / "limit", Selection(),
+                       {}) == 0
     text = (tmp_path / "limit" / "limit.md").read_text()
     assert "t_c - N_c tau_c: **finite**" in text
     assert "time with two or more contacts: **vanishing**" in text
-    assert (tmp_path / "limit" / "limit0.png").stat().st_size > 10000
+    assert "### Within one energy level" in text
+    assert (tmp_path / "limit" / "limit_frictional_flow_0.png").stat().st_size > 10000
     assert "limit report:" in capsys.readouterr().out
+
+
+def test_limit_command_decides_the_3d_chute_without_levels(tmp_path, capsys):
+    # the same series as the 3D chute's: decided alike; the 3D flows have no energy levels,
+    # so step 4 is said to be skipped rather than split by the 2D disks' levels
+    from postprocess.__main__ import write_limit
+    from postprocess.selection import Selection
+    runs = synthetic_runs(power, 0.05)
+    for r in runs:
+        r.update(mc_w=2 * r["mc_c"], t_multiple=3 * r["mc_c"])
+    rows = [{"kn": k, "label": "", "runs": [r for r in runs if r["kn"] == k]}
+            for k in sorted({r["kn"] for r in runs})]
+    assert write_limit(tmp_path, {"chute_3d": rows}, tmp_path / "limit", Selection(), {}) == 0
+    text = (tmp_path / "limit" / "limit.md").read_text()
+    assert text.count("# 3D chute") == 1 and "t_c - N_c tau_c: **vanishing**" in text
+    assert "### Within one energy level" not in text and "no energy levels" in text
+    # a scene the rule is not for: refused, saying which scenes it applies to
+    assert write_limit(tmp_path, {"collisional_flow": rows}, tmp_path / "other", Selection(),
+                       {}) == 2
+    assert "frictional_flow, chute_3d" in capsys.readouterr().err
 
 
 def rows_of(contacts):
@@ -145,14 +169,14 @@ def test_split_of_the_multiple_contact_time():
         (4, 6, 1, 0.505, 0.01),     #   a burst
         (7, 0, 2, 0.0, 1.0),        # disk 7 resting on the floor, alone: no multiple contact
     ])
-    split = limit.multiple_contact_split(rows, tau, tau, 0.0, 1.0, n_disks=10)
+    split = durations.multiple_contact_split(rows, tau, tau, 0.0, 1.0, n_particles=10)
     assert split["lasting"] == pytest.approx(0.01 / 10)
     assert split["bursts"] == pytest.approx(0.005 / 10)
     assert split["t_multiple_rows"] == pytest.approx(0.015 / 10)
     # contact time: 2 + 0.02 + 0.04 + 1 (each disk-disk contact counts for both disks)
     assert split["lasting_share_of_contact_time"] == pytest.approx(3.0 / 3.06)
     # the window clips: over [0.3, 1.0] only the burst is left
-    clipped = limit.multiple_contact_split(rows, tau, tau, 0.3, 1.0, n_disks=10)
+    clipped = durations.multiple_contact_split(rows, tau, tau, 0.3, 1.0, n_particles=10)
     assert clipped["lasting"] == 0.0 and clipped["bursts"] == pytest.approx(0.005 / 7)
 
 

@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 from postprocess.observables import contacts_per_disk
-from postprocess.transition import (DURATION_EDGES, GROWTH_LIMIT, contact_durations,
-                                    duration_density, flow_state, tail_fraction,
-                                    transition_table)
+from postprocess.durations import (DURATION_EDGES, contact_durations, duration_density,
+                                   tail_fraction)
+from postprocess.transition import GROWTH_LIMIT, flow_state, transition_table
 
 RNG = np.random.default_rng(14)
 
