@@ -157,6 +157,10 @@ def test_a_resolution_the_summaries_do_not_hold_is_refused(summarized, capsys):
     ("ended", "corrupt summary: ended is 'exploded', not one of flowing, stopped, failed, "
               "incomplete"),
     ("rule", "its steady parts were found with"),
+    ("histogram", "corrupt summary: measured.contacts.histogram.disk is not 50 counts"),
+    ("tail", "corrupt summary: measured.contacts.tail.boundary is 7, not a count of at most 5"),
+    ("contacts", "corrupt summary: measured.contacts.contacts.disk is 2, not a count of at "
+                 "least the histogram's 3"),
 ])
 def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, damage, message):
     _, data = summarized
@@ -179,6 +183,19 @@ def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, dama
         summary["ended"] = "exploded"
     if damage == "rule":
         summary["steady_rule"]["max_width"] = 0.3
+    if damage in ("histogram", "tail", "contacts"):
+        # a run with contact rows (durations.run_contacts), damaged
+        histogram = [0] * 50
+        histogram[20] = 3
+        contacts = {"histogram": {"disk": histogram, "boundary": [0] * 50},
+                    "contacts": {"disk": 3, "boundary": 5}, "tail": {"disk": 0, "boundary": 0}}
+        if damage == "histogram":
+            contacts["histogram"]["disk"] = histogram[:-1]
+        if damage == "tail":
+            contacts["tail"]["boundary"] = 7
+        if damage == "contacts":
+            contacts["contacts"]["disk"] = 2
+        summary["measured"].update(contacts=contacts, contacts_problem=None)
     path.write_text("{kn: 5" if damage == "not json" else json.dumps(summary))
     record, = load_runs(tmp_path / "data")
     assert record.ended == "unreadable" and record.reason.startswith(f"{path}: ")
