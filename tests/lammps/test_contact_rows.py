@@ -43,6 +43,23 @@ def results(tmp_path_factory):
     return where / "results"
 
 
+def test_rows_keep_every_digit_of_their_times(results):
+    # a contact starts and ends at a step: its start and end are whole numbers of steps since
+    # the run's start (the fix's clock), to round-off; rows written with dump local's default
+    # %g (6 digits) are off by up to 0.006 steps here (t ~ 8, dt 7.9e-4), and by tens of steps
+    # at stiff k_n, where a pair's successive contacts then overlap
+    for record in load_runs(results):
+        rows, dt = record.outputs.rows, record.params["dt"]
+        for times in (rows["start"] / dt, (rows["start"] + rows["duration"]) / dt):
+            assert np.max(np.abs(times - np.round(times))) < 1e-6
+        # no pair has two contacts at once
+        key = rows["id_i"] * 1e6 + rows["id_j"]
+        order = np.lexsort((rows["start"], key))
+        start, end = rows["start"][order], (rows["start"] + rows["duration"])[order]
+        same = key[order][1:] == key[order][:-1]
+        assert np.all(start[1:][same] >= end[:-1][same] - 0.5 * dt)
+
+
 def test_rows_and_counters_tell_the_same_time_with_two_or_more_contacts(results):
     records = load_runs(results)
     assert len(records) == 2
