@@ -10,8 +10,8 @@ import pytest
 from collision_decks import two_disks
 from granmn_run import PLUGIN, law, run_lammps
 from postprocess.io import read_params, read_rows
-from postprocess.transition import (DURATION_EDGES, contact_durations, duration_density,
-                                   tail_fraction)
+from postprocess.durations import (DURATION_EDGES, contact_durations, duration_density,
+                                  tail_fraction)
 
 ROOT = Path(__file__).resolve().parents[2]
 ROWS = """fix c mobile contacts/mn local 1
