@@ -746,8 +746,8 @@ def main(argv=None):
                 for (p, d, s), (outcome, elapsed, note) in zip(batch, results):
                     if outcome == "rerun":
                         queue.append((p, d, s))
-                    report(p, d, model.predict(p, s) * len(batch), outcome,
-                           elapsed * len(batch), note)
+                    # each point of the batch ran for the batch's wall time
+                    report(p, d, model.predict(p, s), outcome, elapsed, note)
         else:
             futures = {pool.submit(run_serial, p, d, paths, env): (p, d, s) for p, d, s in todo}
             for future in concurrent.futures.as_completed(futures):
