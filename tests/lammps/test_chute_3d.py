@@ -2,7 +2,8 @@
 outputs are read by the post-processing (N_c, N_w, t_c, t_w per sphere per unit time), its
 kinetic energies are those of solid spheres, and refused variables stop it with a message;
 the sweep runner's preset is known and within its budget; two MPI ranks give the one-rank run's
-counts and contacts."""
+counts and contacts, and a killed run resumed from its checkpoint, on the same or another
+number of ranks, those of the uninterrupted run."""
 import collections
 import re
 import subprocess
@@ -14,7 +15,7 @@ import pytest
 
 from granmn_run import PLUGIN, ROOT, run_scene
 
-from postprocess.io import ENERGY_COLUMNS, read_counts, read_rows
+from postprocess.io import ENERGY_COLUMNS, read_counts, read_profile, read_rows
 from postprocess.observables import point_observables
 
 # dt = dt_cap = 1e-3 (tau_c/16): the snapshots (every 6000 steps) fall on lines of energy.txt
@@ -254,3 +255,57 @@ def chute_config(tmp_path, variables):
     path.write_text('name = "c"\n[[grid]]\nscene = "chute_3d"\n' + "".join(
         f"{name} = {value!r}\n".replace("'", '"') for name, value in variables.items()))
     return path
+
+
+# The same chute with checkpoints every 0.5 (at 0.5, 1, ..., 3.5; the counters' window opens at
+# 1.5): a run killed past its checkpoint at 2 resumes mid-window, its counters half-way. The
+# deck's default dt (tau_c/100, 80000 steps) makes the run long enough (~1 s) to be killed.
+CHECKPOINTED = {**SPLIT, "dt_fraction": 0.01, "average_start": 1.5, "checkpoint_interval": 0.5,
+                "stop_energy": 0}
+
+
+@pytest.fixture(scope="module")
+def uninterrupted(tmp_path_factory):
+    """The checkpointed chute run through on one rank by the sweep runner."""
+    from test_checkpoint import point_dir
+    from test_sweep import sweep
+    tmp = tmp_path_factory.mktemp("whole")
+    sweep(chute_config(tmp, CHECKPOINTED), tmp / "out", "--jobs", "1")
+    return point_dir(tmp / "out")
+
+
+@pytest.mark.parametrize("killed_on, resumed_on", [(1, 1), (1, 2), (2, 1)])
+def test_killed_chute_resumes_to_the_uninterrupted_counts(tmp_path, uninterrupted, killed_on,
+                                                          resumed_on):
+    """kill -9 of the sweep past the checkpoint at t = 2, then the same sweep again, with
+    --ranks killed_on and resumed_on: the restart file holds the atoms, the contact histories and
+    the counters' per-atom state and window, and LAMMPS reads it on any number of ranks. On the
+    same rank count as the uninterrupted run every output is the same to the bit (as in 2D,
+    tests/lammps/test_checkpoint.py: the same setups at the same steps); on another, each
+    sphere's counters and the contacts exactly, the energies and profiles to rounding (the
+    forces summed in another order; the span ends before the flow's chaos amplifies it). A
+    counter's window restarted, a history dropped or a contact counted twice on resuming
+    changes the counts."""
+    from test_checkpoint import data_lines, kill_mid_chunk
+    from test_sweep import sweep
+    config = chute_config(tmp_path, CHECKPOINTED)
+    ranks = ("--ranks", str(killed_on))
+    directory, step = kill_mid_chunk(config, tmp_path / "killed", *ranks, after=4)
+    with open(directory / "energy.txt", "a") as energy:    # a line the kill cut
+        energy.write(f"{step + 10**6} 0.12")
+    proc = sweep(config, tmp_path / "killed", "--jobs", "1", "--ranks", str(resumed_on))
+    assert "1 to run" in proc.stdout
+    log = (directory / "log.lammps").read_text()
+    assert "resuming from checkpoint" in log
+    assert ("2 by 1 by 1 MPI processor grid" in log) == (resumed_on == 2)
+    assert not list(directory.glob("checkpoint*")), "checkpoints left after the run completed"
+    if killed_on == resumed_on == 1:
+        for name in ("energy.txt", "snapshots.lammpstrj", "counts.txt", "profile_chunks.txt",
+                     "contacts.txt"):
+            assert data_lines(directory / name) == data_lines(uninterrupted / name), name
+    rows = assert_same_run(uninterrupted, directory)
+    whole, resumed = read_profile(uninterrupted), read_profile(directory)
+    for name, values in whole.items():
+        assert resumed[name] == pytest.approx(values, rel=ROUNDING, abs=1e-12), name
+    print(f"killed on {killed_on} rank(s) after step {step}, resumed on {resumed_on}: "
+          f"{rows} contact rows as the uninterrupted run's")
