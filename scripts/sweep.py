@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Runs a grid of scene points described in a TOML config, resumably, with progress and ETA.
 
-    scripts/sweep.py CONFIG [--output DIR] [--jobs N | --partitions P] [--dry-run]
+    scripts/sweep.py CONFIG [--output DIR] [--jobs N | --partitions P] [--ranks R] [--dry-run]
 
 Config (TOML):
 
@@ -37,6 +37,16 @@ has cores (--jobs). --partitions P runs P points at a time in one `mpirun -np P 
 Px1`, LAMMPS's own multi-partition mode, as on a cluster; mpirun is asked first whether it
 has P slots. A point that fails in a partition is recorded as failed; the siblings its
 LAMMPS ERROR took down (MPI_Abort) are run again.
+
+--ranks R runs each point on R MPI ranks (LAMMPS's domain decomposition): `mpirun -np R lmp`
+per point, --jobs of them at a time (jobs x R processes; --jobs defaults to cores / R), or with
+--partitions P one `mpirun -np P*R lmp -partition PxR` (P partitions of R ranks; mpirun is
+asked first for P x R slots, and without --partitions for R). R is not part of a point: its
+directory, point.json and checkpoints are the same with any R, and a point resumes with any R
+(LAMMPS reads a restart file on any number of ranks). R ranks sum the forces in another order:
+a point follows the 1-rank trajectory to rounding, and a chaotic dense flow amplifies that
+rounding until, after some time units, the run is another realization of the same flow
+(docs/sweeps.md).
 
 Exit status: 0 all done, 1 some points failed, 2 refused (a bad config or path, a busy output).
 """
@@ -492,13 +502,15 @@ def wait(proc, directories, ended=None):
     return proc.returncode, elapsed, usage.ru_utime + usage.ru_stime, stuck
 
 
-def run_serial(point, directory, paths, env):
-    """(outcome, wall seconds, note) of a point run as one lmp process."""
+def run_serial(point, directory, paths, env, ranks=1):
+    """(outcome, wall seconds, note) of a point run as one lmp process, or as `mpirun -np
+    ranks lmp` (one LAMMPS world of `ranks` ranks: the domain decomposed)."""
     if _stopped_by:
         return "stopped", 0.0, ""
     token = secrets.token_hex(8)
     resume = resume_or_prepare(directory, point)
-    command = [str(paths["lmp"]), "-in", str(ROOT / "inputs" / f"{point['scene']}.lmp"),
+    mpirun = [paths["mpiexec"], "-np", str(ranks)] if ranks > 1 else []
+    command = mpirun + [str(paths["lmp"]), "-in", str(ROOT / "inputs" / f"{point['scene']}.lmp"),
                "-log", str(directory / "log.lammps"), "-screen", "none", "-nocite"]
     for name, value in {**point_variables(point, directory, paths, token), **resume}.items():
         command += ["-var", name, format_value(value)]
@@ -512,8 +524,9 @@ def run_serial(point, directory, paths, env):
     return outcome, elapsed, ""
 
 
-def run_partitions(batch, batch_dir, paths, env):
-    """Points of one batch as the partitions of one lmp run: [(outcome, wall seconds, note)].
+def run_partitions(batch, batch_dir, paths, env, ranks=1):
+    """Points of one batch as the partitions of one lmp run, `ranks` MPI ranks each:
+    [(outcome, wall seconds, note)]. Each partition's rank 0 writes its point's log and outputs.
     A LAMMPS ERROR in one partition aborts them all (MPI_Abort): a sibling without an ERROR of
     its own did not fail, its outcome is "rerun"."""
     batch_dir.mkdir(parents=True, exist_ok=True)
@@ -531,7 +544,8 @@ def run_partitions(batch, batch_dir, paths, env):
     driver.write_text("variable point world " + " ".join(str(d) for d in directories) +
                       "\ninclude ${point}/settings.lmp\n")
     n = len(batch)
-    command = [paths["mpiexec"], "-np", str(n), str(paths["lmp"]), "-partition", f"{n}x1",
+    command = [paths["mpiexec"], "-np", str(n * ranks), str(paths["lmp"]), "-partition",
+               f"{n}x{ranks}",
                "-in", str(driver), "-log", str(batch_dir / "log.lammps"), "-plog", "none",
                "-pscreen", "none", "-screen", "none", "-nocite"]
     for directory in directories:
@@ -580,21 +594,23 @@ def finish(directory, token, status, elapsed, cpu, logs, output, note=""):
     return "failed"
 
 
-def check_slots(mpiexec, partitions, env):
+def check_slots(mpiexec, slots, env, asked):
     """OpenMPI starts no more processes than it has slots (one per physical core, unless an
-    allocation or a hostfile says otherwise): asked before any point runs."""
+    allocation or a hostfile says otherwise): asked before any point runs, for the processes
+    one mpirun of the sweep starts (`asked`: the options that make them, for the message)."""
     try:
-        proc = subprocess.run([mpiexec, "-np", str(partitions), "true"], capture_output=True,
+        proc = subprocess.run([mpiexec, "-np", str(slots), "true"], capture_output=True,
                               text=True, env=env, timeout=120)
     except (OSError, subprocess.TimeoutExpired) as error:
-        raise SweepError(f"--partitions {partitions}: {mpiexec} does not run ({error})")
+        raise SweepError(f"{asked}: {mpiexec} does not run ({error})")
     if proc.returncode != 0:
         said = " ".join((proc.stdout + proc.stderr).split())
         raise SweepError(
-            f"--partitions {partitions}: `{mpiexec} -np {partitions} true` fails here: "
+            f"{asked}: `{mpiexec} -np {slots} true` fails here: "
             f"{'not enough slots' if 'not enough slots' in said else said[:400]} (this machine "
             f"has {os.cpu_count()} logical cores; OpenMPI counts the physical ones): use fewer "
-            "partitions, or run under an allocation or a hostfile with that many slots")
+            "partitions or ranks, or run under an allocation or a hostfile with that many "
+            "slots")
 
 
 def lock_output(output):
@@ -648,14 +664,24 @@ def main(argv=None):
                                      epilog="\n".join(__doc__.splitlines()[2:]))
     parser.add_argument("config")
     parser.add_argument("--output", type=Path, help="results directory")
-    parser.add_argument("--jobs", type=int, default=os.cpu_count(),
-                        help="serial lmp processes at once (default: all cores)")
+    parser.add_argument("--jobs", type=int,
+                        help="points at a time, each one lmp process, or with --ranks R one "
+                             "mpirun of R ranks: jobs x R processes (default: cores / R, at "
+                             "least 1)")
     parser.add_argument("--partitions", type=int, default=0,
-                        help="run P points at a time as LAMMPS partitions under mpirun")
+                        help="run P points at a time as LAMMPS partitions under one mpirun "
+                             "(P x R processes)")
+    parser.add_argument("--ranks", type=int, default=1,
+                        help="MPI ranks per point (LAMMPS's domain decomposition; default 1: "
+                             "a serial lmp, no mpirun)")
     parser.add_argument("--dry-run", action="store_true",
                         help="list the points and the predicted cost, run nothing")
     parser.add_argument("--build", type=Path, default=ROOT / "build")
     args = parser.parse_args(argv)
+    if args.ranks < 1:
+        parser.error(f"--ranks {args.ranks}: the MPI ranks per point must be >= 1")
+    if args.jobs is None:
+        args.jobs = max(1, (os.cpu_count() or 1) // args.ranks)
     if args.jobs < 1 or args.partitions < 0:
         parser.error("--jobs must be >= 1 and --partitions >= 0")
 
@@ -683,9 +709,22 @@ def main(argv=None):
     # most expensive first, so that the last points to finish are short ones
     todo.sort(key=lambda item: -model.predict(item[0], item[2]))
     total = sum(model.predict(p, s) for p, _, s in plan)
+    # points at a time; each on `ranks` processes
+    lanes = args.partitions if args.partitions else args.jobs
+    processes = lanes * args.ranks
+    left = sum(model.predict(p, s) for p, _, s in todo)
     print(f"sweep: {len(plan)} points, {len(plan) - len(todo)} already done, {len(todo)} to run; "
           f"predicted {format_seconds(total)} of CPU in all "
           f"({total / 3600:.3g} CPU-hours); output {output}", flush=True)
+    print(f"sweep: {lanes} points at a time on {args.ranks} MPI rank"
+          f"{'s' if args.ranks > 1 else ''} each"
+          + (f" ({args.partitions} partitions of one mpirun)" if args.partitions else "")
+          + f": {processes} processes (this machine has {os.cpu_count()} logical cores); "
+          f"~{format_seconds(left / processes)} of wall for the points to run if the ranks "
+          "scale ideally", flush=True)
+    if processes > (os.cpu_count() or 1):
+        print(f"sweep: note: {processes} processes on {os.cpu_count()} logical cores: they "
+              "share them (use fewer --jobs or --ranks to give each its own)", flush=True)
     if args.dry_run:
         for p, d, s in plan:
             print(f"  {'done' if completed(d) else 'todo'} {d.relative_to(output)} "
@@ -695,7 +734,12 @@ def main(argv=None):
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     try:
         if args.partitions and todo:
-            check_slots(paths["mpiexec"], min(args.partitions, len(todo)), env)
+            batch = min(args.partitions, len(todo))
+            check_slots(paths["mpiexec"], batch * args.ranks, env,
+                        f"--partitions {args.partitions}" +
+                        (f" --ranks {args.ranks}" if args.ranks > 1 else ""))
+        elif args.ranks > 1 and todo:
+            check_slots(paths["mpiexec"], args.ranks, env, f"--ranks {args.ranks}")
         lock = lock_output(output)
         live = live_runs(d for _, d, _ in todo)
         if live:
@@ -709,7 +753,6 @@ def main(argv=None):
     signal.signal(signal.SIGTERM, stop)
     signal.signal(signal.SIGINT, stop)
 
-    lanes = args.partitions if args.partitions else args.jobs
     unfinished = {d: (p, s) for p, d, s in todo}
     failures = []
 
@@ -725,12 +768,14 @@ def main(argv=None):
         if outcome == "failed":
             failures.append(directory)
         elif not stopped.exists():      # a run that ended early says nothing about the cost
-            model.learn(predicted, elapsed)
+            # the model predicts the seconds of one core: the point took elapsed x ranks
+            model.learn(predicted, elapsed * args.ranks)
         how = "FAILED" if outcome == "failed" else "done" if not stopped.exists() else \
             f"done (pile stopped: {stopped.read_text().strip()})"
-        remaining = sum(model.predict(p, s) for p, s in unfinished.values()) / lanes
+        remaining = sum(model.predict(p, s) for p, s in unfinished.values()) / processes
+        on = f" on {args.ranks} ranks" if args.ranks > 1 else ""
         print(f"[{len(todo) - len(unfinished)}/{len(todo)}] {how} "
-              f"{directory.relative_to(output)} in {elapsed:.1f} s; "
+              f"{directory.relative_to(output)} in {elapsed:.1f} s{on}; "
               f"ETA {format_seconds(remaining)}", flush=True)
 
     # runs start in pool threads only: the main thread takes the signals
@@ -741,15 +786,17 @@ def main(argv=None):
             while queue and not _stopped_by:
                 batch, queue = queue[:args.partitions], queue[args.partitions:]
                 results = pool.submit(run_partitions, [(p, d) for p, d, _ in batch],
-                                      output / "batches" / f"batch{number}", paths, env).result()
+                                      output / "batches" / f"batch{number}", paths, env,
+                                      args.ranks).result()
                 number += 1
                 for (p, d, s), (outcome, elapsed, note) in zip(batch, results):
                     if outcome == "rerun":
                         queue.append((p, d, s))
-                    report(p, d, model.predict(p, s) * len(batch), outcome,
-                           elapsed * len(batch), note)
+                    # each point of the batch ran for the batch's wall time
+                    report(p, d, model.predict(p, s), outcome, elapsed, note)
         else:
-            futures = {pool.submit(run_serial, p, d, paths, env): (p, d, s) for p, d, s in todo}
+            futures = {pool.submit(run_serial, p, d, paths, env, args.ranks): (p, d, s)
+                       for p, d, s in todo}
             for future in concurrent.futures.as_completed(futures):
                 p, d, s = futures[future]
                 report(p, d, model.predict(p, s), *future.result())

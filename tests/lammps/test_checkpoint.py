@@ -13,7 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from test_sweep import BUILD, ROOT, SWEEP, kill_session, sweep
+from test_sweep import (BUILD, ROOT, SWEEP, kill_session, processes_mentioning, sweep,
+                        wait_for)
 
 # A contact-rich stretch: the frictional pile falls and flows (friction, multiple contacts,
 # the floor wall); the single disk bounces over its bumps. Checkpoints every 2 time units, the
@@ -42,18 +43,20 @@ def point_dir(output):
     return Path(glob.glob(str(output / "*" / "*"))[0])
 
 
-def kill_mid_chunk(config, output):
-    """Starts the sweep and kills it (kill -9, its lmp with it) once the run has written past
-    its second checkpoint; the checkpoint step it can resume from."""
+def kill_mid_chunk(config, output, *options, after=2):
+    """Starts the sweep (with its options, e.g. --ranks 2) and kills it (kill -9, its lmp or
+    mpirun and ranks with it) once the run has written past its checkpoint number `after`; the
+    checkpoint step it can resume from."""
     runner = subprocess.Popen(SWEEP + [str(config), "--output", str(output), "--build",
-                                       str(BUILD), "--jobs", "1"], stdout=subprocess.DEVNULL,
-                              stderr=subprocess.DEVNULL, start_new_session=True)
+                                       str(BUILD), "--jobs", "1", *options],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                              start_new_session=True)
     deadline = time.time() + 300
     while time.time() < deadline:
         logs = glob.glob(str(output / "*" / "*" / "checkpoint.txt"))
         lines = Path(logs[0]).read_text().splitlines() if logs else []
-        if len(lines) >= 2:
-            step = int(lines[1].split()[1])
+        if len(lines) >= after:
+            step = int(lines[after - 1].split()[1])
             energy = (Path(logs[0]).parent / "energy.txt").read_text().split()
             if energy and energy[-1] and len([1 for line in Path(logs[0]).parent.joinpath(
                     "energy.txt").read_text().splitlines() if line[:1].isdigit() and
@@ -62,6 +65,9 @@ def kill_mid_chunk(config, output):
         time.sleep(0.005)
     os.killpg(runner.pid, signal.SIGKILL)
     runner.wait()
+    # lmp, or mpirun and its ranks, get SIGTERM as the runner dies (PR_SET_PDEATHSIG): a
+    # resumed sweep refuses to start while they live
+    assert wait_for(lambda: not processes_mentioning(output), 30), processes_mentioning(output)
     directory = point_dir(output)
     assert not (directory / "done.txt").exists(), "the run ended before it could be killed"
     return directory, step

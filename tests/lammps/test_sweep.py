@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from granmn_run import PLUGIN
+from granmn_run import MPIEXEC, PLUGIN
 
 ROOT = Path(__file__).resolve().parents[2]
 SWEEP = [sys.executable, str(ROOT / "scripts" / "sweep.py")]
@@ -151,6 +151,89 @@ def test_two_partition_sweep_matches_serial_runs(tmp_path):
         assert a == b
     commands = [c.read_text() for c in (tmp_path / "partitioned").glob("*/*/command.txt")]
     assert sum("mpirun -np 2" in c and "-partition 2x1" in c for c in commands) == 2
+
+
+@pytest.fixture(scope="module")
+def chute_points(tmp_path_factory):
+    """Two points of the small chute that two ranks cut across the flow (tests/lammps/
+    test_chute_3d.py SPLIT), run by the sweep as serial lmp processes: (config, output)."""
+    from test_chute_3d import SPLIT, chute_config
+    tmp = tmp_path_factory.mktemp("chute")
+    config = chute_config(tmp, {**SPLIT, "seed": [1, 2]})
+    sweep(config, tmp / "serial", "--jobs", "1")
+    return config, tmp / "serial"
+
+
+def same_points_as_serial(serial, other):
+    """Each point of other is in the directory the serial sweep used (R is not part of a point),
+    with the same point.json, and has the serial run's counts, contacts and energies (per
+    sphere exactly, energies to rounding); [its point directories]."""
+    from test_chute_3d import assert_same_run
+    names = done_points(other)
+    assert names == done_points(serial) and len(names) == 2
+    points = []
+    for name in names:
+        ours, theirs = serial / "chute_3d" / name, other / "chute_3d" / name
+        assert (ours / "point.json").read_text() == (theirs / "point.json").read_text()
+        assert_same_run(ours, theirs)
+        points.append(theirs)
+    return points
+
+
+def test_ranks_run_each_point_on_that_many_mpi_ranks(tmp_path, chute_points):
+    """--ranks 2: each point is `mpirun -np 2 lmp` (one LAMMPS world, the domain cut in two), in
+    the directory and with the outputs of the serial run; the progress lines say the ranks."""
+    config, serial = chute_points
+    ranked = sweep(config, tmp_path / "ranked", "--jobs", "1", "--ranks", "2")
+    assert "1 points at a time on 2 MPI ranks each: 2 processes" in ranked.stdout, ranked.stdout
+    assert len(re.findall(r"\] done chute_3d/\S+ in [\d.]+ s on 2 ranks; ETA", ranked.stdout)) == 2
+    for point in same_points_as_serial(serial, tmp_path / "ranked"):
+        command = (point / "command.txt").read_text().split()
+        assert command[1:3] == ["-np", "2"] and command[3].endswith("lmp"), command
+        assert "-partition" not in command
+        assert "2 by 1 by 1 MPI processor grid" in (point / "log.lammps").read_text()
+
+
+def test_partitions_of_several_ranks_each(tmp_path, chute_points):
+    """--partitions 2 --ranks 2: one `mpirun -np 4 lmp -partition 2x2`, two points of two ranks
+    each, with the outputs of the serial run. mpirun must have 4 slots (the test environment
+    allows oversubscription; a machine without it refuses, as the next test checks)."""
+    if subprocess.run([MPIEXEC, "-np", "4", "true"], capture_output=True,
+                      env=dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
+                               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")).returncode != 0:
+        pytest.skip("mpirun has fewer than 4 slots here")
+    config, serial = chute_points
+    partitioned = sweep(config, tmp_path / "partitioned", "--partitions", "2", "--ranks", "2")
+    assert "2 points at a time on 2 MPI ranks each (2 partitions of one mpirun): 4 processes" \
+        in partitioned.stdout, partitioned.stdout
+    for point in same_points_as_serial(serial, tmp_path / "partitioned"):
+        command = (point / "command.txt").read_text()
+        assert "mpirun -np 4 " in command and "-partition 2x2" in command, command
+        assert "2 by 1 by 1 MPI processor grid" in (point / "log.lammps").read_text()
+
+
+@pytest.mark.parametrize("mode", ["ranks", "partitions x ranks"])
+def test_more_ranks_than_slots_is_refused_before_any_point_runs(tmp_path, mode):
+    """mpirun is asked for the processes one of its runs would start: R, or P x R."""
+    if any(k.startswith("OMPI_MCA_rmaps_base_oversubscribe") for k in os.environ):
+        pytest.skip("oversubscription is allowed here")
+    cores = len(os.sched_getaffinity(0))
+    options = ["--ranks", str(cores + 1)] if mode == "ranks" else \
+        ["--partitions", "2", "--ranks", str(cores)]
+    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\nkn = [5e4, 1e5]\n")
+    proc = sweep(config, tmp_path / "out", *options, check=False)
+    assert proc.returncode == 2 and "not enough slots" in proc.stderr, proc.stdout + proc.stderr
+    assert " ".join(options) in proc.stderr
+    assert not list((tmp_path / "out").glob("*/*/point.json"))
+
+
+@pytest.mark.parametrize("ranks", ["0", "-2"])
+def test_ranks_below_one_are_refused(tmp_path, ranks):
+    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\n")
+    proc = sweep(config, tmp_path / "out", "--ranks", ranks, check=False)
+    assert proc.returncode == 2, proc.stdout + proc.stderr
+    assert f"--ranks {ranks}: the MPI ranks per point must be >= 1" in proc.stderr
+    assert not (tmp_path / "out").exists()
 
 
 BAD_CONFIGS = {
