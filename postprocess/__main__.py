@@ -1,6 +1,11 @@
-"""python3 -m postprocess {report,compare,transition,limit} SWEEP_DIR [--output DIR]
+"""python3 -m postprocess {report,compare,limit} SWEEP_DIR [SWEEP_DIR ...] [--output DIR]
+        [--resolution T] [--energy-range LOW HIGH] [--min-span T] [--max-width W]
+python3 -m postprocess transition SWEEP_DIR [--output DIR]
         [--resolution T] [--energy-range LOW HIGH] [--min-span T] [--max-width W]
 python3 -m postprocess summarize RESULTS_DIR [--to DIR]
+
+Several SWEEP_DIRs are analysed as one sweep (a preset and its extension, e.g. data/chute_3d
+data/chute_3d_stiff); the output goes to the first's report/ or limit/ unless --output says.
 
 report      tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
 compare     the comparison table on the terminal: each claim of the paper passes, differs
@@ -52,7 +57,7 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("command", choices=("report", "compare", "transition", "limit",
                                             "summarize"))
-    parser.add_argument("sweep", type=Path)
+    parser.add_argument("sweeps", type=Path, nargs="+", metavar="sweep")
     parser.add_argument("--output", type=Path)
     parser.add_argument("--to", type=Path)
     parser.add_argument("--resolution", type=float, default=1.0)
@@ -61,6 +66,11 @@ def main(argv=None):
     parser.add_argument("--min-span", type=float, default=Selection.min_length)
     parser.add_argument("--max-width", type=float, default=Selection.max_width)
     args = parser.parse_args(argv)
+    if len(args.sweeps) > 1 and args.command in ("summarize", "transition"):
+        parser.error(f"{args.command} takes one directory")
+    args.sweep = args.sweeps[0]
+    sources = args.sweeps if len(args.sweeps) > 1 else args.sweep
+    named = " + ".join(str(p) for p in args.sweeps)
     if not args.resolution > 0:
         parser.error(f"--resolution {args.resolution:g} must be > 0")
     low, high = args.energy_range
@@ -97,17 +107,17 @@ def main(argv=None):
         print(f"transition report: {path}")
         return 0
     try:
-        scenes, left_out, completed, runs = analyse(args.sweep, selection)
+        scenes, left_out, completed, runs = analyse(sources, selection)
     except DataError as error:
         print(f"postprocess: {error}", file=sys.stderr)
         return 2
     for point, reason in left_out:
         print(f"left out {point}: {reason}", file=sys.stderr)
     if args.command == "limit":
-        return write_limit(args.sweep, scenes, args.output or args.sweep / "limit", selection,
+        return write_limit(named, scenes, args.output or args.sweep / "limit", selection,
                            completed)
     if args.command == "report":
-        path = write_report(args.sweep, scenes, left_out, completed,
+        path = write_report(named, scenes, left_out, completed,
                                      args.output or args.sweep / "report", runs, selection)
         print(f"report: {path}")
         return 0

@@ -265,6 +265,8 @@ def read_stopped(point):
 def read_variables(point):
     """point.json: the point's deck variables, as the sweep runner wrote them."""
     path = Path(point) / "point.json"
+    if not path.exists():
+        raise DataError(f"{path}: missing (not a sweep's point)")
     try:
         variables = json.loads(path.read_text())
     except ValueError as error:

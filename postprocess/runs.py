@@ -145,7 +145,10 @@ def load_runs(source, selection=Selection()):
     or `reason` says why it has none (did not complete, crashed, no steady part kept, ...).
     `ended` says how it ended, `variables` and `params` what it was. From summaries the
     selection's resolution must be one of observables.RESOLUTIONS and its min_length and
-    max_width those the summaries were written with (they hold the steady parts found so)."""
+    max_width those the summaries were written with (they hold the steady parts found so).
+    A list of directories is read as one sweep: their records one after the other."""
+    if isinstance(source, (list, tuple)):
+        return [r for one in source for r in load_runs(one, selection)]
     source = Path(source)
     if not source.is_dir():
         raise DataError(f"{source}: no such sweep directory")

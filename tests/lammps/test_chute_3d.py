@@ -123,6 +123,27 @@ def test_the_chute_preset_is_known_to_the_runner_and_within_budget(tmp_path):
     assert points >= 2 * 4 * 2 and 0.5 < hours <= 3.0
 
 
+def preset_points(name):
+    """The points of inputs/sweeps/<name>.toml as the runner expands them."""
+    sys.path.insert(0, str(ROOT / "scripts"))
+    import sweep
+    path = ROOT / "inputs" / "sweeps" / f"{name}.toml"
+    return sweep.expand(sweep.load_config(path), path)
+
+
+def test_the_stiff_preset_goes_on_with_the_dense_series():
+    """inputs/sweeps/chute_3d_stiff.toml extends chute_3d.toml's dense series: analysed
+    together (postprocess report/limit with both directories) its points must be the same
+    series, i.e. differ from the dense points in kn alone, at stiffer kn, with the same seeds;
+    else they would be a separate series of two k_n, and the limit rule would not see them."""
+    base = [p for p in preset_points("chute_3d") if p["spheres"] == 500]
+    stiff = preset_points("chute_3d_stiff")
+    rest = lambda p: {k: v for k, v in p.items() if k not in ("kn", "seed")}
+    assert base and stiff and {repr(rest(p)) for p in base + stiff} == {repr(rest(base[0]))}
+    assert min(p["kn"] for p in stiff) > max(p["kn"] for p in base)
+    assert {p["seed"] for p in stiff} == {p["seed"] for p in base}
+
+
 def first_frame(path):
     """The first frame of a dump as a sorted list of atoms (type, x, y, z, ..., radius), ids left
     out: LAMMPS numbers the atoms by processor."""
