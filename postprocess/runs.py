@@ -146,9 +146,10 @@ def load_runs(source, selection=Selection()):
     `ended` says how it ended, `variables` and `params` what it was. From summaries the
     selection's resolution must be one of observables.RESOLUTIONS and its min_length and
     max_width those the summaries were written with (they hold the steady parts found so).
-    A list of directories is read as one sweep: their records one after the other."""
+    A list of directories is read as one sweep: their records sorted as one directory's."""
     if isinstance(source, (list, tuple)):
-        return [r for one in source for r in load_runs(one, selection)]
+        return sorted((r for one in source for r in load_runs(one, selection)),
+                      key=lambda r: (r.point.parent.name, r.point.name))
     source = Path(source)
     if not source.is_dir():
         raise DataError(f"{source}: no such sweep directory")

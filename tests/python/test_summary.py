@@ -112,6 +112,28 @@ def test_the_report_from_summaries_has_the_tables_of_the_report_from_raw_outputs
     assert "crashed (exit status 1; ERROR: Lost atoms" in summary_said
 
 
+def test_several_directories_are_one_sweep(summarized, tmp_path):
+    # a preset and its extension (data/chute_3d and data/chute_3d_stiff): the summaries split
+    # in two directories, by run, give the tables of one directory holding all of them
+    import shutil
+    _, data = summarized
+    paths = sorted(data.glob("*/*.json"))
+    for k, path in enumerate(paths):
+        target = tmp_path / ("first" if k % 2 else "second") / path.parent.name / path.name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(path, target)
+    assert main(["report", str(data), "--output", str(tmp_path / "one")]) == 0
+    assert main(["report", str(tmp_path / "first"), str(tmp_path / "second"), "--output",
+                 str(tmp_path / "two")]) == 0
+    for name in ("observables_collisional_flow.csv", "observables_single_disk.csv",
+                 "observables_frictional_flow.csv", "comparison.csv"):
+        assert table(tmp_path / "one" / name) == table(tmp_path / "two" / name), name
+    text = (tmp_path / "two" / "report.md").read_text()
+    assert f"{tmp_path / 'first'} + {tmp_path / 'second'}" in text.splitlines()[0]
+    with pytest.raises(SystemExit):
+        main(["summarize", str(tmp_path / "first"), str(tmp_path / "second")])
+
+
 def test_summaries_say_how_each_run_ended_and_what_it_is(summarized):
     results, data = summarized
     raw = {r.point.relative_to(results): r for r in load_runs(results)}
