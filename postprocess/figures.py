@@ -1,4 +1,6 @@
 """Figures of a study (matplotlib, Agg): the paper's panels as PNG files."""
+import textwrap
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -305,7 +307,9 @@ def duration_stiffness(scene, series, edges, path):
                             lw=1, color=colour, label=f"k_n {kn:g} ({total} contacts)")
             ax.axvline(1.0, color="k", lw=0.6, ls=":")
             ax.set(xscale="log", yscale="log", xlabel=f"tau / {unit}",
-                   ylabel=f"P(tau / {unit})", title=f"{label or 'main series'}: {name} contacts")
+                   ylabel=f"P(tau / {unit})")
+            ax.set_title(textwrap.fill(f"{label or 'main series'}: {name} contacts", 60),
+                         fontsize=8)
             ax.grid(alpha=0.3, which="both")
             ax.legend(fontsize=6)
     fig.suptitle(f"{scene_of(scene).title}: contact durations (a binary contact lasts 1)",
