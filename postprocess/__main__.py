@@ -170,7 +170,8 @@ def write_limit(sweep, scenes, out, selection, completed):
               file=sys.stderr)
         return 2
     out.mkdir(parents=True, exist_ok=True)
-    lines = [f"# The hard-sphere-limit rule on {sweep}", "", f"Selection: {selection.describe()}.",
+    lines = [f"# The hard-sphere-limit rule on {sweep}", "",
+             f"Selection of the steady parts (scenes that select them): {selection.describe()}.",
              ""]
     for name in names:
         lines += limit_scene_lines(name, scenes[name], out, completed.get(name, []))
