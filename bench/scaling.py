@@ -49,6 +49,7 @@ from pathlib import Path
 
 import checkpoints    # bench/checkpoints.py links scripts/checkpoints.py
 from mn_law import derived    # bench/mn_law.py links scripts/mn_law.py
+from mpirun_slots import slots_problem    # bench/mpirun_slots.py links scripts/mpirun_slots.py
 
 ROOT = Path(__file__).resolve().parent.parent
 DECK = ROOT / "inputs" / "chute_3d.lmp"
@@ -93,16 +94,10 @@ def lmp_command(args, build, ranks, out, run_time, extra=()):
 
 
 def check_slots(args, ranks):
-    proc = subprocess.run(mpirun(args, ranks) + ["true"], capture_output=True, text=True,
-                          env=ENV)
-    if proc.returncode != 0:
-        said = " ".join((proc.stdout + proc.stderr).split())
-        raise BenchError(
-            f"`{shlex.join(mpirun(args, ranks) + ['true'])}` fails: "
-            f"{'not enough slots' if 'not enough slots' in said else said[:400]} (this machine "
-            f"has {os.cpu_count()} logical cores; OpenMPI counts the physical ones): pass "
-            "--oversubscribe (the times then mean little), or run under an allocation or with "
-            "--mpirun-args '--hostfile FILE'")
+    problem = slots_problem(mpirun(args, ranks), ENV)
+    if problem:
+        raise BenchError(f"{problem}: pass --oversubscribe (the times then mean little), or run "
+                         "under an allocation or with --mpirun-args '--hostfile FILE'")
 
 
 def session_processes(session):

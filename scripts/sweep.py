@@ -72,6 +72,7 @@ from itertools import product
 from pathlib import Path
 
 import checkpoints
+from mpirun_slots import slots_problem
 from mn_law import LawError, derived
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -595,22 +596,12 @@ def finish(directory, token, status, elapsed, cpu, logs, output, note=""):
 
 
 def check_slots(mpiexec, slots, env, asked):
-    """OpenMPI starts no more processes than it has slots (one per physical core, unless an
-    allocation or a hostfile says otherwise): asked before any point runs, for the processes
-    one mpirun of the sweep starts (`asked`: the options that make them, for the message)."""
-    try:
-        proc = subprocess.run([mpiexec, "-np", str(slots), "true"], capture_output=True,
-                              text=True, env=env, timeout=120)
-    except (OSError, subprocess.TimeoutExpired) as error:
-        raise SweepError(f"{asked}: {mpiexec} does not run ({error})")
-    if proc.returncode != 0:
-        said = " ".join((proc.stdout + proc.stderr).split())
-        raise SweepError(
-            f"{asked}: `{mpiexec} -np {slots} true` fails here: "
-            f"{'not enough slots' if 'not enough slots' in said else said[:400]} (this machine "
-            f"has {os.cpu_count()} logical cores; OpenMPI counts the physical ones): use fewer "
-            "partitions or ranks, or run under an allocation or a hostfile with that many "
-            "slots")
+    """mpirun's slots (mpirun_slots), asked before any point runs, for the processes one
+    mpirun of the sweep starts (`asked`: the options that make them, for the message)."""
+    problem = slots_problem([mpiexec, "-np", str(slots)], env)
+    if problem:
+        raise SweepError(f"{asked}: {problem}: use fewer partitions or ranks, or run under an "
+                         "allocation or a hostfile with that many slots")
 
 
 def lock_output(output):

@@ -1,0 +1,1 @@
+../scripts/mpirun_slots.py
