@@ -1,7 +1,6 @@
 """python3 -m postprocess {report,compare,limit} SWEEP_DIR [SWEEP_DIR ...] [--output DIR]
         [--resolution T] [--energy-range LOW HIGH] [--min-span T] [--max-width W]
 python3 -m postprocess transition SWEEP_DIR [--output DIR]
-        [--resolution T] [--energy-range LOW HIGH] [--min-span T] [--max-width W]
 python3 -m postprocess summarize RESULTS_DIR [--to DIR]
 
 Several SWEEP_DIRs are analysed as one sweep (a preset and its extension, e.g. data/chute_3d
@@ -188,14 +187,14 @@ def limit_scene_lines(name, rows, out, records):
     main = main_series(rows)
     labels = [main[0]["label"]] + sorted({o["label"] for o in rows} - {main[0]["label"]})
     lines = [f"# {scene_def.title}", ""]
-    for number, label in enumerate(labels):
-        runs = [run for o in rows if o["label"] == label for run in o.get("runs", [o])]
+    for number, series_label in enumerate(labels):
+        runs = [run for o in rows if o["label"] == series_label for run in o.get("runs", [o])]
         decisions = [limit.decide(runs, q) for q in limit.QUANTITIES]
         if number and all(d.verdict.startswith("not applied") for d in decisions):
             continue    # a variant at too few k_n (a check of the step at one k_n)
         within = {q: limit.decide_within_levels(runs, q, levels) for q in limit.QUANTITIES}
         title = (f"{'main series' if number == 0 else 'variant'} "
-                 f"{label or '(no variable varies)'}")
+                 f"{series_label or '(no variable varies)'}")
         lines += [f"## {title}: {len(runs)} selected runs", ""]
         lines += limit.report_lines(decisions, within, levels)
         if any(d.fits for d in decisions):

@@ -1,7 +1,6 @@
 """The study report: tables, fits, figures, the comparison with the references, left-out points."""
 import csv
 import datetime
-from pathlib import Path
 
 import numpy as np
 
