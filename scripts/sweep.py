@@ -707,7 +707,7 @@ def main(argv=None):
     print(f"sweep: {len(plan)} points, {len(plan) - len(todo)} already done, {len(todo)} to run; "
           f"predicted {format_seconds(total)} of CPU in all "
           f"({total / 3600:.3g} CPU-hours); output {output}", flush=True)
-    print(f"sweep: {lanes} points at a time on {args.ranks} MPI rank"
+    print(f"sweep: {lanes} point{'s' if lanes != 1 else ''} at a time on {args.ranks} MPI rank"
           f"{'s' if args.ranks > 1 else ''} each"
           + (f" ({args.partitions} partitions of one mpirun)" if args.partitions else "")
           + f": {processes} processes (this machine has {os.cpu_count()} logical cores); "

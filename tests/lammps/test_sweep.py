@@ -185,7 +185,7 @@ def test_ranks_run_each_point_on_that_many_mpi_ranks(tmp_path, chute_points):
     the directory and with the outputs of the serial run; the progress lines say the ranks."""
     config, serial = chute_points
     ranked = sweep(config, tmp_path / "ranked", "--jobs", "1", "--ranks", "2")
-    assert "1 points at a time on 2 MPI ranks each: 2 processes" in ranked.stdout, ranked.stdout
+    assert "1 point at a time on 2 MPI ranks each: 2 processes" in ranked.stdout, ranked.stdout
     assert len(re.findall(r"\] done chute_3d/\S+ in [\d.]+ s on 2 ranks; ETA", ranked.stdout)) == 2
     for point in same_points_as_serial(serial, tmp_path / "ranked"):
         command = (point / "command.txt").read_text().split()
