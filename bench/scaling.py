@@ -48,24 +48,19 @@ import time
 from pathlib import Path
 
 import checkpoints    # bench/checkpoints.py links scripts/checkpoints.py
-from mn_law import derived    # bench/mn_law.py links scripts/mn_law.py
 from mpirun_slots import slots_problem    # bench/mpirun_slots.py links scripts/mpirun_slots.py
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+from postprocess.io import read_params  # noqa: E402
+
 DECK = ROOT / "inputs" / "chute_3d.lmp"
 TIMER_SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
-OUTPUT_INTERVAL = 0.1    # the deck's default (inputs/lib/defaults.lmp)
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
 class BenchError(Exception):
     pass
-
-
-def time_step(args, build):
-    """dt as the deck sets it: min(dt_fraction tau_c, dt_cap), tau_c of solid spheres."""
-    tau_c = derived(build / "plugin" / "mn-law", args.kn, args.e, args.beta, "sphere")["tau_c"]
-    return min(args.dt_fraction * tau_c, args.dt_cap)
 
 
 def deck_variables(args, build, out, run_time):
@@ -153,11 +148,14 @@ def settle(args, build, work, run_time):
         while checkpoints.latest(settled) is None:
             if proc.poll() is not None:
                 done = (settled / "done.txt").exists()
+                log = settled / "log.lammps"
+                said = [line for line in (log.read_text(errors="replace") if log.exists()
+                                          else "").splitlines() if line.startswith("ERROR")]
                 raise BenchError(
                     "the settling run ran to its end before it could be stopped after its "
                     "checkpoint (it deletes it then): use a longer --span" if done else
                     f"the settling run ended (exit status {proc.returncode}) without a "
-                    f"checkpoint: see {settled}/log.lammps and run.out")
+                    f"checkpoint: {' '.join(said) or f'see {settled}/log.lammps and run.out'}")
             time.sleep(0.002)
     finally:
         # the first checkpoint is complete (checkpoint.txt names it): the rest is not needed.
@@ -292,20 +290,15 @@ def main():
     ranks = sorted(set(args.ranks))
     if ranks[0] < 1 or args.settle_ranks < 1 or args.repeat < 1:
         parser.error("--ranks, --settle-ranks and --repeat must be >= 1")
-    if not (args.span > 0 and args.settle >= OUTPUT_INTERVAL):
-        parser.error(f"--span must be > 0 and --settle >= {OUTPUT_INTERVAL:g} (the deck's "
-                     "output interval)")
-    for path in (args.build / "lammps" / "lmp", args.build / "plugin" / "granmnplugin.so",
-                 args.build / "plugin" / "mn-law"):
+    if not (args.span > 0 and args.settle > 0):
+        parser.error("--span and --settle must be > 0")
+    for path in (args.build / "lammps" / "lmp", args.build / "plugin" / "granmnplugin.so"):
         if not path.exists():
             sys.exit(f"{path} is missing: run ./scripts/build.sh first")
 
-    dt = time_step(args, args.build)
-    # the deck's first checkpoint: the first output step at or after settle
-    # (inputs/lib/checkpoint.lmp); the span runs from there
-    output_steps = math.ceil(OUTPUT_INTERVAL / dt)
-    checkpoint_step = output_steps * math.floor(args.settle / OUTPUT_INTERVAL + 0.5)
-    run_time = checkpoint_step * dt + args.span
+    # the deck checkpoints every --settle (rounded to its output steps, the deck's rule):
+    # the span runs from its first checkpoint to run_time, --span to within an output interval
+    run_time = args.settle + args.span
     work = args.workdir or Path(tempfile.mkdtemp(prefix="granmn-scaling-"))
     try:
         for r in sorted({*ranks, args.settle_ranks}):
@@ -322,14 +315,18 @@ def main():
                 if r not in best or result[0] < best[r][0]:
                     best[r] = result
     except BenchError as error:
+        if not args.workdir:
+            shutil.rmtree(work, ignore_errors=True)
         sys.exit(f"scaling: {error}")
 
+    params = read_params(settled)
+    dt = params["dt"]
     r0 = ranks[0]
     base = best[r0][0] / best[r0][1]
     steps = best[r0][1]
     print(f"\nStrong scaling of the 3D chute: {args.spheres} spheres on a {args.length} x "
           f"{args.width} base ({args.spheres + args.length * args.width} atoms), sin theta "
-          f"{args.sin_theta:g}, k_n {args.kn:g}, dt = tau_c x {args.dt_fraction:g} = {dt:.4g}; "
+          f"{args.sin_theta:g}, k_n {args.kn:g}, dt = {dt:.4g} (tau_c x {dt / params['tau_c']:.3g}); "
           f"{steps} steps ({steps * dt:.3g} time units) from the state settled at t = "
           f"{latest[0] * dt:.4g}; best of {args.repeat}, rank counts interleaved; mpirun "
           f"{shlex.join(mpirun(args, 0)[3:]) or '(no options)'}")
@@ -351,10 +348,10 @@ def main():
               + (f"all {lines} lines" if equal == lines else
                  f"{equal} of {lines} lines, to t = {until * dt:.4g}")
               + ("" if repeats_agree else f" (its {args.repeat} runs differ among themselves)"))
-    print(f"(s/step: LAMMPS's loop time per step, wall; the sections: % of the loop, the ranks' "
-          f"mean; CPU use: LAMMPS's, the lowest of the runs' `run`s; counts.txt: each sphere's "
-          f"counters over the span; energy.txt: its lines of the span, every "
-          f"{OUTPUT_INTERVAL:g} time units, equal to their 10 digits)")
+    print("(s/step: LAMMPS's loop time per step, wall; the sections: % of the loop, the ranks' "
+          "mean; CPU use: LAMMPS's, the lowest of the runs' `run`s; counts.txt: each sphere's "
+          "counters over the span; energy.txt: its lines of the span, one per output "
+          "interval, equal to their 10 digits)")
     if args.figure:
         figure(args.figure, table, args)
         print(f"figure: {args.figure}")
