@@ -13,7 +13,8 @@ from .scenes import scene as scene_of
 from .selection import Selection
 from .limit import split_lines
 from .study import (CROSSOVER_SIGMAS, QUANTITIES, VARIANT_QUANTITIES, contact_series, crossover,
-                    main_series, run_summary, same_series, series, variant_differences)
+                    fit_power, main_series, run_summary, same_series, series,
+                    variant_differences)
 
 
 def fmt(value, error=None):
@@ -84,6 +85,35 @@ def make_figures(scenes, completed, out, selection):
             except DataError as error:
                 problems.append(f"{name}: {error}")
     return made, problems
+
+
+# the quantities whose stiffness exponents the report fits, and how many of the stiffest k_n
+# the second fit takes (where a power law bends, the stiff end's exponent differs)
+EXPONENT_QUANTITIES = ("N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w", "t_multiple", "z", "E_total")
+STIFF_END = 3
+
+
+def exponent_lines(rows):
+    """Markdown lines: per series of at least STIFF_END k_n, the exponent a of each quantity ~
+    k_n^a (least squares in log-log, the fit's standard error) over all its k_n and over the
+    stiffest STIFF_END; n/a where a value is not positive (a power law has none)."""
+    lines = []
+    for name in dict.fromkeys(o["label"] for o in rows):
+        points = [o for o in rows if o["label"] == name]
+        if len(points) < STIFF_END:
+            continue
+        kn = np.array([o["kn"] for o in points])
+        lines += [f"Stiffness exponents ({name or 'main series'}; {len(points)} k_n, "
+                  f"{kn[0]:g} to {kn[-1]:g}): a in quantity ~ k_n^a, least squares in log-log.",
+                  "", f"| quantity | all k_n | stiffest {STIFF_END} |", "|---|---|---|"]
+        for q in EXPONENT_QUANTITIES:
+            values = np.array([o[q] for o in points])
+            cells = []
+            for k, v in ((kn, values), (kn[-STIFF_END:], values[-STIFF_END:])):
+                cells.append(fmt(*fit_power(k, v)) if np.all(v > 0) else "n/a (a value <= 0)")
+            lines.append(f"| {q} | " + " | ".join(cells) + " |")
+        lines.append("")
+    return lines
 
 
 def contact_lines(scene, rows):
@@ -253,6 +283,7 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
         if scene_def.selects_steady_parts:
             lines += run_table(runs, selection)
         lines += variant_lines(rows)
+        lines += exponent_lines(rows)
         lines += contact_lines(scene, rows)
         if rows:
             notes += list(scene_def.notes)
