@@ -101,6 +101,11 @@ def multiple_contact_split(rows, tau_c, tau_w, start, stop, n_particles, lasting
                 if total > 0 else np.nan}
 
 
+# what run_split gives (the split's names in a summary)
+SPLIT_NAMES = ("t_multiple_rows", "lasting", "bursts", "lasting_share_of_contact_time",
+               "t_multiple_counters", "unseen")
+
+
 def run_split(point, rows_time, first, lasting=LASTING, margin=0.5):
     """multiple_contact_split over the rows window of a run (an io.Point), [average_start,
     average_start + rows_time - margin] (a contact overlapping it that ends after the rows

@@ -15,7 +15,7 @@ import json
 import math
 from pathlib import Path
 
-from .durations import DURATION_EDGES
+from .durations import DURATION_EDGES, LASTING, LASTING_ALSO, SPLIT_NAMES
 from .io import CONTACT_KINDS, DataError, checked_params
 from .observables import BLOCK_QUANTITIES, RESOLUTIONS
 from .runs import DRAWN_WINDOW, ENDINGS, RunRecord, read_run
@@ -218,10 +218,17 @@ class _Checker:
             out["tail"][kind] = int(longer)
         if "split" in data:
             split = self.mapping(data["split"], "measured.contacts.split")
-            out["split"] = {
-                key: {name: self.number(v, f"measured.contacts.split.{key}.{name}", optional=True)
-                      for name, v in self.mapping(part, f"measured.contacts.split.{key}").items()}
-                for key, part in split.items()}
+            keys = sorted(f"{t:g}" for t in (LASTING, LASTING_ALSO))
+            if sorted(split) != keys:
+                self.fail("measured.contacts.split", f"has the thresholds {sorted(split)}, not "
+                          f"{keys}")
+            out["split"] = {}
+            for key in keys:
+                where = f"measured.contacts.split.{key}"
+                part = self.mapping(split[key], where)
+                out["split"][key] = {name: self.number(self.key(part, name, where),
+                                                       f"{where}.{name}", optional=True)
+                                     for name in SPLIT_NAMES}
         return out
 
     def energy(self, data):

@@ -183,6 +183,9 @@ def test_a_resolution_the_summaries_do_not_hold_is_refused(summarized, capsys):
     ("tail", "corrupt summary: measured.contacts.tail.boundary is 7, not a count of at most 5"),
     ("contacts", "corrupt summary: measured.contacts.contacts.disk is 2, not a count of at "
                  "least the histogram's 3"),
+    ("split", "corrupt summary: measured.contacts.split has the thresholds ['3', 'x'], not "
+              "['10', '3']"),
+    ("split part", "corrupt summary: measured.contacts.split.10 has no bursts"),
 ])
 def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, damage, message):
     _, data = summarized
@@ -205,7 +208,7 @@ def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, dama
         summary["ended"] = "exploded"
     if damage == "rule":
         summary["steady_rule"]["max_width"] = 0.3
-    if damage in ("histogram", "tail", "contacts"):
+    if damage in ("histogram", "tail", "contacts", "split", "split part"):
         # a run with contact rows (durations.run_contacts), damaged
         histogram = [0] * 50
         histogram[20] = 3
@@ -217,6 +220,11 @@ def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, dama
             contacts["tail"]["boundary"] = 7
         if damage == "contacts":
             contacts["contacts"]["disk"] = 2
+        if damage.startswith("split"):
+            from postprocess.durations import SPLIT_NAMES
+            part = {name: 0.01 for name in SPLIT_NAMES}
+            contacts["split"] = {"3": part, "x" if damage == "split" else "10":
+                                 {k: v for k, v in part.items() if k != "bursts"}}
         summary["measured"].update(contacts=contacts, contacts_problem=None)
     path.write_text("{kn: 5" if damage == "not json" else json.dumps(summary))
     record, = load_runs(tmp_path / "data")
