@@ -1,5 +1,5 @@
 """python3 -m postprocess {report,compare,limit} SWEEP_DIR [SWEEP_DIR ...] [--output DIR]
-        [--resolution T] [--energy-range LOW HIGH] [--min-span T] [--max-width W]
+        [--resolution T] [--energy-range LOW HIGH] [--min-span T] [--max-width W] [--rule R]
 python3 -m postprocess transition SWEEP_DIR [--output DIR]
 python3 -m postprocess summarize RESULTS_DIR [--to DIR]
 
@@ -31,7 +31,10 @@ stiff preset's runs average over 300 and use 250, docs/hard_sphere_limit.md). Su
 the steady parts found with one min-span: summarize and read them with the same.
 --max-width W: the widest range of E(t) (after averaging over --resolution) a steady part may
 have (default 0.45; the stiff preset's rule uses 1.0, docs/hard_sphere_limit.md); summaries
-likewise hold one."""
+likewise hold one.
+--rule R: the hard-sphere-limit rule limit and compare apply (docs/hard_sphere_limit.md):
+2 (default) says "finite" also for a series shown not to fall; 1 is the rule the first stiff
+series was judged by."""
 import argparse
 import sys
 from pathlib import Path
@@ -64,7 +67,10 @@ def main(argv=None):
                         metavar=("LOW", "HIGH"))
     parser.add_argument("--min-span", type=float, default=Selection.min_length)
     parser.add_argument("--max-width", type=float, default=Selection.max_width)
+    parser.add_argument("--rule", type=int, choices=limit.RULES, default=limit.RULE)
     args = parser.parse_args(argv)
+    if args.rule != limit.RULE and args.command not in ("limit", "compare"):
+        parser.error("--rule is for limit and compare")
     if len(args.sweeps) > 1 and args.command in ("summarize", "transition"):
         parser.error(f"{args.command} takes one directory")
     args.sweep = args.sweeps[0]
@@ -114,13 +120,13 @@ def main(argv=None):
         print(f"left out {point}: {reason}", file=sys.stderr)
     if args.command == "limit":
         return write_limit(named, scenes, args.output or args.sweep / "limit", selection,
-                           completed)
+                           completed, args.rule)
     if args.command == "report":
         path = write_report(named, scenes, left_out, completed,
                                      args.output or args.sweep / "report", runs, selection)
         print(f"report: {path}")
         return 0
-    results = evaluate(scenes)
+    results = evaluate(scenes, rule=args.rule)
     width = max(len(c["id"]) for c, *_ in results)
     for claim, value, error, status in results:
         print(f"{claim['id']:<{width}}  {fmt(value, error):>18}  "
@@ -157,11 +163,11 @@ def runaway_lines(records):
     return lines + [""]
 
 
-def write_limit(sweep, scenes, out, selection, completed):
+def write_limit(sweep, scenes, out, selection, completed, rule=limit.RULE):
     """The limit command: limit.md and a figure per series in out, for each scene the rule
     applies to (Scene.decides_limit): its main series first, then each variant with enough
     k_n; the verdicts on the terminal. completed: {scene: [RunRecord of each completed run]},
-    for the runaway events."""
+    for the runaway events; rule: 1 or 2."""
     names = [name for name in scenes if scene_of(name).decides_limit and scenes[name]]
     if not names:
         print(f"postprocess: {sweep}: no usable points of a scene the rule applies to ("
@@ -169,19 +175,19 @@ def write_limit(sweep, scenes, out, selection, completed):
               file=sys.stderr)
         return 2
     out.mkdir(parents=True, exist_ok=True)
-    lines = [f"# The hard-sphere-limit rule on {sweep}", "",
+    lines = [f"# The hard-sphere-limit rule {rule} on {sweep}", "",
              f"Selection of the steady parts (scenes that select them): {selection.describe()}.",
              ""]
     for name in names:
-        lines += limit_scene_lines(name, scenes[name], out, completed.get(name, []))
+        lines += limit_scene_lines(name, scenes[name], out, completed.get(name, []), rule)
     (out / "limit.md").write_text("\n".join(lines))
     print(f"limit report: {out / 'limit.md'}")
     return 0
 
 
-def limit_scene_lines(name, rows, out, records):
-    """limit.md's lines for one scene (its series, figures written to out); the verdicts
-    printed."""
+def limit_scene_lines(name, rows, out, records, rule):
+    """limit.md's lines for one scene (its series, figures written to out) under rule 1 or 2;
+    the verdicts printed."""
     scene_def = scene_of(name)
     levels = dict(scene_def.limit_levels)
     main = main_series(rows)
@@ -189,10 +195,11 @@ def limit_scene_lines(name, rows, out, records):
     lines = [f"# {scene_def.title}", ""]
     for number, series_label in enumerate(labels):
         runs = [run for o in rows if o["label"] == series_label for run in o.get("runs", [o])]
-        decisions = [limit.decide(runs, q) for q in limit.QUANTITIES]
+        decisions = [limit.decide(runs, q, rule=rule) for q in limit.QUANTITIES]
         if number and all(d.verdict.startswith("not applied") for d in decisions):
             continue    # a variant at too few k_n (a check of the step at one k_n)
-        within = {q: limit.decide_within_levels(runs, q, levels) for q in limit.QUANTITIES}
+        within = {q: limit.decide_within_levels(runs, q, levels, rule=rule)
+                  for q in limit.QUANTITIES}
         title = (f"{'main series' if number == 0 else 'variant'} "
                  f"{series_label or '(no variable varies)'}")
         lines += [f"## {title}: {len(runs)} selected runs", ""]

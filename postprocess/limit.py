@@ -1,6 +1,10 @@
-"""The hard-sphere-limit decision rule of docs/hard_sphere_limit.md: does a multiple-contact
+"""The hard-sphere-limit decision rules of docs/hard_sphere_limit.md: does a multiple-contact
 time tend to a finite value or vanish as k_n grows? From per-run values (one seed at one k_n),
-never from numbers combined elsewhere, so that the bootstrap can resample the runs."""
+never from numbers combined elsewhere, so that the bootstrap can resample the runs.
+
+Rule 1 (fixed before the first stiff series) says "finite" only for a decay onto a floor; rule 2
+(fixed before the confirmatory series) keeps its branches and also says "finite" for a series
+that does not fall (a non-inferiority test on the log-log slope)."""
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -18,6 +22,18 @@ AIC_MARGIN = 4.0           # dAIC = AIC_P - AIC_F the floor must win by
 POWER_SIGMAS = 3.0         # the pure power law's decay must be this many errors from zero
 FLOOR_FRACTION = 0.5       # "vanishing": the floor's upper bound below this x m(k_max)
 BOOTSTRAP = 2000
+# Rule 2's further branch: "finite" where the quantity is shown not to fall by more than
+# NO_FALL_FRACTION over the series' k_n range, i.e. where the one-sided NO_FALL_CONFIDENCE upper
+# bound of its log-log decay exponent b (m ~ k_n^-b) is below ln(1/(1 - NO_FALL_FRACTION)) /
+# ln(k_max/k_min). The bound is the larger of the bootstrap's percentile and the weighted fit's
+# b + z sigma_b (sigma_b inflated by sqrt(chi2/dof) where the fit is poor), so that neither few
+# runs (a narrow bootstrap) nor a bimodal scatter (a poor normal approximation) can make it
+# too easy.
+RULES = (1, 2)
+RULE = RULES[-1]           # the rule applied unless one is named
+NO_FALL_FRACTION = 0.25
+NO_FALL_CONFIDENCE = 0.95
+NO_FALL_Z = 1.6449         # the standard normal's 95th percentile
 EXPONENTS = np.geomspace(0.01, 3.0, 600)   # the decay exponents b the fits scan
 
 
@@ -158,15 +174,31 @@ def fit_both(series):
                 float(chi2_f[best_f]), float(chi2_p[best] - chi2_f[best_f] - 2.0))
 
 
-def bootstrap_floor(runs, quantity, kn, samples=BOOTSTRAP, seed=0):
-    """The floor c of the fit F over resamples of the runs within each k_n (the per-k_n means
-    and the pooled errors recomputed each time)."""
+def log_slope(series):
+    """The decay exponent b of m ~ k_n^-b by weighted least squares of ln m on ln k_n (errors
+    sigma/m), and its error, inflated by sqrt(chi2/dof) where the fit is worse than its errors
+    say; (nan, nan) unless every value is positive and there are three k_n."""
+    if len(series.kn) < 3 or not np.all(series.value > 0) or not np.all(series.error > 0):
+        return np.nan, np.nan
+    x, y = np.log(series.kn), np.log(series.value)
+    w = (series.value / series.error) ** 2
+    xm = (w @ x) / w.sum()
+    sxx = w @ (x - xm) ** 2
+    slope = (w @ ((x - xm) * y)) / sxx
+    residual = y - (w @ y) / w.sum() - slope * (x - xm)
+    chi2_per_dof = (w @ residual ** 2) / (len(x) - 2)
+    return float(-slope), float(np.sqrt(max(1.0, chi2_per_dof) / sxx))
+
+
+def bootstrap(runs, quantity, kn, samples=BOOTSTRAP, seed=0):
+    """Over resamples of the runs within each k_n (the per-k_n means and the pooled errors
+    recomputed each time): the floor c of the fit F, and the log-log decay exponent b."""
     rng = np.random.default_rng(seed)
     groups = [[r for r in runs if float(r["kn"]) == k] for k in kn]
     values = [np.array([r[quantity] for r in g], dtype=float) for g in groups]
     spans = [np.array([r["span"] for r in g], dtype=float) for g in groups]
     counts = np.array([len(v) for v in values], dtype=float)
-    floors = np.empty(samples)
+    floors, slopes = np.empty(samples), np.empty(samples)
     for b in range(samples):
         means, errors = np.empty(len(kn)), np.empty(len(kn))
         for i, (v, s) in enumerate(zip(values, spans)):
@@ -174,11 +206,17 @@ def bootstrap_floor(runs, quantity, kn, samples=BOOTSTRAP, seed=0):
             means[i], errors[i] = weighted_mean(v[pick], s[pick])
         resampled = pooled(Series(np.asarray(kn), means, errors, counts))
         if not np.all(resampled.error > 0):    # every resample of every k_n alike
-            floors[b] = np.nan
+            floors[b] = slopes[b] = np.nan
             continue
         chi2_f, c, _ = profile_floor(resampled.kn, resampled.value, resampled.error)
         floors[b] = c[int(np.argmin(chi2_f))]
-    return floors
+        slopes[b] = log_slope(resampled)[0]
+    return floors, slopes
+
+
+def no_fall_limit(series):
+    """The largest decay exponent that loses at most NO_FALL_FRACTION over the series' k_n."""
+    return float(np.log(1.0 / (1.0 - NO_FALL_FRACTION)) / np.log(series.kn[-1] / series.kn[0]))
 
 
 @dataclass
@@ -191,30 +229,56 @@ class Decision:
     floor_interval: tuple = (np.nan, np.nan)
     lacking: list = field(default_factory=list)
     why: str = ""
+    rule: int = RULE
+    decay: tuple = (np.nan, np.nan, np.nan)   # rule 2: log-log b, its error, its upper bound
+    decay_limit: float = np.nan               # rule 2: the b that loses NO_FALL_FRACTION
 
 
-def decide(runs, quantity, min_runs=MIN_RUNS, min_kn=MIN_KN, samples=BOOTSTRAP):
-    """Steps 1-3 of the rule on one quantity over runs (dicts with kn, span, quantity)."""
+def decide(runs, quantity, min_runs=MIN_RUNS, min_kn=MIN_KN, samples=BOOTSTRAP, rule=RULE):
+    """Steps 1-3 of rule 1 or rule 2 on one quantity over runs (dicts with kn, span,
+    quantity)."""
+    if rule not in RULES:
+        raise ValueError(f"the limit rule is 1 or 2, not {rule}")
     series, lacking = per_kn(runs, quantity, min_runs)
     if len(series.kn) < min_kn or (len(series.kn) and
                                    np.log10(series.kn[-1] / series.kn[0]) < MIN_DECADES):
         span = np.log10(series.kn[-1] / series.kn[0]) if len(series.kn) else 0.0
         return Decision(quantity, f"not applied: needs {min_kn} k_n with >= {min_runs} runs "
                                   f"over >= {MIN_DECADES:g} decades, has {len(series.kn)} over "
-                                  f"{span:.2g}", series, lacking=lacking)
+                                  f"{span:.2g}", series, lacking=lacking, rule=rule)
     if not np.all(series.error > 0):
         return Decision(quantity, "not applied: a k_n whose runs all agree exactly (no error "
-                                  "to weigh it by)", series, lacking=lacking)
+                                  "to weigh it by)", series, lacking=lacking, rule=rule)
     fits = fit_both(series)
-    floors = bootstrap_floor(runs, quantity, series.kn, samples)
+    floors, slopes = bootstrap(runs, quantity, series.kn, samples)
     low, high = np.nanpercentile(floors, [2.5, 97.5])
     stiffest = series.value[-1]
-    if fits.d_aic >= AIC_MARGIN and low > 0:
+    floor_finite = fits.d_aic >= AIC_MARGIN and low > 0
+    vanishing = (fits.d_aic < AIC_MARGIN and fits.b_power > POWER_SIGMAS * fits.b_power_error
+                 and high < FLOOR_FRACTION * stiffest)
+    decay, decay_limit, no_fall = (np.nan, np.nan, np.nan), np.nan, False
+    if rule == 2:
+        b, b_err = log_slope(series)
+        if np.isfinite(b) and np.isfinite(slopes).any():
+            upper = max(float(np.nanpercentile(slopes, 100 * NO_FALL_CONFIDENCE)),
+                        b + NO_FALL_Z * b_err)
+            decay, decay_limit = (b, b_err, upper), no_fall_limit(series)
+            no_fall = upper < decay_limit
+    lost = (f"at most {1 - (series.kn[-1] / series.kn[0]) ** -decay[2]:.0%} lost over the "
+            f"range: m ~ k_n^-{decay[0]:.3g} +- {decay[1]:.2g}, its one-sided "
+            f"{NO_FALL_CONFIDENCE:.0%} bound {decay[2]:.3g} < {decay_limit:.3g}" if no_fall else "")
+    if no_fall and vanishing:    # a decay too slow to matter yet significant: say neither
+        verdict = "undecided"
+        why = (f"it falls (m ~ k_n^-{fits.b_power:.3g} +- {fits.b_power_error:.2g}, any floor "
+               f"below {high:.3g}) but by less than the resolution ({lost})")
+    elif floor_finite:
         verdict = "finite"
         why = (f"the floor improves the fit (dAIC {fits.d_aic:.1f} >= {AIC_MARGIN:g}) and its "
                f"95 % interval [{low:.3g}, {high:.3g}] excludes zero")
-    elif (fits.d_aic < AIC_MARGIN and fits.b_power > POWER_SIGMAS * fits.b_power_error and
-          high < FLOOR_FRACTION * stiffest):
+    elif no_fall:
+        verdict = "finite"
+        why = f"it does not fall: {lost}"
+    elif vanishing:
         verdict = "vanishing"
         why = (f"no floor is needed (dAIC {fits.d_aic:.1f} < {AIC_MARGIN:g}), m ~ k_n^-"
                f"{fits.b_power:.3g} +- {fits.b_power_error:.2g}, and any floor is below "
@@ -223,9 +287,13 @@ def decide(runs, quantity, min_runs=MIN_RUNS, min_kn=MIN_KN, samples=BOOTSTRAP):
         verdict = "undecided"
         why = (f"dAIC {fits.d_aic:.1f}, floor interval [{low:.3g}, {high:.3g}], power "
                f"exponent {fits.b_power:.3g} +- {fits.b_power_error:.2g}, stiffest value "
-               f"{stiffest:.3g}: neither branch's conditions all hold")
+               f"{stiffest:.3g}" + (f", log-log decay exponent's upper bound {decay[2]:.3g} "
+                                    f">= {decay_limit:.3g} (loses more than "
+                                    f"{NO_FALL_FRACTION:.0%})" if rule == 2 and
+                                    np.isfinite(decay[2]) else "")
+               + ": neither branch's conditions all hold")
     return Decision(quantity, verdict, series, running_exponents(series), fits, (low, high),
-                    lacking, why)
+                    lacking, why, rule, decay, decay_limit)
 
 
 def level_of(energy, levels):
@@ -236,13 +304,13 @@ def level_of(energy, levels):
     return None
 
 
-def decide_within_levels(runs, quantity, levels, samples=BOOTSTRAP):
+def decide_within_levels(runs, quantity, levels, samples=BOOTSTRAP, rule=RULE):
     """Step 4: {level: Decision} for the runs of each energy level (levels: {name: (low,
     high)}, the scene's limit_levels; by their mean E_total)."""
     out = {}
     for name in levels:
         members = [r for r in runs if level_of(r["E_total"], levels) == name]
-        out[name] = decide(members, quantity, MIN_RUNS_IN_LEVEL, MIN_KN_IN_LEVEL, samples)
+        out[name] = decide(members, quantity, MIN_RUNS_IN_LEVEL, MIN_KN_IN_LEVEL, samples, rule)
     return out
 
 
@@ -277,6 +345,11 @@ def report_lines(decisions, within, levels):
                       f"chi2 = {f.chi2_floor:.2f} ({len(s.kn) - 3} dof); dAIC = {f.d_aic:.2f}",
                       f"- floor's bootstrap 95 % interval: [{d.floor_interval[0]:.3g}, "
                       f"{d.floor_interval[1]:.3g}]"]
+            if d.rule == 2 and np.isfinite(d.decay[0]):
+                lines.append(f"- log-log decay exponent (rule 2): b = {d.decay[0]:.3f} +- "
+                             f"{d.decay[1]:.3f}, one-sided {NO_FALL_CONFIDENCE:.0%} upper bound "
+                             f"{d.decay[2]:.3f}; 'does not fall' below {d.decay_limit:.3f} (at "
+                             f"most {NO_FALL_FRACTION:.0%} lost over the range)")
         lines.append("")
     if not levels:
         return lines + ["The scene's flows have no energy levels to apply the rule within "

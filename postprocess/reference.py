@@ -54,14 +54,14 @@ def load_claims(path=CLAIMS):
     return rows
 
 
-def measure(claim, rows):
+def measure(claim, rows, rule=limit.RULE):
     """(value, standard error, '') of the claim on a scene's points within the claim's stiffness
-    range, or (nan, nan, why not)."""
+    range, or (nan, nan, why not); rule: the hard-sphere-limit rule a decision claim uses."""
     rows = [o for o in rows if claim["kn_min"] <= o["kn"] <= claim["kn_max"]]
     quantity, kind = claim["quantity"], claim["measure"]
     where = f"k_n in [{claim['kn_min']:g}, {claim['kn_max']:g}]"
     if kind == "limit_decision":
-        return limit_measure(rows, quantity)
+        return limit_measure(rows, quantity, rule)
     if kind == "ratio_at_stiffest":
         if not rows:
             return np.nan, np.nan, f"no point with {where}"
@@ -101,12 +101,12 @@ def crossover_measure(kn, values, errors, stiff_from):
     return np.log10(at), 0.5 * np.log10(at / softer), ""
 
 
-def limit_measure(rows, quantity):
+def limit_measure(rows, quantity, rule=limit.RULE):
     """The hard-sphere-limit rule (postprocess/limit.py) on the runs behind the rows: (the
     floor's lower 95 % bound, nan, '') with the verdict kept for evaluate, or (nan, nan, why
     it was not applied)."""
     runs = [run for o in rows for run in o.get("runs", [o])]
-    decision = limit.decide(runs, quantity)
+    decision = limit.decide(runs, quantity, rule=rule)
     if decision.verdict.startswith("not applied"):
         return np.nan, np.nan, decision.verdict.replace("not applied: ", "")
     return LimitValue(decision.floor_interval[0], decision), np.nan, ""
@@ -145,9 +145,9 @@ def accepted(claim):
     return f"[{claim['low']:g}, {claim['high']:g}]"
 
 
-def evaluate(scenes, claims=None):
+def evaluate(scenes, claims=None, rule=limit.RULE):
     """[(claim, measured, error, status)] with status pass, differs, FAIL or 'not evaluated:
-    why', on each scene's main series."""
+    why', on each scene's main series; rule: the hard-sphere-limit rule (1 or 2)."""
     results = []
     for claim in claims or load_claims():
         rows = main_series(scenes.get(claim["scene"], []))
@@ -155,7 +155,7 @@ def evaluate(scenes, claims=None):
             results.append((claim, np.nan, np.nan,
                             "not evaluated: no usable points of this scene"))
             continue
-        value, error, reason = measure(claim, rows)
+        value, error, reason = measure(claim, rows, rule)
         if not np.isfinite(value):
             results.append((claim, value, error, f"not evaluated: {reason or 'no value'}"))
         else:

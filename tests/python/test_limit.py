@@ -188,3 +188,65 @@ def test_runaway_events_are_found_and_level_changes_are_not():
     e[(t >= 62) & (t < 70)] = 25.0 * np.exp(-(t[(t >= 62) & (t < 70)] - 62))   # a runaway
     e[(t >= 300) & (t < 301.5)] = 4.0                                       # and a smaller one
     assert limit.runaway_events(t, e) == [62.0, 300.0]
+
+
+# ---- rule 2: rule 1's branches, and "finite" for a series shown not to fall
+
+def flat(k):
+    return 0.2 + 0.0 * k         # like t_w - N_w tau_w of the stiff preset: no fall at all
+
+
+def test_rule_2_says_finite_for_a_series_that_does_not_fall():
+    # 10 % scatter (t_w - N_w tau_w's, measured on the stiff preset): the fall over the range
+    # is bounded well below a quarter; a rule that needed a decay onto a floor says undecided
+    runs = synthetic_runs(flat, 0.10)
+    d = limit.decide(runs, "mc_c", samples=400)
+    assert d.verdict == "finite" and d.why.startswith("it does not fall"), d.why
+    b, error, upper = d.decay
+    assert abs(b) < 3 * error and upper < d.decay_limit
+    # the resolution is a fall of a quarter over the series' range
+    assert (KN[-1] / KN[0]) ** -d.decay_limit == pytest.approx(0.75)
+    assert limit.decide(runs, "mc_c", samples=400, rule=1).verdict != "finite"
+
+
+def test_rule_2_says_finite_for_a_rising_series():
+    d = limit.decide(synthetic_runs(lambda k: 0.01 * (k / 1.6e6) ** 0.1, 0.10), "mc_c",
+                     samples=400)
+    assert d.verdict == "finite" and d.decay[0] < 0, d.why
+
+
+def test_rule_2_does_not_call_a_slow_decay_finite():
+    # k^-0.1 loses half its value over the preset's range: never "does not fall", however
+    # much or little scatter; with little scatter the power law is seen
+    for noise, runs in ((0.02, 8), (0.10, 8), (0.35, 3)):
+        d = limit.decide(synthetic_runs(lambda k: 0.2 * (k / 1.6e6) ** -0.1, noise, runs),
+                         "mc_c", samples=400)
+        assert not d.why.startswith("it does not fall"), (noise, runs, d.why)
+
+
+def test_rule_2_keeps_rule_1s_branches():
+    assert limit.decide(synthetic_runs(power, 0.05), "mc_c", samples=400).verdict == \
+        "vanishing"
+    assert limit.decide(synthetic_runs(floor, 0.15), "mc_c", samples=400).verdict == "finite"
+    assert limit.decide(synthetic_runs(slow_floor, 0.25, runs=3), "mc_c",
+                        samples=400).verdict == "undecided"
+
+
+def test_rule_2_is_undecided_where_few_noisy_runs_cannot_bound_the_fall():
+    # flat, but 35 % scatter (t_c - N_c tau_c's over all levels) and three runs per k_n: the
+    # fall cannot be bounded to a quarter, and nothing is decided
+    d = limit.decide(synthetic_runs(flat, 0.35, runs=3), "mc_c", samples=400)
+    assert d.verdict == "undecided", d.why
+
+
+def test_rule_2_needs_positive_values_for_the_no_fall_branch():
+    runs = synthetic_runs(flat, 0.10)
+    for r in runs:
+        r["mc_c"] -= 0.2          # values about zero: no logarithm, no "does not fall"
+    d = limit.decide(runs, "mc_c", samples=100)
+    assert not np.isfinite(d.decay[0]) and d.verdict != "finite"
+
+
+def test_unknown_rule_is_refused():
+    with pytest.raises(ValueError, match="1 or 2"):
+        limit.decide(synthetic_runs(flat, 0.10), "mc_c", samples=10, rule=3)
