@@ -15,9 +15,9 @@ transition  a transition sweep (inputs/sweeps/transition.toml, docs/transition.m
             and inclination, how the runs ended, the stiffness exponents, the multiple
             contacts and P(tau), with figures, in DIR (default SWEEP_DIR/transition)
 limit       the hard-sphere-limit rule (docs/hard_sphere_limit.md) on each series of the scenes
-            it applies to (the 2D frictional flow, the 3D chute): running exponents, the two
-            fits, the verdicts, what the multiple contacts are made of (runs with contact
-            rows), in DIR (default SWEEP_DIR/limit)
+            it applies to (the 2D frictional flow and the 3D chute; the collisional flow's
+            t_w - N_w tau_w): running exponents, the fits, the verdicts, what the multiple
+            contacts are made of (runs with contact rows), in DIR (default SWEEP_DIR/limit)
 summarize   one compact summary per run of RESULTS_DIR, DIR/<scene>/<point>.json (default
             DIR: data/<name of RESULTS_DIR> in the repository); report and compare take a
             directory of summaries as SWEEP_DIR as well as a results directory (docs/sweeps.md)
@@ -195,11 +195,11 @@ def limit_scene_lines(name, rows, out, records, rule):
     lines = [f"# {scene_def.title}", ""]
     for number, series_label in enumerate(labels):
         runs = [run for o in rows if o["label"] == series_label for run in o.get("runs", [o])]
-        decisions = [limit.decide(runs, q, rule=rule) for q in limit.QUANTITIES]
+        decisions = [limit.decide(runs, q, rule=rule) for q in scene_def.limit_quantities]
         if number and all(d.verdict.startswith("not applied") for d in decisions):
             continue    # a variant at too few k_n (a check of the step at one k_n)
         within = {q: limit.decide_within_levels(runs, q, levels, rule=rule)
-                  for q in limit.QUANTITIES}
+                  for q in scene_def.limit_quantities}
         title = (f"{'main series' if number == 0 else 'variant'} "
                  f"{series_label or '(no variable varies)'}")
         lines += [f"## {title}: {len(runs)} selected runs", ""]

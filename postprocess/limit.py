@@ -11,9 +11,6 @@ import numpy as np
 
 from .durations import LASTING, LASTING_ALSO
 
-# The quantities the rule decides on: the paper's two multiple-contact times and the directly
-# measured fraction of time with two or more contacts.
-QUANTITIES = ("mc_c", "mc_w", "t_multiple")
 MIN_RUNS = 3               # selected runs a k_n needs to enter the fits
 MIN_RUNS_IN_LEVEL = 2      # ... within one energy level
 MIN_KN_IN_LEVEL = 4        # k_n a level needs for the rule to be applied within it

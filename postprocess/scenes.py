@@ -37,25 +37,33 @@ class Scene:
     base: str = ""
     # what the flowing particles are, for labels (the observables are per particle)
     particle: str = "disk"
-    # the hard-sphere-limit rule (postprocess limit, docs/hard_sphere_limit.md) applies to the
-    # scene's runs; limit_levels: {name: (low, high)} the energy levels per particle its flows
-    # sit at, within which the rule is applied again (empty: no levels, that step is skipped)
-    decides_limit: bool = False
+    # the quantities the hard-sphere-limit rule (postprocess limit, docs/hard_sphere_limit.md)
+    # decides on in the scene's runs (empty: the rule is not for it); limit_levels: {name: (low,
+    # high)} the energy levels per particle its flows sit at, within which the rule is applied
+    # again (empty: no levels, that step is skipped)
+    limit_quantities: tuple = ()
     limit_levels: tuple = ()
+
+    @property
+    def decides_limit(self):
+        return bool(self.limit_quantities)
 
 
 SCENES = {s.name: s for s in (
     Scene("single_disk", "single disk on a bumpy slope", has_period=True, bump_spacing=1.002,
           rates_log_law=True, stiff_from=1e7),
+    # its disks' contacts are binary (t_c - N_c tau_c < 0: Verlet's slightly short contacts),
+    # the boundary's are not: the rule decides on t_w - N_w tau_w alone
     Scene("collisional_flow", "collisional flow",
           guides=(Guide("times", "t_c", -0.5, "k_n^-1/2 guide"),),
-          base="bumpy base, 50 disks"),
+          base="bumpy base, 50 disks", limit_quantities=("mc_w",)),
     Scene("frictional_flow", "frictional flow", selects_steady_parts=True,
           boundary_per_bottom_layer=True,
           guides=(Guide("rates", "N_c", 0.4, "k_n^0.4 guide (the paper's)"),),
           notes=("N_w and t_w are per disk of the bottom layer (disks that touched the floor in "
                  "the averaging window; the paper: during the averaging span).",),
-          base="flat base, 100 polydisperse disks", decides_limit=True,
+          base="flat base, 100 polydisperse disks",
+          limit_quantities=("mc_c", "mc_w", "t_multiple"),
           # the frictional flow sits near E ~ 0.4, ~0.65, ~0.95 per disk
           limit_levels=(("low", (0.3, 0.5)), ("middle", (0.5, 0.8)), ("high", (0.8, 1.2)))),
     # inputs/chute_3d.lmp: a dense frictional flow and a dilute collisional one are two
@@ -70,7 +78,8 @@ SCENES = {s.name: s for s in (
                   Guide("times", "t_c", -0.5, "k_n^-1/2 guide")),
           notes=("Spheres (3D). N_w and t_w are per sphere that touched the base (the fixed "
                  "spheres) in the averaging window.",),
-          base="rough base of fixed spheres, 3D", particle="sphere", decides_limit=True),
+          base="rough base of fixed spheres, 3D", particle="sphere",
+          limit_quantities=("mc_c", "mc_w", "t_multiple")),
 )}
 
 

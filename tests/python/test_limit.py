@@ -148,9 +148,26 @@ def test_limit_command_decides_the_3d_chute_without_levels(tmp_path, capsys):
     assert text.count("# 3D chute") == 1 and "t_c - N_c tau_c: **vanishing**" in text
     assert "### Within one energy level" not in text and "no energy levels" in text
     # a scene the rule is not for: refused, saying which scenes it applies to
-    assert write_limit(tmp_path, {"collisional_flow": rows}, tmp_path / "other", Selection(),
+    assert write_limit(tmp_path, {"single_disk": rows}, tmp_path / "other", Selection(),
                        {}) == 2
-    assert "frictional_flow, chute_3d" in capsys.readouterr().err
+    assert "collisional_flow, frictional_flow, chute_3d" in capsys.readouterr().err
+
+
+def test_limit_command_decides_the_collisional_floor_alone(tmp_path, capsys):
+    # the collisional flow's disks collide binarily (t_c - N_c tau_c < 0): the rule decides on
+    # t_w - N_w tau_w only, here a flat floor that rule 2 calls finite
+    from postprocess.__main__ import write_limit
+    from postprocess.selection import Selection
+    runs = synthetic_runs(flat, 0.10)
+    for r in runs:
+        r.update(mc_w=r["mc_c"], mc_c=-0.02, t_multiple=0.0)
+    rows = [{"kn": k, "label": "", "runs": [r for r in runs if r["kn"] == k]}
+            for k in sorted({r["kn"] for r in runs})]
+    assert write_limit(tmp_path, {"collisional_flow": rows}, tmp_path / "limit", Selection(),
+                       {}) == 0
+    text = (tmp_path / "limit" / "limit.md").read_text()
+    assert "t_w - N_w tau_w: **finite**" in text
+    assert "t_c - N_c tau_c" not in text and "two or more contacts" not in text
 
 
 def rows_of(contacts):
