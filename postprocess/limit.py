@@ -372,8 +372,9 @@ def report_lines(decisions, within, levels):
 # ---- what the multiple-contact time is made of (docs/hard_sphere_limit.md)
 
 def split_lines(splits):
-    """Markdown: per k_n the mean over runs of the split (splits: [(kn, {threshold: split})],
-    thresholds durations.LASTING and LASTING_ALSO; a value a run lacks (None) is left out)."""
+    """Markdown: per k_n the mean over runs of the split and, from two runs on, its standard
+    error over the runs (splits: [(kn, {threshold: split})], thresholds durations.LASTING and
+    LASTING_ALSO; a value a run lacks (None) is left out)."""
     a, b = LASTING, LASTING_ALSO
     lines = [f"| k_n | runs | >= 2 contacts (counters) | from rows | lasting (> {a:g} tau) | "
              f"bursts (<= {a:g} tau) | lasting (> {b:g} tau) | bursts (<= {b:g} tau) | "
@@ -381,14 +382,19 @@ def split_lines(splits):
     for k in sorted({kn for kn, _ in splits}):
         mine = [s for kn, s in splits if kn == k]
 
-        def mean(threshold, name):
+        def mean(threshold, name, digits=4):
             values = [s[threshold][name] for s in mine if s[threshold][name] is not None]
-            return np.mean(values) if values else np.nan
-        lines.append(f"| {k:.4g} | {len(mine)} | {mean(a, 't_multiple_counters'):.4f} | "
-                     f"{mean(a, 't_multiple_rows'):.4f} | {mean(a, 'lasting'):.4f} | "
-                     f"{mean(a, 'bursts'):.4f} | {mean(b, 'lasting'):.4f} | "
-                     f"{mean(b, 'bursts'):.4f} | {mean(a, 'unseen'):.4f} | "
-                     f"{mean(a, 'lasting_share_of_contact_time'):.3f} |")
+            if not values:
+                return "nan"
+            text = f"{np.mean(values):.{digits}f}"
+            if len(values) > 1:
+                text += f" +- {np.std(values, ddof=1) / np.sqrt(len(values)):.{digits}f}"
+            return text
+        lines.append(f"| {k:.4g} | {len(mine)} | {mean(a, 't_multiple_counters')} | "
+                     f"{mean(a, 't_multiple_rows')} | {mean(a, 'lasting')} | "
+                     f"{mean(a, 'bursts')} | {mean(b, 'lasting')} | "
+                     f"{mean(b, 'bursts')} | {mean(a, 'unseen')} | "
+                     f"{mean(a, 'lasting_share_of_contact_time', 3)} |")
     return lines + [""]
 
 

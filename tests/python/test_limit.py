@@ -267,3 +267,15 @@ def test_rule_2_needs_positive_values_for_the_no_fall_branch():
 def test_unknown_rule_is_refused():
     with pytest.raises(ValueError, match="1 or 2"):
         limit.decide(synthetic_runs(flat, 0.10), "mc_c", samples=10, rule=3)
+
+
+def test_split_table_gives_the_error_over_runs():
+    # two runs at one k_n whose lasting parts are 0.010 and 0.020: mean 0.015, standard error
+    # 0.005 (a table of means alone cannot say whether the lasting part shrinks with k_n)
+    def split(lasting):
+        one = {"t_multiple_counters": 0.03, "t_multiple_rows": 0.03, "lasting": lasting,
+               "bursts": 0.03 - lasting, "unseen": 0.0, "lasting_share_of_contact_time": 0.5}
+        return {durations.LASTING: one, durations.LASTING_ALSO: dict(one)}
+    lines = limit.split_lines([(1e6, split(0.010)), (1e6, split(0.020)), (4e6, split(0.01))])
+    assert "| 1e+06 | 2 | 0.0300 +- 0.0000 | 0.0300 +- 0.0000 | 0.0150 +- 0.0050 |" in lines[2]
+    assert "| 4e+06 | 1 | 0.0300 | 0.0300 | 0.0100 |" in lines[3]
