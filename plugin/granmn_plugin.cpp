@@ -6,6 +6,7 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "fix_ave_window_mn.h"
 #include "fix_checkpoint_mn.h"
 #include "fix_contacts_mn.h"
 #include "fix_nve_disc_mn.h"
@@ -54,6 +55,8 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
        (lammpsplugin_factory2 *) &fix_creator<FixNVEDiscMN>},
       {"checkpoint/mn", "A run's identity in its restart files, checked on resuming",
        (lammpsplugin_factory2 *) &fix_creator<FixCheckpointMN>},
+      {"ave/window/mn", "A windowed time average of a variable, its window in restart files",
+       (lammpsplugin_factory2 *) &fix_creator<FixAveWindowMN>},
       {"GRANMN/ATOM_IDS", "internal to pair_style gran/mn: each atom's ID, carried with it",
        (lammpsplugin_factory2 *) &fix_creator<FixAtomIDs>}};
   for (const auto &fix : fixes) {

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Runs a grid of scene points described in a TOML config, resumably, with progress and ETA.
 
-    scripts/sweep.py CONFIG [--output DIR] [--jobs N | --partitions P] [--ranks R] [--dry-run]
+    scripts/sweep.py CONFIG [--output DIR] [--jobs N | --partitions P] [--ranks R]
+                     [--checkpoint-interval T] [--dry-run]
 
 Config (TOML):
 
@@ -19,7 +20,8 @@ variable the scene's deck takes but never uses (seed in single_disk: no random s
 refused. A number is one value whatever its spelling: kn 5e4, 50000 and "5e4" are one point.
 
 Layout: <output>/<scene>/<point>/ holds the deck's outputs (energy.txt, counts.txt, ...),
-point.json (the point's variables), command.txt (the exact command), log.lammps, run.out (what
+point.json (the point's variables), runner.json (the runner's: the checkpoint interval of
+--checkpoint-interval), command.txt (the exact command), log.lammps, run.out (what
 lmp printed), timing.json (wall and CPU seconds), running.json while its lmp runs, failed.txt
 (the ERROR lines and the output) if it failed, and done.txt, written by the deck last.
 A point is done when done.txt and timing.json carry the token of one run (the runner gives
@@ -27,7 +29,9 @@ each run its own and writes timing.json once that run has ended): such a point i
 again, so a killed sweep resumes where it stopped. Any other point resumes from its last
 checkpoint (checkpoint_interval > 0: checkpoint.txt names the last complete one; its outputs are
 cut back to that step, a half-written line or frame included; docs/sweeps.md) if its point.json
-is this point's, else it is run again from scratch.
+is this point's, else it is run again from scratch. --checkpoint-interval T checkpoints the
+points that set no checkpoint_interval every T time units; it is not part of a point (its name,
+point.json), and the interval a point was begun with (runner.json) is the one it resumes with.
 
 The runner owns its lmp processes: they die with it (kill -9 included), SIGTERM or SIGINT
 stops them and the sweep (exit status 128 + the signal); it refuses to start while a point's
@@ -328,29 +332,35 @@ def check_path(what, path):
                              "without it")
 
 
-def prepare(directory, point):
-    """A fresh directory for a point that has not completed."""
+def prepare(directory, point, extra):
+    """A fresh directory for a point that has not completed: point.json, and runner.json with
+    the variables the runner chose for it (`extra`: the checkpoint interval), which a resumed
+    run takes again (its checkpoints were written with them)."""
     if directory.exists():
         shutil.rmtree(directory)
     directory.mkdir(parents=True)
     (directory / "point.json").write_text(json.dumps(point, indent=1, sort_keys=True) + "\n")
+    (directory / "runner.json").write_text(json.dumps(extra, sort_keys=True) + "\n")
 
 
-def resume_or_prepare(directory, point):
-    """{"resume": N} for a point whose directory holds a checkpoint (checkpoint.N.restart) of the
-    same point, its outputs cut back to it; else {} and a fresh directory. The deck itself
-    refuses a checkpoint of another point or plugin layout, by name (fix checkpoint/mn)."""
+def resume_or_prepare(directory, point, extra):
+    """The variables of a point's next run beyond its own: the runner.json ones and {"resume": N}
+    for a point whose directory holds a checkpoint (checkpoint.N.restart) of the same point,
+    its outputs cut back to it; else `extra` and a fresh directory. The deck itself refuses a
+    checkpoint of another point or plugin layout, by name (fix checkpoint/mn)."""
     try:
         same_point = json.loads((directory / "point.json").read_text()) == point
         latest = same_point and checkpoints.latest(directory)
         if latest:
             step, slot = latest
+            kept = json.loads((directory / "runner.json").read_text()) \
+                if (directory / "runner.json").exists() else {}
             checkpoints.cut_outputs(directory, step)
-            return {"resume": slot}
+            return {**kept, "resume": slot}
     except (OSError, ValueError, KeyError):
         pass
-    prepare(directory, point)
-    return {}
+    prepare(directory, point, extra)
+    return dict(extra)
 
 
 def completed(directory):
@@ -503,13 +513,13 @@ def wait(proc, directories, ended=None):
     return proc.returncode, elapsed, usage.ru_utime + usage.ru_stime, stuck
 
 
-def run_serial(point, directory, paths, env, ranks=1):
+def run_serial(point, directory, paths, env, ranks, extra):
     """(outcome, wall seconds, note) of a point run as one lmp process, or as `mpirun -np
     ranks lmp` (one LAMMPS world of `ranks` ranks: the domain decomposed)."""
     if _stopped_by:
         return "stopped", 0.0, ""
     token = secrets.token_hex(8)
-    resume = resume_or_prepare(directory, point)
+    resume = resume_or_prepare(directory, point, extra)
     mpirun = [paths["mpiexec"], "-np", str(ranks)] if ranks > 1 else []
     command = mpirun + [str(paths["lmp"]), "-in", str(ROOT / "inputs" / f"{point['scene']}.lmp"),
                "-log", str(directory / "log.lammps"), "-screen", "none", "-nocite"]
@@ -525,7 +535,7 @@ def run_serial(point, directory, paths, env, ranks=1):
     return outcome, elapsed, ""
 
 
-def run_partitions(batch, batch_dir, paths, env, ranks=1):
+def run_partitions(batch, batch_dir, paths, env, ranks, extras):
     """Points of one batch as the partitions of one lmp run, `ranks` MPI ranks each:
     [(outcome, wall seconds, note)]. Each partition's rank 0 writes its point's log and outputs.
     A LAMMPS ERROR in one partition aborts them all (MPI_Abort): a sibling without an ERROR of
@@ -534,7 +544,7 @@ def run_partitions(batch, batch_dir, paths, env, ranks=1):
     directories = [directory for _, directory in batch]
     tokens = [secrets.token_hex(8) for _ in batch]
     for (point, directory), token in zip(batch, tokens):
-        resume = resume_or_prepare(directory, point)
+        resume = resume_or_prepare(directory, point, extras[directory])
         lines = [f"log {directory / 'log.lammps'}"]
         lines += [f"variable {name} index {format_value(value)}"
                   for name, value in {**point_variables(point, directory, paths, token),
@@ -665,6 +675,10 @@ def main(argv=None):
     parser.add_argument("--ranks", type=int, default=1,
                         help="MPI ranks per point (LAMMPS's domain decomposition; default 1: "
                              "a serial lmp, no mpirun)")
+    parser.add_argument("--checkpoint-interval", type=float, default=0.0, metavar="T",
+                        help="checkpoints every T time units (the deck's checkpoint_interval) "
+                             "for the points that do not set one: a killed point resumes from "
+                             "its last (default 0: none); not part of a point's name")
     parser.add_argument("--dry-run", action="store_true",
                         help="list the points and the predicted cost, run nothing")
     parser.add_argument("--build", type=Path, default=ROOT / "build")
@@ -675,6 +689,9 @@ def main(argv=None):
         args.jobs = max(1, (os.cpu_count() or 1) // args.ranks)
     if args.jobs < 1 or args.partitions < 0:
         parser.error("--jobs must be >= 1 and --partitions >= 0")
+    if not (args.checkpoint_interval >= 0 and math.isfinite(args.checkpoint_interval)):
+        parser.error(f"--checkpoint-interval {args.checkpoint_interval:g} must be >= 0 "
+                     "(0: none)")
 
     paths = {"lmp": args.build / "lammps" / "lmp",
              "plugin": args.build / "plugin" / "granmnplugin.so",
@@ -697,6 +714,10 @@ def main(argv=None):
     model = CostModel()
     plan = [(p, output / p["scene"] / point_name(p), s) for p, s in zip(points, steps)]
     todo = [(p, d, s) for p, d, s in plan if not completed(d)]
+    # the runner's variables of each point: the checkpoint interval, where the point sets none
+    extra = {d: ({"checkpoint_interval": args.checkpoint_interval}
+                 if args.checkpoint_interval > 0 and "checkpoint_interval" not in p else {})
+             for p, d, _ in todo}
     # most expensive first, so that the last points to finish are short ones
     todo.sort(key=lambda item: -model.predict(item[0], item[2]))
     total = sum(model.predict(p, s) for p, _, s in plan)
@@ -778,7 +799,7 @@ def main(argv=None):
                 batch, queue = queue[:args.partitions], queue[args.partitions:]
                 results = pool.submit(run_partitions, [(p, d) for p, d, _ in batch],
                                       output / "batches" / f"batch{number}", paths, env,
-                                      args.ranks).result()
+                                      args.ranks, extra).result()
                 number += 1
                 for (p, d, s), (outcome, elapsed, note) in zip(batch, results):
                     if outcome == "rerun":
@@ -786,7 +807,7 @@ def main(argv=None):
                     # each point of the batch ran for the batch's wall time
                     report(p, d, model.predict(p, s), outcome, elapsed, note)
         else:
-            futures = {pool.submit(run_serial, p, d, paths, env, args.ranks): (p, d, s)
+            futures = {pool.submit(run_serial, p, d, paths, env, args.ranks, extra[d]): (p, d, s)
                        for p, d, s in todo}
             for future in concurrent.futures.as_completed(futures):
                 p, d, s = futures[future]

@@ -16,6 +16,9 @@ import pytest
 from test_sweep import (BUILD, ROOT, SWEEP, kill_session, processes_mentioning, sweep,
                         wait_for)
 
+import checkpoints
+from granmn_run import PLUGIN, run_lammps
+
 # A contact-rich stretch: the frictional pile falls and flows (friction, multiple contacts,
 # the floor wall); the single disk bounces over its bumps. Checkpoints every 2 time units, the
 # transient's end (4) falls between two of them.
@@ -105,6 +108,54 @@ def test_killed_point_resumes_from_its_checkpoint_to_the_same_outputs(tmp_path, 
         assert read_profile(directory)["count"].sum() == pytest.approx(100, abs=1e-5)
 
 
+# The stiff frictional preset's deck (inputs/sweeps/stiff_frictional.toml: velocity Verlet at
+# tau_c/20, contact rows over 2 time units, the stop test at its default stop_energy 1e-5 over
+# stop_time 10) made cheap: k_n 1e6 and a short run. Flowing: the default start at sin(theta)
+# 0.20 still flows at t = 24. Stopping: rows dropped from 1.1 apart at sin(theta) 0.10 come to
+# rest at t ~ 20 (not at t < stop_time + 6 = 16 nor after 30: the test below needs a checkpoint
+# between the last stop_time before the stop and the stop).
+STIFF = ('scene = "frictional_flow"\nkn = 1e6\ndt_fraction = 0.05\ndt_cap = 1\n'
+         'integrator = "verlet"\nrows = "yes"\nrows_time = 2\naverage_start = 5\n')
+STIFF_PILES = {"flowing": ("run_time = 24\n", 2),
+               "stopping": ("run_time = 40\nsin_theta = 0.1\nrow_spacing = 1.1\n", 8)}
+
+
+@pytest.mark.parametrize("pile", sorted(STIFF_PILES))
+def test_stiff_point_with_its_stop_test_resumes_to_the_same_outputs(tmp_path, pile):
+    """The runner's --checkpoint-interval (not part of the point's name) on a point with the
+    stop test (stop_energy > 0), killed with kill -9 after a checkpoint and resumed: the
+    outputs, stopped.txt included, are the uninterrupted checkpointed run's to the bit. The
+    stopping pile is resumed from a checkpoint less than stop_time before it stops, so that
+    the stop depends on the samples of the window taken before the kill: a window begun
+    afresh at the resume (fix ave/time's, which is not in restart files) would average fewer,
+    later samples and stop earlier, and a test on LAMMPS's `time` (0 again after
+    read_restart) would wait stop_time after the resume and stop later."""
+    text, after = STIFF_PILES[pile]
+    config = tmp_path / "stiff.toml"
+    config.write_text(f'name = "c"\n[defaults]\n{STIFF}{text}[[grid]]\nseed = 1\n')
+    every = ("--checkpoint-interval", "2")
+    sweep(config, tmp_path / "whole", "--jobs", "1", *every)
+    directory, step = kill_mid_chunk(config, tmp_path / "killed", *every, after=after)
+    proc = sweep(config, tmp_path / "killed", "--jobs", "1", *every)
+    assert "1 to run" in proc.stdout
+    assert "resuming from checkpoint" in (directory / "log.lammps").read_text()
+    whole = point_dir(tmp_path / "whole")
+    assert "checkpoint" not in whole.name and whole.name == directory.name
+    for name in ("energy.txt", "counts.txt", "contacts.txt", "profile_chunks.txt",
+                 "snapshots.lammpstrj"):
+        assert data_lines(directory / name) == data_lines(whole / name), name
+    assert not list(directory.glob("checkpoint*")), "checkpoints left after the run completed"
+    resumed_at = step * checkpoints.time_step(directory)
+    if pile == "stopping":
+        stopped = (whole / "stopped.txt").read_text()
+        assert (directory / "stopped.txt").read_text() == stopped
+        stopped_at = float(stopped.split()[1])
+        assert stopped_at - 10 < resumed_at < stopped_at, (resumed_at, stopped_at)
+    else:
+        assert not (whole / "stopped.txt").exists()
+        assert not (directory / "stopped.txt").exists()
+
+
 def test_truncated_done_is_not_taken(tmp_path):
     """done.txt without the token of the run that timing.json recorded is rerun, not read."""
     config = write_config(tmp_path, "single_disk", interval=5)
@@ -174,3 +225,82 @@ def test_damaged_checkpoint_is_refused(tmp_path, checkpoint_file):
     assert status != 0
     assert "resuming from checkpoint" in log and "ERROR" in log
     assert "Loop time" not in log
+
+
+# fix ave/window/mn on its own: a Lennard-Jones liquid whose kinetic energy changes at every
+# step, averaged over windows of 7 samples 10 steps apart, with LAMMPS's fix ave/time beside it.
+WINDOW_LIQUID = """plugin load {plugin}
+units lj
+atom_style atomic
+lattice fcc 0.8442
+region box block 0 4 0 4 0 4
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+velocity all create 1.5 87287 loop geom
+"""
+WINDOW_DYNAMICS = """pair_style lj/cut 2.5
+pair_coeff 1 1 1.0 1.0 2.5
+fix nve all nve
+variable ke equal ke
+"""
+
+
+def window_means(path):
+    """{step: [the means printed]} of a fix print file."""
+    return {int(line.split()[0]): line.split()[1:] for line in path.read_text().splitlines()
+            if not line.startswith("#")}
+
+
+def test_window_average_is_fix_ave_time_s_to_the_bit_and_goes_on_after_a_restart(tmp_path):
+    """fix ave/window/mn's mean is fix ave/time ave window's at every sample, across run
+    boundaries on and off the sampling grid (a sample taken twice at a run's setup, or missed,
+    changes the mean at its 17 digits), and a run resumed from a restart file written
+    mid-way goes on with the window: the same means to the bit (a window begun afresh would
+    average the samples after the restart only)."""
+    run_lammps(WINDOW_LIQUID.format(plugin=PLUGIN) + WINDOW_DYNAMICS + """
+fix old all ave/time 10 1 10 v_ke ave window 7
+fix recent_energy all ave/window/mn 10 7 v_ke
+fix means all print 10 "$(step) $(f_old:%.17g) $(f_recent_energy:%.17g)" file whole.txt screen no
+run 35
+run 35
+write_restart window.restart
+run 100
+""", tmp_path, header=False)
+    whole = window_means(tmp_path / "whole.txt")
+    assert sorted(whole) == list(range(0, 171, 10))
+    assert all(old == new for old, new in whole.values())
+    run_lammps(f"plugin load {PLUGIN}\nread_restart window.restart\n" + WINDOW_DYNAMICS + """
+fix recent_energy all ave/window/mn 10 7 v_ke resume yes
+fix means all print 10 "$(step) $(f_recent_energy:%.17g)" file resumed.txt screen no
+run 100
+""", tmp_path, header=False)
+    resumed = window_means(tmp_path / "resumed.txt")
+    assert sorted(resumed) == list(range(70, 171, 10))
+    assert all(resumed[step] == whole[step][1:] for step in resumed)
+
+
+# fix ave/window/mn refusing a restart file that cannot continue its window:
+# {case: (the fix command of the resumed run, message)}
+BAD_WINDOWS = {
+    "a restart file without the stop test's window, resumed with `fix ave/window/mn ... resume "
+    "yes` (the decks' stop test with stop_energy > 0)": (
+        "fix recent_energy all ave/window/mn 200 100 v_ke resume yes",
+        "the restart file holds no window of fix recent_energy (ave/window/mn): it cannot "
+        "continue this run's average"),
+    "a restart file whose window has another N or M (`fix ave/window/mn`)": (
+        "fix recent_energy all ave/window/mn 200 50 v_ke",
+        "the restart file's window of fix recent_energy is 100 samples every 200 steps, this "
+        "fix's 50 every 200: it cannot continue it"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_WINDOWS))
+def test_a_window_the_restart_file_cannot_continue_is_refused(tmp_path, case):
+    command, message = BAD_WINDOWS[case]
+    written = "" if "without" in case else "fix recent_energy all ave/window/mn 200 100 v_ke\n"
+    run_lammps(WINDOW_LIQUID.format(plugin=PLUGIN) + WINDOW_DYNAMICS + written +
+               "run 400\nwrite_restart window.restart\n", tmp_path, header=False)
+    run = run_lammps(f"plugin load {PLUGIN}\nread_restart window.restart\n" + WINDOW_DYNAMICS +
+                     command + "\nrun 10\n", tmp_path, header=False, check=False)
+    assert run.returncode != 0 and message in run.output, run.output[-2000:]
