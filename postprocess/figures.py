@@ -7,7 +7,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from .io import DataError  # noqa: E402
+from .io import DataError, read_text  # noqa: E402
 from .scenes import scene as scene_of  # noqa: E402
 from .selection import Selection, select_steady, window_means  # noqa: E402
 from .study import series  # noqa: E402
@@ -168,7 +168,7 @@ def snapshot_figure(scene, point, path):
     snapshots = point / "snapshots.lammpstrj"
     if not snapshots.exists():
         raise DataError(f"{snapshots}: missing")
-    text = snapshots.read_text().split("ITEM: TIMESTEP")
+    text = read_text(snapshots).split("ITEM: TIMESTEP")
     if len(text) < 2:
         raise DataError(f"{point}/snapshots.lammpstrj: no frame")
     lines = text[-1].splitlines()

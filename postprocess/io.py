@@ -26,12 +26,24 @@ ROW_COLUMNS = ("id_i", "id_j", "kind", "start", "duration", "vn_start", "vn_end"
 CONTACT_KINDS = {"disk": 1, "boundary": 2}
 
 
+def read_text(path):
+    """A file's text (UTF-8); a byte that is not (a damaged or binary file) is a DataError
+    naming the file and the line."""
+    path = Path(path)
+    try:
+        return path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as error:
+        line = error.object[:error.start].count(b"\n") + 1
+        raise DataError(f"{path}:{line}: byte 0x{error.object[error.start]:02x} is not UTF-8 "
+                        "text: a damaged or binary file?") from None
+
+
 def read_params(point):
     path = Path(point) / "params.txt"
     if not path.exists():
         raise DataError(f"{path}: missing (the run did not start its outputs)")
     params = {}
-    for number, line in enumerate(path.read_text().splitlines(), 1):
+    for number, line in enumerate(read_text(path).splitlines(), 1):
         words = line.split()
         if len(words) != 2:
             raise DataError(f"{path}:{number}: expected 'name value', got {line!r}")
@@ -73,7 +85,7 @@ def numeric_table(path, columns, comment="#"):
     if not path.exists():
         raise DataError(f"{path}: missing")
     rows = []
-    for number, line in enumerate(path.read_text().splitlines(), 1):
+    for number, line in enumerate(read_text(path).splitlines(), 1):
         if not line.strip() or line.lstrip().startswith(comment):
             continue
         words = line.split()
@@ -96,7 +108,7 @@ def header_columns(path, first, needed):
     if not path.exists():
         raise DataError(f"{path}: missing")
     names = None
-    for line in path.read_text().splitlines():
+    for line in read_text(path).splitlines():
         words = line.lstrip("#").split()
         if line.startswith("#") and words[:1] == [first]:
             names = tuple(words)
@@ -128,7 +140,7 @@ def read_dump_atoms(path, needed):
     path = Path(path)
     if not path.exists():
         raise DataError(f"{path}: missing")
-    lines = path.read_text().splitlines()
+    lines = read_text(path).splitlines()
     try:
         start = next(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
         count = int(lines[lines.index("ITEM: NUMBER OF ATOMS") + 1])
@@ -190,7 +202,7 @@ def read_profile(point):
     chunks = Path(point) / "profile_chunks.txt"
     if not path.exists() and chunks.exists():
         blocks, weights = [], []
-        for line in chunks.read_text().splitlines():
+        for line in read_text(chunks).splitlines():
             if line.startswith("# chunk"):
                 blocks.append([])
                 weights.append(float(line.split()[4]))
@@ -209,7 +221,7 @@ def read_profile(point):
     elif not path.exists():
         raise DataError(f"{path}: missing")
     else:
-        lines = [l for l in path.read_text().splitlines() if l.strip() and not l.startswith("#")]
+        lines = [l for l in read_text(path).splitlines() if l.strip() and not l.startswith("#")]
         data = profile_block(path, lines)
     return {"y": data[:, 0], "count": data[:, 1], "density": data[:, 2], "vx": data[:, 3],
             "vy": data[:, 4]}
@@ -223,7 +235,7 @@ def read_rows(point):
         raise DataError(f"{path}: missing (run the deck with -var rows yes)")
     fix_columns = {f"f_c[{k}]": name for k, name in enumerate(ROW_COLUMNS, 1)}
     rows, columns = [], None
-    for number, line in enumerate(path.read_text().splitlines(), 1):
+    for number, line in enumerate(read_text(path).splitlines(), 1):
         if line.startswith("ITEM:"):
             columns = None
             if line.startswith("ITEM: ENTRIES"):
@@ -256,7 +268,7 @@ def read_stopped(point):
     path = Path(point) / "stopped.txt"
     if not path.exists():
         return None
-    words = path.read_text().split()
+    words = read_text(path).split()
     if len(words) != 2 or words[0] != "stopped_at":
         raise DataError(f"{path}: expected 'stopped_at TIME', got {' '.join(words)!r}")
     return numbers(path, 1, words[1:])[0]
@@ -268,11 +280,21 @@ def read_variables(point):
     if not path.exists():
         raise DataError(f"{path}: missing (not a sweep's point)")
     try:
-        variables = json.loads(path.read_text())
+        variables = json.loads(read_text(path))
     except ValueError as error:
         raise DataError(f"{path}: not valid JSON ({error})")
+    return checked_variables(variables, path)
+
+
+def checked_variables(variables, path):
+    """variables if they are an object of deck variables, each a number or a word (what the
+    sweep runner passes to the deck: the analysis groups the runs by them); else a DataError
+    naming `path`, where they came from."""
     if not isinstance(variables, dict):
         raise DataError(f"{path}: expected an object of deck variables")
+    for name, value in variables.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+            raise DataError(f"{path}: variable {name} is {value!r}, not a number or a word")
     return variables
 
 

@@ -88,6 +88,9 @@ def relative(error, point):
 # the observables of one block, in the order the tables list them
 BLOCK_QUANTITIES = ("E_trans", "E_rot", "E_total", "N_c", "N_w", "t_c", "t_w", "t_multiple",
                     "mc_c", "mc_w", "z")
+# those of them that can be negative: t - N tau is, where contacts last less than tau on
+# average; the others are energies, rates, time fractions and contacts per disk, >= 0
+SIGNED_QUANTITIES = ("mc_c", "mc_w")
 
 
 def span_blocks(energy, a, b, params, n_boundary, n_blocks):

@@ -11,7 +11,7 @@ import numpy as np
 
 from .io import DataError, Point
 from .observables import RESOLUTIONS, measure, observables, relative
-from .scenes import SCENES
+from .scenes import SCENES, scene
 from .selection import Selection, in_energy_range, window_means
 
 # How a run ended: ran to run_time, its pile stopped and the run ended early (stopped.txt),
@@ -104,9 +104,10 @@ def read_run(point, resolutions=RESOLUTIONS, selection=Selection()):
     outputs = Point(point)
     record = RunRecord(point=point, scene=point.parent.name, source="raw",
                        cpu_seconds=read_cpu_seconds(point), outputs=outputs)
-    if record.scene not in SCENES:
-        record.reason = (f"unknown scene '{record.scene}' (expected one of "
-                         f"{', '.join(SCENES)})")
+    try:
+        scene(record.scene)
+    except KeyError as error:
+        record.reason = error.args[0]
         return record
     ending, record.failure = outputs.ending
     if ending != "completed":

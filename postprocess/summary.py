@@ -16,9 +16,10 @@ import math
 from pathlib import Path
 
 from .durations import DURATION_EDGES, LASTING, LASTING_ALSO, SPLIT_NAMES
-from .io import CONTACT_KINDS, DataError, checked_params
-from .observables import BLOCK_QUANTITIES, RESOLUTIONS
+from .io import CONTACT_KINDS, DataError, checked_params, checked_variables
+from .observables import BLOCK_QUANTITIES, RESOLUTIONS, SIGNED_QUANTITIES
 from .runs import DRAWN_WINDOW, ENDINGS, RunRecord, read_run
+from .scenes import scene
 from .selection import Selection
 
 SCHEMA = "granmn-run-summary"
@@ -122,10 +123,15 @@ class _Checker:
             self.fail(where, "is not an object")
         return value
 
-    def numbers(self, value, where):
+    def numbers(self, value, where, non_negative=False):
         if not isinstance(value, list):
             self.fail(where, "is not a list")
-        return [self.number(v, f"{where}[{k}]") for k, v in enumerate(value)]
+        values = [self.number(v, f"{where}[{k}]") for k, v in enumerate(value)]
+        for k, v in enumerate(values):
+            if non_negative and v < 0:
+                self.fail(f"{where}[{k}]", f"is {v:g}, negative: it is an energy, a rate, a "
+                          "time fraction or a count")
+        return values
 
     def key(self, data, name, where):
         if name not in data:
@@ -136,10 +142,15 @@ class _Checker:
         """A steady part or the window: the numbers `names`, and the blocks if `blocks`."""
         data = self.mapping(data, where)
         part = {n: self.number(self.key(data, n, where), f"{where}.{n}") for n in names}
+        if "span" in part and not part["span"] > 0:
+            # the weight of the run among its seeds
+            self.fail(f"{where}.span", f"is {part['span']:g}, not a time span > 0")
         if blocks:
             columns = self.mapping(self.key(data, "blocks", where), f"{where}.blocks")
             part["blocks"] = {q: self.numbers(self.key(columns, q, f"{where}.blocks"),
-                                              f"{where}.blocks.{q}") for q in BLOCK_QUANTITIES}
+                                              f"{where}.blocks.{q}",
+                                              non_negative=q not in SIGNED_QUANTITIES)
+                              for q in BLOCK_QUANTITIES}
             if len({len(v) for v in part["blocks"].values()}) > 1:
                 self.fail(f"{where}.blocks", "has columns of different lengths")
         return part
@@ -237,7 +248,8 @@ class _Checker:
         if window < DRAWN_WINDOW:
             self.fail("energy.window", f"is {window:g}, below {DRAWN_WINDOW:g}")
         return {"window": window, "t0": self.number(self.key(data, "t0", "energy"), "energy.t0"),
-                "E": self.numbers(self.key(data, "E", "energy"), "energy.E")}
+                "E": self.numbers(self.key(data, "E", "energy"), "energy.E",
+                                  non_negative=True)}
 
 
 def read_summary(path, selection=Selection()):
@@ -266,6 +278,15 @@ def read_summary(path, selection=Selection()):
     ended = check.text(data["ended"], "ended")
     if ended not in ENDINGS[:4]:
         check.fail("ended", f"is {ended!r}, not one of {', '.join(ENDINGS[:4])}")
+    if ended in ("failed", "incomplete"):
+        # such a run has no outputs to take values from (runs.read_run)
+        for name in ("stopped_at", "params", "measured", "energy"):
+            if data[name] is not None:
+                check.fail(name, f"is there, but the run {ended}: it has no values")
+        if data["reason"] is None:
+            check.fail("reason", f"is null, but the run {ended}")
+    if ended == "flowing" and data["stopped_at"] is not None:
+        check.fail("stopped_at", "is there, but the run ended flowing (its pile did not stop)")
     record = RunRecord(point=path, scene=check.text(data["scene"], "scene"), source="summary",
                        ended=ended,
                        stopped_at=check.number(data["stopped_at"], "stopped_at", optional=True),
@@ -276,15 +297,23 @@ def read_summary(path, selection=Selection()):
                        reason=check.text(data["reason"], "reason", optional=True))
     if record.scene != path.parent.name:
         check.fail("scene", f"is {record.scene!r}, but the file is in {path.parent.name}/")
+    try:
+        scene(record.scene)
+    except KeyError as error:
+        check.fail("the summary", f"names an {error.args[0]}")
+    if record.variables is not None:
+        checked_variables(record.variables, f"{path}: corrupt summary: variables")
     params = check.mapping(data["params"], "params", optional=True)
     if params is not None:
-        for name, value in params.items():
-            if not isinstance(value, str):
-                check.number(value, f"params.{name}")
-        record.params = checked_params(params, f"{path}: params")
+        # numbers as params.txt gives them (floats: a JSON integer is one too)
+        record.params = checked_params(
+            {name: value if isinstance(value, str) else check.number(value, f"params.{name}")
+             for name, value in params.items()}, f"{path}: params")
     if data["measured"] is not None:
         if record.params is None:
             check.fail("measured", "is there without params")
+        if record.variables is None:
+            check.fail("measured", "is there without variables")
         record.measured = check.measured(data["measured"])
     if data["energy"] is not None:
         record.energy = check.energy(data["energy"])

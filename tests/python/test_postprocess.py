@@ -415,6 +415,12 @@ def test_a_broken_point_json_is_named(tmp_path):
     assert "point.json: not valid JSON" in left_out[0][1]
 
 
+def test_a_list_valued_variable_is_named(tmp_path):
+    """point.json's variables group the runs: a list there raised TypeError (unhashable)."""
+    point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow", '{"kn": [1, 2]}')
+    assert left_out == [(point, "point.json: variable kn is [1, 2], not a number or a word")]
+
+
 @pytest.mark.parametrize("name,value", [("kn", "0"), ("tau_c", "fast"), ("dt", "-0.001")])
 def test_params_that_are_not_positive_numbers_are_refused(tmp_path, name, value):
     point = write_point(tmp_path)
@@ -583,3 +589,29 @@ def test_the_report_fits_each_series_stiffness_exponents():
     assert "| E_total | 0 ± 0 | 0 ± 0 |" in lines    # flat: exponent 0
     # fewer k_n than the stiff end's fit needs: no table
     assert exponent_lines(rows[:2]) == []
+
+
+@pytest.mark.parametrize("name", ["energy.txt", "params.txt", "counts.txt", "stopped.txt"])
+def test_a_byte_that_is_not_text_is_named_by_file_and_line(tmp_path, capsys, name):
+    """A damaged file with a byte that is not UTF-8 (it raised UnicodeDecodeError in the
+    report and in summarize): the point is left out, its file and line named."""
+    import json
+    from postprocess.__main__ import main
+    line = 1 if name == "stopped.txt" else 2
+
+    def damaged(point):
+        write_point(point)
+        path = point / name
+        if name == "stopped.txt":
+            path.write_text("stopped_at 50\n")
+        lines = path.read_bytes().splitlines(keepends=True)
+        lines[line - 1] = lines[line - 1][:3] + b"\xff" + lines[line - 1][3:]
+        path.write_bytes(b"".join(lines))
+    sweep = sweep_of(tmp_path / "results", {("collisional_flow", "p1"): write_point,
+                                            ("collisional_flow", "p22"): damaged})
+    said = f"{name}:{line}: byte 0xff is not UTF-8 text: a damaged or binary file?"
+    assert main(["report", str(sweep)]) == 0
+    assert f"left out {sweep / 'collisional_flow' / 'p22'}: {said}" in capsys.readouterr().err
+    assert main(["summarize", str(sweep), "--to", str(tmp_path / "data")]) == 0
+    summary = json.loads((tmp_path / "data" / "collisional_flow" / "p22.json").read_text())
+    assert said in (summary["reason"] or summary["measured"]["problem"])

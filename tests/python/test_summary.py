@@ -186,14 +186,33 @@ def test_a_resolution_the_summaries_do_not_hold_is_refused(summarized, capsys):
     ("split", "corrupt summary: measured.contacts.split has the thresholds ['3', 'x'], not "
               "['10', '3']"),
     ("split part", "corrupt summary: measured.contacts.split.10 has no bursts"),
+    # hand-edited or damaged values that were averaged (issue 28): a negative rate, a span (a
+    # seed's weight) of zero or below, a run that did not complete with values
+    ("negative rate", "corrupt summary: measured.window.blocks.N_w[2] is -0.5, negative: it is "
+                      "an energy, a rate, a time fraction or a count"),
+    ("negative energy", "corrupt summary: energy.E[3] is -1, negative"),
+    ("zero span", "corrupt summary: measured.window.span is 0, not a time span > 0"),
+    ("negative span", "corrupt summary: measured.steady.1[0].span is -500, not a time span > 0"),
+    ("failed with values", "corrupt summary: params is there, but the run failed: it has no "
+                           "values"),
+    ("flowing and stopped", "corrupt summary: stopped_at is there, but the run ended flowing"),
+    # what raised KeyError, AttributeError and TypeError in the report (issue 28)
+    ("unknown scene", "corrupt summary: the summary names an unknown scene 'avalanche' "
+                      "(expected one of single_disk, collisional_flow"),
+    ("variables null", "corrupt summary: measured is there without variables"),
+    ("list variable", "variables: variable kn is [100000, 200000], not a number or a word"),
 ])
 def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, damage, message):
     _, data = summarized
     path = tmp_path / "data" / "collisional_flow" / "kn100000.json"
-    if damage == "rule":
+    original = data / path.parent.name / path.name
+    if damage in ("rule", "negative span"):
         path = tmp_path / "data" / "frictional_flow" / "s1.json"
+        original = data / "frictional_flow" / "s1.json"
+    if damage == "unknown scene":
+        path = tmp_path / "data" / "avalanche" / "kn100000.json"
     path.parent.mkdir(parents=True)
-    summary = json.loads((data / path.parent.name / path.name).read_text())
+    summary = json.loads(original.read_text())
     if damage == "version":
         summary["version"] = 2
     if damage == "other json":
@@ -208,6 +227,24 @@ def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, dama
         summary["ended"] = "exploded"
     if damage == "rule":
         summary["steady_rule"]["max_width"] = 0.3
+    if damage == "negative rate":
+        summary["measured"]["window"]["blocks"]["N_w"][2] = -0.5
+    if damage == "negative energy":
+        summary["energy"]["E"][3] = -1
+    if damage == "zero span":
+        summary["measured"]["window"]["span"] = 0
+    if damage == "negative span":
+        summary["measured"]["steady"]["1"][0]["span"] = -500
+    if damage == "failed with values":
+        summary.update(ended="failed", failure="exit status 1", reason="crashed")
+    if damage == "flowing and stopped":
+        summary["stopped_at"] = 50.0
+    if damage == "unknown scene":
+        summary["scene"] = "avalanche"
+    if damage == "variables null":
+        summary["variables"] = None
+    if damage == "list variable":
+        summary["variables"]["kn"] = [100000, 200000]
     if damage in ("histogram", "tail", "contacts", "split", "split part"):
         # a run with contact rows (durations.run_contacts), damaged
         histogram = [0] * 50
@@ -236,3 +273,46 @@ def test_summarize_needs_raw_outputs(summarized, capsys):
     _, data = summarized
     assert main(["summarize", str(data), "--to", str(data / "again")]) == 2
     assert "no sweep points here" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("damage", ["unknown scene", "variables null", "list variable"])
+def test_the_report_lists_a_summary_it_cannot_group_and_goes_on(summarized, tmp_path, capsys,
+                                                                 damage):
+    """A summary of an unknown scene, with variables null or a list-valued variable, beside
+    usable ones: a 'left out' line naming the file (they raised KeyError, AttributeError and
+    TypeError)."""
+    import shutil
+    _, data = summarized
+    shutil.copytree(data, tmp_path / "data")
+    path = tmp_path / "data" / "collisional_flow" / "kn100000.json"
+    summary = json.loads(path.read_text())
+    if damage == "unknown scene":
+        path.unlink()
+        path = tmp_path / "data" / "avalanche" / "kn100000.json"
+        path.parent.mkdir()
+        summary["scene"] = "avalanche"
+    if damage == "variables null":
+        summary["variables"] = None
+    if damage == "list variable":
+        summary["variables"]["kn"] = [100000, 200000]
+    path.write_text(json.dumps(summary))
+    assert main(["report", str(tmp_path / "data"), "--output", str(tmp_path / "report")]) == 0
+    assert f"left out {path}: {path}: corrupt summary" in capsys.readouterr().err
+
+
+def test_a_summary_with_integer_params_is_read(summarized, tmp_path):
+    """JSON integers are numbers: a hand-written params.kn 100000 was refused as 'must be a
+    finite number > 0'."""
+    _, data = summarized
+    path = tmp_path / "data" / "collisional_flow" / "kn100000.json"
+    path.parent.mkdir(parents=True)
+    summary = json.loads((data / "collisional_flow" / "kn100000.json").read_text())
+    assert summary["params"]["kn"] == 100000.0
+    summary["params"]["kn"] = 100000
+    summary["params"]["n_mobile"] = 4
+    path.write_text(json.dumps(summary))
+    record, = load_runs(tmp_path / "data")
+    original, = [r for r in load_runs(data) if r.point == data / "collisional_flow" /
+                 "kn100000.json"]
+    assert record.reason is None and record.params == original.params
+    assert record.observables == original.observables
