@@ -4,6 +4,7 @@ postprocess summarize` writes of them (<scene>/<point>.json, docs/sweeps.md). Th
 compare and any later analysis start from load_runs; read_run is the one place that reads a
 point directory (through an io.Point, which reads each file once)."""
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -43,7 +44,9 @@ class RunRecord:
     cpu_seconds  what the run cost (timing.json), if known
     reason       why it has no observables (a DataError's text), else None
     observables  (load_runs) observables.observables' result with load_runs' selection
-    outputs      (raw) its io.Point: the files read so far, and the others when asked for"""
+    outputs      (raw) its io.Point: the files read so far, and the others when asked for
+    copies       (load_runs of several directories) the other files of this same run, which
+                 another directory given holds too: counted once, as this record"""
     point: Path
     scene: str
     source: str
@@ -58,6 +61,7 @@ class RunRecord:
     reason: str = None
     observables: dict = None
     outputs: Point = field(default=None, compare=False, repr=False)
+    copies: list = field(default_factory=list)
 
     def kept(self, selection, resolutions):
         """{resolution: steady parts the selection keeps at it} (frictional runs)."""
@@ -147,10 +151,11 @@ def load_runs(source, selection=Selection()):
     `ended` says how it ended, `variables` and `params` what it was. From summaries the
     selection's resolution must be one of observables.RESOLUTIONS and its min_length and
     max_width those the summaries were written with (they hold the steady parts found so).
-    A list of directories is read as one sweep: their records sorted as one directory's."""
+    A list of directories is read as one sweep: their records sorted as one directory's, each
+    run once (distinct_runs)."""
     if isinstance(source, (list, tuple)):
-        return sorted((r for one in source for r in load_runs(one, selection)),
-                      key=lambda r: (r.point.parent.name, r.point.name))
+        return distinct_runs(sorted((r for one in source for r in load_runs(one, selection)),
+                                    key=lambda r: (r.point.parent.name, r.point.name)))
     source = Path(source)
     if not source.is_dir():
         raise DataError(f"{source}: no such sweep directory")
@@ -169,3 +174,54 @@ def load_runs(source, selection=Selection()):
             except DataError as error:
                 record.reason = str(error)
     return records
+
+
+def run_name(record):
+    """What a run is called, whatever holds it: its scene and point, <scene>/<point> (a
+    point directory <scene>/<point>/ or its summary <scene>/<point>.json)."""
+    return f"{record.scene}/{record.point.stem if record.source == 'summary' else record.point.name}"
+
+
+# what two records of one run name must share to be the same run, counted once
+SAME_RUN = ("ended", "stopped_at", "failure", "variables", "params", "reason", "observables")
+
+
+def same_value(a, b):
+    """a == b, nan equal to nan (a run's observables hold nan where it has no period)."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(same_value(a[k], b[k]) for k in a)
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return a == b
+
+
+def distinct_runs(records):
+    """records (sorted by run_name) with each run once: several records of one run name (a
+    directory given twice, or a results directory and its own summaries) that agree in every
+    one of SAME_RUN are one run, kept once (the raw outputs' record if there is one, else the
+    first), the others in its `copies`; records of one name that differ are two different runs
+    claiming one name (a rerun, a run on other ranks), and a DataError names them and what
+    differs: which one to count is the user's choice. Unreadable summaries are left as they
+    are (nothing says which run they are)."""
+    out, where = [], {}      # where: run name -> the index of its record in out
+    for record in records:
+        name = run_name(record)
+        if record.ended == "unreadable":
+            out.append(record)
+            continue
+        if name not in where:
+            where[name] = len(out)
+            out.append(record)
+            continue
+        kept = out[where[name]]
+        differ = [n for n in SAME_RUN if not same_value(getattr(kept, n), getattr(record, n))]
+        if differ:
+            raise DataError(f"{kept.point} and {record.point} are both the run {name}, but "
+                            f"their {', '.join(differ)} differ: two different runs under one "
+                            "name (analyse them apart)")
+        if record.source == "raw" and kept.source != "raw":
+            record.copies, kept.copies = kept.copies + [kept.point], []
+            out[where[name]] = record
+        else:
+            kept.copies.append(record.point)
+    return out

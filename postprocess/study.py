@@ -21,6 +21,8 @@ def analyse(source, selection=Selection()):
     scenes, left_out, completed, runs = {}, [], {}, []
     resolutions = sorted(set(RESOLUTIONS) | {selection.resolution})
     for record in load_runs(source, selection):
+        left_out += [(copy, f"the same run as {record.point}: counted once")
+                     for copy in record.copies]
         if record.reason is not None:
             left_out.append((record.point, record.reason))
         if record.ended in ("flowing", "stopped") and record.energy is not None:

@@ -66,3 +66,19 @@ def test_the_quick_study_without_the_frictional_stiffness_dependence_fails_frict
     results, _ = verdicts(mutated)
     value, error, status = results["frictional-Nc"]
     assert value == pytest.approx(0.0, abs=3 * error) and status == "differs"
+
+
+def test_the_quick_study_given_twice_counts_each_run_once():
+    """data/quick given twice is data/quick: each run counted once, each copy a left-out line
+    saying so (each run was counted twice: the errors across seeds shrank by sqrt(2) and
+    single-E-crossover turned from differs to pass)."""
+    once, twice = analyse(QUICK), analyse([QUICK, QUICK])
+    assert verdicts([QUICK, QUICK])[0] == verdicts(QUICK)[0]
+    for scene, rows in once[0].items():
+        assert [{k: v for k, v in o.items() if k not in ("runs", "outputs")} for o in rows] == \
+            [{k: v for k, v in o.items() if k not in ("runs", "outputs")}
+             for o in twice[0][scene]]
+    copies = [(point, reason) for point, reason in twice[1]
+              if reason == f"the same run as {point}: counted once"]
+    assert sorted(point for point, _ in copies) == sorted(QUICK.glob("*/*.json"))
+    assert [item for item in twice[1] if item not in copies] == once[1]

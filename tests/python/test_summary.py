@@ -316,3 +316,42 @@ def test_a_summary_with_integer_params_is_read(summarized, tmp_path):
                  "kn100000.json"]
     assert record.reason is None and record.params == original.params
     assert record.observables == original.observables
+
+
+def test_a_results_directory_with_its_own_summaries_counts_each_run_once(summarized, tmp_path,
+                                                                          capsys):
+    """`report results data` (data: the summaries of results) is `report results`: each run
+    once, from its raw outputs, and each summary a left-out line naming the run it copies
+    (each run was counted twice, the errors across seeds shrinking)."""
+    results, data = summarized
+    assert main(["report", str(results), "--output", str(tmp_path / "one")]) == 0
+    alone = capsys.readouterr().err
+    assert main(["report", str(results), str(data), "--output", str(tmp_path / "both")]) == 0
+    said = capsys.readouterr().err
+    for name in ("observables_collisional_flow.csv", "observables_single_disk.csv",
+                 "observables_frictional_flow.csv", "runs.csv", "comparison.csv"):
+        assert table(tmp_path / "one" / name) == table(tmp_path / "both" / name), name
+    copies = [line for line in said.splitlines() if line not in alone.splitlines()]
+    assert len(copies) == len(list(data.glob("*/*.json")))
+    for path in data.glob("*/*.json"):
+        point = results / path.parent.name / path.stem
+        assert f"left out {path}: the same run as {point}: counted once" in copies
+    assert f"- `{path}`: the same run as {point}: counted once" in \
+        (tmp_path / "both" / "report.md").read_text()
+
+
+def test_two_different_runs_under_one_name_are_refused(summarized, tmp_path, capsys):
+    """A run's summary beside another run of the same point and seed (a rerun, a run on other
+    ranks) whose values differ: which to count is the user's choice, not an average of both
+    as two seeds."""
+    import shutil
+    _, data = summarized
+    shutil.copytree(data, tmp_path / "other")
+    path = tmp_path / "other" / "collisional_flow" / "kn100000.json"
+    summary = json.loads(path.read_text())
+    summary["measured"]["window"]["blocks"]["N_c"][0] *= 1.1
+    path.write_text(json.dumps(summary))
+    assert main(["compare", str(data), str(tmp_path / "other")]) == 2
+    assert (f"postprocess: {data / 'collisional_flow' / 'kn100000.json'} and {path} are both "
+            "the run collisional_flow/kn100000, but their observables differ: two different "
+            "runs under one name (analyse them apart)") in capsys.readouterr().err
