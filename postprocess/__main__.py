@@ -1,7 +1,7 @@
 """python3 -m postprocess {report,compare,limit} SWEEP_DIR [SWEEP_DIR ...] [--output DIR]
         [--resolution T] [--energy-range LOW HIGH] [--min-span T] [--max-width W] [--rule R]
 python3 -m postprocess transition SWEEP_DIR [--output DIR]
-python3 -m postprocess summarize RESULTS_DIR [--to DIR]
+python3 -m postprocess summarize RESULTS_DIR [--to DIR] [--replace]
 
 Several SWEEP_DIRs are analysed as one sweep (a preset and its extension, e.g. data/chute_3d
 data/chute_3d_stiff); the output goes to the first's report/ or limit/ unless --output says.
@@ -20,7 +20,11 @@ limit       the hard-sphere-limit rule (docs/hard_sphere_limit.md) on each serie
             contacts are made of (runs with contact rows), in DIR (default SWEEP_DIR/limit)
 summarize   one compact summary per run of RESULTS_DIR, DIR/<scene>/<point>.json (default
             DIR: data/<name of RESULTS_DIR> in the repository); report and compare take a
-            directory of summaries as SWEEP_DIR as well as a results directory (docs/sweeps.md)
+            directory of summaries as SWEEP_DIR as well as a results directory (docs/sweeps.md);
+            a summary there that is more complete than the new one (its run completed, the
+            new one's did not; its outputs were read or measured, the new one's not; its E(t)
+            reaches further; it has contact rows, the new one not), or that this code cannot
+            read, is kept unless --replace
 
 --resolution T: the frictional steady-part selection works on E(t) averaged over windows of
 T time units (default 1).
@@ -62,6 +66,7 @@ def main(argv=None):
     parser.add_argument("sweeps", type=Path, nargs="+", metavar="sweep")
     parser.add_argument("--output", type=Path)
     parser.add_argument("--to", type=Path)
+    parser.add_argument("--replace", action="store_true")
     parser.add_argument("--resolution", type=float, default=1.0)
     parser.add_argument("--energy-range", type=float, nargs=2, default=(0.4, 0.8),
                         metavar=("LOW", "HIGH"))
@@ -87,17 +92,20 @@ def main(argv=None):
         parser.error(f"--max-width {args.max_width:g} must be > 0")
     selection = Selection(resolution=args.resolution, energy_range=(low, high),
                           min_length=args.min_span, max_width=args.max_width)
-    if args.to is not None and args.command != "summarize":
-        parser.error("--to is for summarize")
+    if (args.to is not None or args.replace) and args.command != "summarize":
+        parser.error("--to and --replace are for summarize")
     if args.command == "summarize":
         to = args.to or DATA / args.sweep.resolve().name
         try:
-            written = write_summaries(args.sweep, to, selection)
+            written, kept = write_summaries(args.sweep, to, selection, args.replace)
         except DataError as error:
             print(f"postprocess: {error}", file=sys.stderr)
             return 2
+        for path, why in kept:
+            print(f"kept {path}: {why} (--replace writes the new one)", file=sys.stderr)
         size = sum(p.stat().st_size for p in written)
-        print(f"summaries: {len(written)} runs in {to} ({size / 1024:.0f} kB)")
+        print(f"summaries: {len(written)} runs written in {to} ({size / 1024:.0f} kB)" +
+              (f", {len(kept)} kept as they were" if kept else ""))
         return 0
     if args.command == "transition":
         try:

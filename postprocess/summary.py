@@ -50,23 +50,62 @@ def summary_text(record, selection):
                               for k, v in data.items()) + "\n}\n"
 
 
-def write_summaries(results_dir, to, selection=Selection()):
+def energy_end(record):
+    """The time to which a record's E(t) reaches (0: it has none)."""
+    e = record.energy
+    return e["t0"] + e["window"] * len(e["E"]) if e else 0.0
+
+
+def lost(old, new):
+    """What the RunRecord `new` lacks that `old`, of the same run, has, in words: None if
+    `new` is as complete. Less complete: a run that did not complete where the old one did;
+    outputs that could not be read, or a measurement with a problem, where the old ones could
+    be; an E(t) that ends earlier (a shorter span); no contact rows where the old had them."""
+    completed = ("flowing", "stopped")
+    if old.ended in completed and new.ended not in completed:
+        return f"it holds a run that completed ({old.ended}); the new one's {new.reason}"
+    if old.reason is None and new.reason is not None:
+        return f"its outputs were read; the new one's: {new.reason}"
+    if old.measured and not old.measured["problem"] and new.measured and \
+            new.measured["problem"]:
+        return f"it was measured; the new one's: {new.measured['problem']}"
+    if energy_end(new) < energy_end(old):
+        return (f"its E(t) reaches t = {energy_end(old):g}, the new one's only "
+                f"{energy_end(new):g}")
+    if old.measured and old.measured.get("contacts") and not (
+            new.measured and new.measured.get("contacts")):
+        return "it holds the durations of the contact rows; the new one not"
+    return None
+
+
+def write_summaries(results_dir, to, selection=Selection(), replace=False):
     """Summarises every point of a results directory into `to`/<scene>/<point>.json, the
     frictional steady parts found with the selection's min_length and max_width (which the
-    summary records: a reader must ask for the same); returns the paths written."""
+    summary records: a reader must ask for the same). A summary there that is more complete
+    than the new one (lost), or that this code cannot read, is kept unless `replace`. Returns
+    the paths written and [(path kept, why)]."""
     results_dir = Path(results_dir)
     if not results_dir.is_dir():
         raise DataError(f"{results_dir}: no such results directory")
     points = sorted(p for p in results_dir.glob("*/*") if (p / "point.json").exists())
     if not points:
         raise DataError(f"{results_dir}: no sweep points here (no <scene>/<point>/point.json)")
-    written = []
+    written, kept = [], []
     for point in points:
         path = Path(to) / point.parent.name / f"{point.name}.json"
+        record = read_run(point, RESOLUTIONS, selection)
+        if path.exists() and not replace:
+            try:
+                why = lost(read_summary(path, selection=None), record)
+            except DataError as error:
+                why = f"this code cannot read it ({error})"
+            if why:
+                kept.append((path, why))
+                continue
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(summary_text(read_run(point, RESOLUTIONS, selection), selection))
+        path.write_text(summary_text(record, selection))
         written.append(path)
-    return written
+    return written, kept
 
 
 def read_summaries(directory, selection=Selection()):
@@ -255,7 +294,7 @@ class _Checker:
 def read_summary(path, selection=Selection()):
     """The RunRecord of one summary file, every value checked; a DataError names the file and
     what is wrong with it. Its steady parts must have been found with the selection's
-    min_length and max_width."""
+    min_length and max_width (selection None: with any)."""
     path = Path(path)
     try:
         data = json.loads(path.read_text())
@@ -270,9 +309,11 @@ def read_summary(path, selection=Selection()):
     for name in FIELDS + ("steady_rule",):
         check.key(data, name, "the summary")
     rule = check.mapping(data["steady_rule"], "steady_rule")
-    wanted = {"min_length": selection.min_length, "max_width": selection.max_width}
-    if {n: check.number(check.key(rule, n, "steady_rule"), f"steady_rule.{n}")
-            for n in wanted} != wanted:
+    found = {n: check.number(check.key(rule, n, "steady_rule"), f"steady_rule.{n}")
+             for n in ("min_length", "max_width")}
+    wanted = found if selection is None else {"min_length": selection.min_length,
+                                              "max_width": selection.max_width}
+    if found != wanted:
         raise DataError(f"{path}: its steady parts were found with {rule}, not with the "
                         f"selection's {wanted}: the raw outputs are needed")
     ended = check.text(data["ended"], "ended")

@@ -355,3 +355,52 @@ def test_two_different_runs_under_one_name_are_refused(summarized, tmp_path, cap
     assert (f"postprocess: {data / 'collisional_flow' / 'kn100000.json'} and {path} are both "
             "the run collisional_flow/kn100000, but their observables differ: two different "
             "runs under one name (analyse them apart)") in capsys.readouterr().err
+
+
+def test_summarize_keeps_a_complete_summary_rather_than_write_a_less_complete_one(
+        summarized, tmp_path, capsys):
+    """summarize of a stopped sweep (a point not finished, a point whose energy.txt was cut)
+    into a directory of complete summaries overwrote them with the incomplete ones: now each
+    is kept and named with what the new one lacks; the others are written; --replace writes
+    all."""
+    import shutil
+    results, data = summarized
+    shutil.copytree(results, tmp_path / "results")
+    shutil.copytree(data, tmp_path / "data")
+    again, to = tmp_path / "results", tmp_path / "data"
+    (again / "collisional_flow" / "kn100000" / "done.txt").unlink()    # still running
+    keep_rows = again / "collisional_flow" / "kn400000" / "energy.txt"
+    lines = keep_rows.read_text().splitlines()
+    keep_rows.write_text("\n".join(lines[:len(lines) // 2]) + "\n")      # cut short
+    before = {p: p.read_text() for p in to.glob("*/*.json")}
+    assert main(["summarize", str(again), "--to", str(to)]) == 0
+    out, err = capsys.readouterr()
+    unfinished, cut = (to / "collisional_flow" / f"{k}.json" for k in ("kn100000", "kn400000"))
+    assert (f"kept {unfinished}: it holds a run that completed (flowing); the new one's did "
+            "not complete (no done.txt) (--replace writes the new one)") in err
+    assert f"kept {cut}: it was measured; the new one's: energy.txt: ends at t = " in err
+    assert len(err.splitlines()) == 2
+    assert f"summaries: {len(before) - 2} runs written in {to} (" in out
+    assert out.rstrip().endswith(", 2 kept as they were")
+    assert {p: p.read_text() for p in to.glob("*/*.json")} == before   # the same runs
+    assert main(["summarize", str(again), "--to", str(to), "--replace"]) == 0
+    assert json.loads(unfinished.read_text())["ended"] == "incomplete"
+    assert f"summaries: {len(before)} runs written" in capsys.readouterr().out
+    # the finished run's summary replaces the unfinished one's (more complete)
+    (again / "collisional_flow" / "kn100000" / "done.txt").write_text("done\n")
+    assert main(["summarize", str(again), "--to", str(to)]) == 0
+    assert json.loads(unfinished.read_text())["ended"] == "flowing"
+    assert "kept" not in capsys.readouterr().err
+
+
+def test_summarize_keeps_a_file_it_cannot_read(summarized, tmp_path, capsys):
+    """A file in the way that is not a summary this code reads (another version, damaged) is
+    not overwritten without --replace."""
+    results, data = summarized
+    path = tmp_path / "data" / "collisional_flow" / "kn100000.json"
+    path.parent.mkdir(parents=True)
+    path.write_text('{"schema": "granmn-run-summary", "version": 2}')
+    assert main(["summarize", str(results), "--to", str(tmp_path / "data")]) == 0
+    assert f"kept {path}: this code cannot read it ({path}: run summary version 2" in \
+        capsys.readouterr().err
+    assert json.loads(path.read_text())["version"] == 2
