@@ -94,8 +94,16 @@ def main(argv=None):
                           min_length=args.min_span, max_width=args.max_width)
     if (args.to is not None or args.replace) and args.command != "summarize":
         parser.error("--to and --replace are for summarize")
+    # where the command writes (compare: nowhere), and the option that named it
+    out, option = {"summarize": (args.to or DATA / args.sweep.resolve().name, "--to"),
+                   "compare": (None, None)}.get(
+        args.command, (args.output or args.sweep / args.command, "--output"))
+    if out is not None and in_the_way(out):
+        print(f"postprocess: {option if out in (args.to, args.output) else 'output directory'} "
+              f"{out}: {in_the_way(out)} is a file, not a directory", file=sys.stderr)
+        return 2
     if args.command == "summarize":
-        to = args.to or DATA / args.sweep.resolve().name
+        to = out
         try:
             written, kept = write_summaries(args.sweep, to, selection, args.replace)
         except DataError as error:
@@ -115,8 +123,7 @@ def main(argv=None):
             return 2
         for point, reason in left_out:
             print(f"left out {point}: {reason}", file=sys.stderr)
-        path = write_transition_report(args.sweep, runs, groups, left_out,
-                                       args.output or args.sweep / "transition")
+        path = write_transition_report(args.sweep, runs, groups, left_out, out)
         print(f"transition report: {path}")
         return 0
     try:
@@ -127,11 +134,9 @@ def main(argv=None):
     for point, reason in left_out:
         print(f"left out {point}: {reason}", file=sys.stderr)
     if args.command == "limit":
-        return write_limit(named, scenes, args.output or args.sweep / "limit", selection,
-                           completed, args.rule)
+        return write_limit(named, scenes, out, selection, completed, args.rule)
     if args.command == "report":
-        path = write_report(named, scenes, left_out, completed,
-                                     args.output or args.sweep / "report", runs, selection)
+        path = write_report(named, scenes, left_out, completed, out, runs, selection)
         print(f"report: {path}")
         return 0
     results = evaluate(scenes, rule=args.rule)
@@ -142,6 +147,15 @@ def main(argv=None):
     print(comparison_line(results))
     counts = tally(results)
     return 1 if counts["FAIL"] or counts["not evaluated"] == len(results) else 0
+
+
+def in_the_way(directory):
+    """The file that keeps `directory` from being made and written into (it, or the first of
+    its parents there), or None."""
+    for path in (directory, *directory.parents):
+        if path.exists():
+            return None if path.is_dir() else path
+    return None
 
 
 def contact_splits(runs):

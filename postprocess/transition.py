@@ -87,6 +87,12 @@ def analyse_transition(sweep_dir):
     combined]}, [(point, reason) left out] of a transition sweep."""
     sweep_dir = Path(sweep_dir)
     points = sorted(p for p in sweep_dir.glob("*/*") if (p / "point.json").exists())
+    if not points and any(sweep_dir.glob("*/*.json")):
+        raise DataError(f"{sweep_dir}: the transition study needs the raw outputs, and these are "
+                        "run summaries (<scene>/<point>.json): summaries hold E(t) only as its "
+                        "means over windows of 1 and the contact durations only as a "
+                        "histogram; the study classifies each run from every sample of "
+                        "energy.txt and pools the durations in contacts.txt")
     if not points:
         raise DataError(f"{sweep_dir}: no sweep points here (no <scene>/<point>/point.json)")
     runs, left_out = [], []

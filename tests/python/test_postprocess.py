@@ -615,3 +615,20 @@ def test_a_byte_that_is_not_text_is_named_by_file_and_line(tmp_path, capsys, nam
     assert main(["summarize", str(sweep), "--to", str(tmp_path / "data")]) == 0
     summary = json.loads((tmp_path / "data" / "collisional_flow" / "p22.json").read_text())
     assert said in (summary["reason"] or summary["measured"]["problem"])
+
+
+@pytest.mark.parametrize("command,option", [("report", "--output"), ("limit", "--output"),
+                                            ("transition", "--output"), ("summarize", "--to")])
+@pytest.mark.parametrize("below", [False, True])
+def test_an_output_directory_that_is_a_file_is_refused(tmp_path, capsys, command, option,
+                                                       below):
+    """--output or --to naming a file, or a directory below one (FileExistsError,
+    NotADirectoryError tracebacks): refused before any analysis, exit status 2."""
+    from postprocess.__main__ import main
+    sweep = sweep_of(tmp_path / "results", {("collisional_flow", "p1"): write_point})
+    (tmp_path / "file").write_text("mine\n")
+    out = tmp_path / "file" / "sub" if below else tmp_path / "file"
+    assert main([command, str(sweep), option, str(out)]) == 2
+    assert (f"postprocess: {option} {out}: {tmp_path / 'file'} is a file, not a directory"
+            in capsys.readouterr().err)
+    assert (tmp_path / "file").read_text() == "mine\n"

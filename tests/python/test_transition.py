@@ -127,3 +127,17 @@ def test_transition_table_measures_known_exponents_and_counts_states():
     assert row["tail_disk"] == pytest.approx(0.5) and row["tail_boundary"] == 0.0
     assert row["contacts_disk"] == 8
     assert np.isnan(table[1]["exponent_N_c"]) and "kn_stiffest" not in table[1]
+
+
+def test_the_transition_study_of_summaries_says_it_needs_the_raw_outputs(tmp_path, capsys):
+    """data/transition holds the transition sweep's summaries: the study needs every sample
+    of energy.txt and the contact rows (it said "no sweep points here", as of an empty
+    directory)."""
+    from pathlib import Path
+    from postprocess.__main__ import main
+    summaries = Path(__file__).resolve().parents[2] / "data" / "transition"
+    assert main(["transition", str(summaries), "--output", str(tmp_path / "t")]) == 2
+    assert (f"postprocess: {summaries}: the transition study needs the raw outputs, and these "
+            "are run summaries (<scene>/<point>.json): summaries hold E(t) only as its means "
+            "over windows of 1") in capsys.readouterr().err
+    assert not (tmp_path / "t").exists()
