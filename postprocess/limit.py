@@ -68,13 +68,16 @@ def pooled(series):
     """The errors from one relative seed-to-seed scatter pooled over the k_n: the scatter
     comes from the flow's energy levels, alike at every k_n, and an error estimated from a
     handful of runs is itself uncertain by ~30 %, which would give some k_n weights that are
-    too large and the floor fit spurious wins."""
-    if len(series.kn) == 0:
+    too large and the floor fit spurious wins. A k_n whose mean is 0 has no relative scatter:
+    it is left out of the pool and keeps its own error (0 where its runs all measure 0)."""
+    zero = series.value == 0
+    if zero.all():
         return series
-    relative = series.error * np.sqrt(series.runs) / np.abs(series.value)
+    relative = series.error[~zero] * np.sqrt(series.runs[~zero]) / np.abs(series.value[~zero])
     scatter = np.sqrt(np.mean(relative ** 2))
-    return Series(series.kn, series.value, np.abs(series.value) * scatter / np.sqrt(series.runs),
-                  series.runs)
+    return Series(series.kn, series.value,
+                  np.where(zero, series.error,
+                           np.abs(series.value) * scatter / np.sqrt(series.runs)), series.runs)
 
 
 def weighted_mean(values, weights):
@@ -244,8 +247,11 @@ def decide(runs, quantity, min_runs=MIN_RUNS, min_kn=MIN_KN, samples=BOOTSTRAP, 
                                   f"over >= {MIN_DECADES:g} decades, has {len(series.kn)} over "
                                   f"{span:.2g}", series, lacking=lacking, rule=rule)
     if not np.all(series.error > 0):
-        return Decision(quantity, "not applied: a k_n whose runs all agree exactly (no error "
-                                  "to weigh it by)", series, lacking=lacking, rule=rule)
+        exact = "; ".join(f"at k_n = {k:g} its {n:g} runs all measure {v:.4g}" for k, v, e, n
+                          in zip(series.kn, series.value, series.error, series.runs)
+                          if not e > 0)
+        return Decision(quantity, f"not applied: {exact} exactly (no error to weigh it by)",
+                        series, lacking=lacking, rule=rule)
     fits = fit_both(series)
     floors, slopes = bootstrap(runs, quantity, series.kn, samples)
     low, high = np.nanpercentile(floors, [2.5, 97.5])

@@ -279,3 +279,25 @@ def test_split_table_gives_the_error_over_runs():
     lines = limit.split_lines([(1e6, split(0.010)), (1e6, split(0.020)), (4e6, split(0.01))])
     assert "| 1e+06 | 2 | 0.0300 +- 0.0000 | 0.0300 +- 0.0000 | 0.0150 +- 0.0050 |" in lines[2]
     assert "| 4e+06 | 1 | 0.0300 | 0.0300 | 0.0100 |" in lines[3]
+
+
+def test_a_kn_whose_runs_all_measure_zero_is_named_and_leaves_the_others_errors_alone():
+    """One k_n whose runs all measure 0 has no relative scatter: it made the pooled scatter
+    nan (a numpy warning) and every k_n's error with it, and the rule said "a k_n whose runs
+    all agree exactly" of the whole series. Now the others' errors are the pool of their own
+    scatter, that k_n keeps its error 0 and is named."""
+    import warnings
+    runs = synthetic_runs(power, 0.1)
+    for r in runs:
+        if r["kn"] == KN[2]:
+            r["mc_c"] = 0.0
+    alone, _ = limit.per_kn([r for r in runs if r["kn"] != KN[2]], "mc_c")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        series, _ = limit.per_kn(runs, "mc_c")
+        d = limit.decide(runs, "mc_c", samples=50)
+    others = series.kn != KN[2]
+    assert series.error[others] == pytest.approx(alone.error)
+    assert series.error[~others] == [0.0]
+    assert d.verdict == (f"not applied: at k_n = {KN[2]:g} its {RUNS} runs all measure 0 "
+                         "exactly (no error to weigh it by)")
