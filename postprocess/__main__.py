@@ -5,6 +5,9 @@ python3 -m postprocess summarize RESULTS_DIR [--to DIR] [--replace]
 
 Several SWEEP_DIRs are analysed as one sweep (a preset and its extension, e.g. data/chute_3d
 data/chute_3d_stiff); the output goes to the first's report/ or limit/ unless --output says.
+A run found in two of them (the same <scene>/<point> with the same values: a directory given
+twice, a results directory and its summaries) is counted once; two different runs under one
+name are refused.
 
 report      tables, figures, the comparison and report.md in DIR (default SWEEP_DIR/report)
 compare     the comparison table on the terminal: each claim of the paper passes, differs
