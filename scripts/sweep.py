@@ -269,7 +269,10 @@ def is_number(value):
         return False
 
 
+@functools.lru_cache(maxsize=None)
 def law(mn_law, kn, e, beta):
+    """The law's derived numbers, once per material: a grid of many points has few, and each
+    evaluation starts mn-law."""
     try:
         return derived(mn_law, kn, e, beta)
     except LawError as error:
