@@ -335,6 +335,16 @@ def check_path(what, path):
                              "without it")
 
 
+def check_output(output):
+    """An --output must be a directory, or a path one can be made at (no file on it)."""
+    for path in (output, *output.parents):
+        if path.exists():
+            if not path.is_dir():
+                raise SweepError(f"--output {output}: {path} is a file, not a directory; "
+                                 "choose another --output")
+            return
+
+
 def prepare(directory, point, extra):
     """A fresh directory for a point that has not completed: point.json, and runner.json with
     the variables the runner chose for it (`extra`: the checkpoint interval), which a resumed
@@ -621,8 +631,11 @@ def lock_output(output):
     """Holds <output>/sweep.lock while the sweep runs (an flock: the kernel lets go when the
     runner dies, kill -9 included); two sweeps on one output would run its points twice at
     once."""
-    output.mkdir(parents=True, exist_ok=True)
-    handle = open(output / "sweep.lock", "a+")
+    try:
+        output.mkdir(parents=True, exist_ok=True)
+        handle = open(output / "sweep.lock", "a+")
+    except OSError as error:    # made a file since check_output, or not writable
+        raise SweepError(f"--output {output}: {error.strerror}; choose another --output")
     try:
         fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
     except BlockingIOError:
@@ -709,6 +722,7 @@ def main(argv=None):
         output = args.output or ROOT / "results" / config.get("name", Path(args.config).stem)
         for what, path in (("--output", output), ("--build", args.build), ("the checkout", ROOT)):
             check_path(what, path)
+        check_output(output)
         steps = [predicted_steps(p, paths["mn_law"]) for p in points]
     except SweepError as error:
         print(f"sweep: {error}", file=sys.stderr)

@@ -493,3 +493,32 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
                         "--dry-run"]) == 0
     assert "2000 points" in capsys.readouterr().out
     assert sorted(asked) == sorted(set(asked)) and len(asked) == 10
+
+
+# --output that names a file, or a path through one: {case: (script and options, message)};
+# it gave a traceback (FileExistsError, NotADirectoryError), and --dry-run listed every point
+# as to do and exited 0.
+ACCURACY = [sys.executable, str(ROOT / "scripts" / "accuracy.py")]
+BAD_OUTPUTS = {
+    "`--output` naming a file": ((SWEEP, "{file}"), "is a file, not a directory; choose another --output"),
+    "`--output` naming a file, with --dry-run": ((SWEEP, "{file}", "--dry-run"),
+                                                  "is a file, not a directory; choose another --output"),
+    "`--output` inside a file (a file on the path)": ((SWEEP, "{file}/results"),
+                                                        "is a file, not a directory; choose another --output"),
+    "`scripts/accuracy.py --output` naming a file": ((ACCURACY, "{file}"),
+                                                     "is a file, not a directory; choose another --output"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_OUTPUTS))
+def test_output_that_is_a_file_is_refused_with_a_message(tmp_path, case):
+    (script, output, *options), message = BAD_OUTPUTS[case]
+    file = tmp_path / "notes.txt"
+    file.write_text("mine\n")
+    config = single_disk_config(tmp_path, "run_time = 0.5\naverage_start = 0.1\n")
+    arguments = [] if script is ACCURACY else [str(config)]
+    proc = subprocess.run(script + arguments + ["--output", output.format(file=file), "--build",
+                                                str(BUILD), *options],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2 and message in proc.stderr, proc.stdout + proc.stderr
+    assert "Traceback" not in proc.stderr and file.read_text() == "mine\n"
