@@ -178,6 +178,11 @@ def expand(config, path):
             points.append(point)
     seen = set()
     for p in points:
+        if not point_name(p):
+            raise SweepError(f"{path}: a point of scene {p['scene']} with no variable but the "
+                             "scene: a point's directory is named by its variables, and this one "
+                             f"would be <output>/{p['scene']}, where the scene's points are; set "
+                             "one (e.g. seed or kn)")
         name = f"{p['scene']}/{point_name(p)}"
         if name in seen:
             raise SweepError(f"{path}: the grids repeat the point {name} (equal numbers are one "
@@ -345,10 +350,34 @@ def check_output(output):
             return
 
 
+def foreign(directory, point):
+    """Why the runner may not remove a point's directory to run the point afresh, or None: it
+    removes only a directory it made for a point of this scene (point.json, the first file it
+    writes there) that holds files alone (a run writes no folder: one is someone else's)."""
+    if not directory.exists():
+        return None
+    if not directory.is_dir():
+        return "it is a file"
+    try:
+        record = json.loads((directory / "point.json").read_text())
+    except (OSError, ValueError):
+        return "it holds no point.json (the runner writes one into each point it makes)"
+    if not isinstance(record, dict) or record.get("scene") != point["scene"]:
+        return f"its point.json is not of a {point['scene']} point"
+    folders = sorted(entry.name for entry in directory.iterdir() if entry.is_dir())
+    if folders:
+        return f"it holds folders ({', '.join(folders[:3])}), which no run writes"
+    return None
+
+
 def prepare(directory, point, extra):
     """A fresh directory for a point that has not completed: point.json, and runner.json with
     the variables the runner chose for it (`extra`: the checkpoint interval), which a resumed
-    run takes again (its checkpoints were written with them)."""
+    run takes again (its checkpoints were written with them). A directory the runner may not
+    remove (foreign) is refused (main() refuses the sweep before any point runs)."""
+    why = foreign(directory, point)
+    if why:
+        raise SweepError(f"{directory} is not the runner's to remove: {why}; move it away")
     if directory.exists():
         shutil.rmtree(directory)
     directory.mkdir(parents=True)
@@ -770,6 +799,12 @@ def main(argv=None):
         elif args.ranks > 1 and todo:
             check_slots(paths["mpiexec"], args.ranks, env, f"--ranks {args.ranks}")
         lock = lock_output(output)
+        others = [(d, why) for p, d, _ in todo for why in [foreign(d, p)] if why]
+        if others:
+            raise SweepError(
+                f"{len(others)} point directories are not the runner's to remove and run afresh "
+                "(move them away, then run the sweep again): " +
+                "; ".join(f"{d}: {why}" for d, why in others[:5]))
         live = live_runs(d for _, d, _ in todo)
         if live:
             raise SweepError(

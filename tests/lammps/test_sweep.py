@@ -269,6 +269,10 @@ BAD_CONFIGS = {
     "a variable the scene's deck does not use": (
         '[[grid]]\nscene = "single_disk"\nrun_time = 1\naverage_start = 0.5\nseed = [1, 2, 3]\n',
         "seed: inputs/single_disk.lmp does not use it"),
+    # its point's name would be empty and its directory <output>/single_disk: starting it
+    # removed every point of the scene
+    "a grid of the scene alone": ('[[grid]]\nscene = "single_disk"\n',
+                                  "a point of scene single_disk with no variable but the scene"),
     "one value in two spellings": (
         '[[grid]]\nscene = "collisional_flow"\nrun_time = 1\naverage_start = 0.5\n'
         'seed = [1, "01"]\n', 
@@ -522,3 +526,39 @@ def test_output_that_is_a_file_is_refused_with_a_message(tmp_path, case):
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 2 and message in proc.stderr, proc.stdout + proc.stderr
     assert "Traceback" not in proc.stderr and file.read_text() == "mine\n"
+
+
+def test_a_grid_of_the_scene_alone_deletes_no_point(tmp_path):
+    """A [[grid]] that sets only the scene made a point with an empty name, whose directory
+    was <output>/<scene>: starting it removed (rmtree) every completed point of the scene."""
+    output = tmp_path / "out"
+    sweep(single_disk_config(tmp_path, "run_time = 0.5\naverage_start = 0.1\n"), output)
+    done = next((output / "single_disk").iterdir())
+    assert (done / "done.txt").exists()
+    alone = tmp_path / "alone.toml"
+    alone.write_text('[[grid]]\nscene = "single_disk"\n')
+    proc = sweep(alone, output, check=False, timeout=60)
+    assert proc.returncode == 2 and "no variable but the scene" in proc.stderr, proc.stderr
+    assert (done / "done.txt").exists()
+
+
+# A directory at a point's place that the runner did not make for it, or that holds more than
+# a point's outputs: {case: what is put there}. The runner removed it (rmtree) to run the point
+# afresh, with whatever was in it.
+FOREIGN = {"no point.json": {"mine.txt": "notes\n"},
+           "a folder in the point": {"point.json": None, "analysis/fit.txt": "a fit\n"}}
+
+
+@pytest.mark.parametrize("case", sorted(FOREIGN))
+def test_a_directory_the_runner_did_not_make_is_not_removed(tmp_path, case):
+    config = single_disk_config(tmp_path, "run_time = 0.5\naverage_start = 0.1\n")
+    directory = tmp_path / "out" / "single_disk" / "average_start0.1_run_time0.5"
+    for name, text in FOREIGN[case].items():
+        (directory / name).parent.mkdir(parents=True, exist_ok=True)
+        (directory / name).write_text(text or json.dumps(
+            {"scene": "single_disk", "run_time": 0.5, "average_start": 0.1}))
+    proc = sweep(config, tmp_path / "out", check=False)
+    assert proc.returncode == 2 and "not the runner's to remove" in proc.stderr, \
+        proc.stdout + proc.stderr
+    for name, text in FOREIGN[case].items():
+        assert (directory / name).exists(), name
