@@ -32,9 +32,10 @@ cut back to that step, a half-written line or frame included; docs/sweeps.md) if
 is this point's, else it is run again from scratch. A checkpoint the resumed run fails to
 start from (cut short, of another step or point) is set aside (checkpoint.N.unreadable) and
 the older one tried, then a fresh start; the run so far is kept in
-<output>/unresumed/<scene>/<point> until the fresh start has completed. --checkpoint-interval T checkpoints the
-points that set no checkpoint_interval every T time units; it is not part of a point (its name,
-point.json), and the interval a point was begun with (runner.json) is the one it resumes with.
+<output>/unresumed/<scene>/<point> until the fresh start has completed.
+--checkpoint-interval T checkpoints the points that set no checkpoint_interval every T time
+units; it is not part of a point (its name, point.json), and the interval a point was begun
+with (runner.json) is the one it resumes with.
 
 The runner owns its lmp processes: they die with it (kill -9 included), SIGTERM or SIGINT
 stops them and the sweep (exit status 128 + the signal); it refuses to start while a point's

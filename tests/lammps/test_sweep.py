@@ -562,3 +562,11 @@ def test_a_directory_the_runner_did_not_make_is_not_removed(tmp_path, case):
         proc.stdout + proc.stderr
     for name, text in FOREIGN[case].items():
         assert (directory / name).exists(), name
+
+
+def test_a_negative_checkpoint_interval_is_refused(tmp_path):
+    config = single_disk_config(tmp_path, "run_time = 0.5\naverage_start = 0.1\n")
+    proc = sweep(config, tmp_path / "out", "--checkpoint-interval", "-1", check=False)
+    assert proc.returncode == 2 and "--checkpoint-interval -1 must be >= 0 (0: none)" in \
+        proc.stderr, proc.stderr
+    assert not (tmp_path / "out").exists()
