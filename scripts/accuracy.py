@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from postprocess.study import analyse, fit_power    # scripts/postprocess links the package
+from sweep import SweepError, check_output
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -99,7 +100,15 @@ def main():
     parser.add_argument("--build", type=Path, default=ROOT / "build",
                         help="the build whose lmp and plugin run (build-2026/ for LAMMPS 2026)")
     args = parser.parse_args()
-    args.output.mkdir(parents=True, exist_ok=True)
+    try:
+        check_output(args.output)
+        args.output.mkdir(parents=True, exist_ok=True)
+    except SweepError as error:
+        print(f"accuracy: {error}", file=sys.stderr)
+        return 2
+    except OSError as error:    # not writable
+        print(f"accuracy: --output {args.output}: {error.strerror}", file=sys.stderr)
+        return 2
     print("binary collision and bouncing ball:")
     det = deterministic(args.build)
     print("scenes:")
@@ -194,4 +203,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -11,18 +11,38 @@ FINAL = ("counts.txt", "stopped.txt", "profile.txt", "profile_chunk.txt", "done.
          "timing.json", "failed.txt")
 
 
-def latest(directory):
-    """(step, N) of checkpoint.N.restart, the last checkpoint checkpoint.txt confirms complete
-    (the deck writes the line once write_restart has returned), or None. A half-written last
-    line is passed over."""
-    log = Path(directory) / "checkpoint.txt"
-    if not log.exists():
-        return None
-    for line in reversed(log.read_text(errors="replace").splitlines(keepends=True)):
+def candidates(directory):
+    """[(step, N)] of the checkpoints checkpoint.txt confirms complete (the deck writes a line
+    once write_restart has returned), the newest first: of each file checkpoint.N.restart, the
+    last step its lines name, if the file is there and energy.txt reaches that step (the deck
+    writes the step's line before the checkpoint; outputs cut back to an older checkpoint do
+    not reach a newer one). A half-written last line is passed over. The older file may since
+    have been begun again for a later step and cut short by a kill: the deck checks that the
+    step it reads is the one named (resume_step)."""
+    directory = Path(directory)
+    log = directory / "checkpoint.txt"
+    if not log.exists() or not (directory / "energy.txt").exists():
+        return []
+    steps = {}
+    for line in log.read_text(errors="replace").splitlines(keepends=True):
         match = LINE.match(line.rstrip("\n"))
-        if line.endswith("\n") and match and (Path(directory) / match[2]).exists():
-            return int(match[1]), int(match[3])
-    return None
+        if line.endswith("\n") and match:
+            steps[int(match[3])] = int(match[1])
+    reached = -1
+    for line in whole_lines(directory / "energy.txt"):
+        try:
+            reached = max(reached, float(line.split()[0]))
+        except (ValueError, IndexError):    # the comments, the column names
+            pass
+    return sorted(((step, slot) for slot, step in steps.items()
+                   if step <= reached and (directory / f"checkpoint.{slot}.restart").exists()),
+                  reverse=True)
+
+
+def latest(directory):
+    """(step, N) of the newest confirmed checkpoint (candidates), or None."""
+    found = candidates(directory)
+    return found[0] if found else None
 
 
 def whole_lines(path):

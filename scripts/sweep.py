@@ -29,9 +29,13 @@ each run its own and writes timing.json once that run has ended): such a point i
 again, so a killed sweep resumes where it stopped. Any other point resumes from its last
 checkpoint (checkpoint_interval > 0: checkpoint.txt names the last complete one; its outputs are
 cut back to that step, a half-written line or frame included; docs/sweeps.md) if its point.json
-is this point's, else it is run again from scratch. --checkpoint-interval T checkpoints the
-points that set no checkpoint_interval every T time units; it is not part of a point (its name,
-point.json), and the interval a point was begun with (runner.json) is the one it resumes with.
+is this point's, else it is run again from scratch. A checkpoint the resumed run fails to
+start from (cut short, of another step or point) is set aside (checkpoint.N.unreadable) and
+the older one tried, then a fresh start; the run so far is kept in
+<output>/unresumed/<scene>/<point> until the fresh start has completed.
+--checkpoint-interval T checkpoints the points that set no checkpoint_interval every T time
+units; it is not part of a point (its name, point.json), and the interval a point was begun
+with (runner.json) is the one it resumes with.
 
 The runner owns its lmp processes: they die with it (kill -9 included), SIGTERM or SIGINT
 stops them and the sweep (exit status 128 + the signal); it refuses to start while a point's
@@ -86,7 +90,7 @@ SCENES = tuple(sorted(deck.stem for deck in (ROOT / "inputs").glob("*.lmp")
                       if re.search(r"^variable scene index (\w+)", deck.read_text(), re.M)))
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 # Deck variables the runner sets itself for every point.
-RESERVED = {"plugin", "lib", "out", "run_token", "resume"}
+RESERVED = {"plugin", "lib", "out", "run_token", "resume", "resume_step"}
 # What LAMMPS's input syntax does not carry in a file name: a word ends at whitespace;
 # quotes, $ (a variable) and # (a comment) are syntax.
 PATH_SYNTAX = {" ": "a space", "\t": "a tab", "\n": "a newline", '"': "a quote (\")",
@@ -178,6 +182,11 @@ def expand(config, path):
             points.append(point)
     seen = set()
     for p in points:
+        if not point_name(p):
+            raise SweepError(f"{path}: a point of scene {p['scene']} with no variable but the "
+                             "scene: a point's directory is named by its variables, and this one "
+                             f"would be <output>/{p['scene']}, where the scene's points are; set "
+                             "one (e.g. seed or kn)")
         name = f"{p['scene']}/{point_name(p)}"
         if name in seen:
             raise SweepError(f"{path}: the grids repeat the point {name} (equal numbers are one "
@@ -269,7 +278,10 @@ def is_number(value):
         return False
 
 
+@functools.lru_cache(maxsize=None)
 def law(mn_law, kn, e, beta):
+    """The law's derived numbers, once per material: a grid of many points has few, and each
+    evaluation starts mn-law."""
     try:
         return derived(mn_law, kn, e, beta)
     except LawError as error:
@@ -332,10 +344,44 @@ def check_path(what, path):
                              "without it")
 
 
+def check_output(output):
+    """An --output must be a directory, or a path one can be made at (no file on it)."""
+    for path in (output, *output.parents):
+        if path.exists():
+            if not path.is_dir():
+                raise SweepError(f"--output {output}: {path} is a file, not a directory; "
+                                 "choose another --output")
+            return
+
+
+def foreign(directory, point):
+    """Why the runner may not remove a point's directory to run the point afresh, or None: it
+    removes only a directory it made for a point of this scene (point.json, the first file it
+    writes there) that holds files alone (a run writes no folder: one is someone else's)."""
+    if not directory.exists():
+        return None
+    if not directory.is_dir():
+        return "it is a file"
+    try:
+        record = json.loads((directory / "point.json").read_text())
+    except (OSError, ValueError):
+        return "it holds no point.json (the runner writes one into each point it makes)"
+    if not isinstance(record, dict) or record.get("scene") != point["scene"]:
+        return f"its point.json is not of a {point['scene']} point"
+    folders = sorted(entry.name for entry in directory.iterdir() if entry.is_dir())
+    if folders:
+        return f"it holds folders ({', '.join(folders[:3])}), which no run writes"
+    return None
+
+
 def prepare(directory, point, extra):
     """A fresh directory for a point that has not completed: point.json, and runner.json with
     the variables the runner chose for it (`extra`: the checkpoint interval), which a resumed
-    run takes again (its checkpoints were written with them)."""
+    run takes again (its checkpoints were written with them). A directory the runner may not
+    remove (foreign) is refused (main() refuses the sweep before any point runs)."""
+    why = foreign(directory, point)
+    if why:
+        raise SweepError(f"{directory} is not the runner's to remove: {why}; move it away")
     if directory.exists():
         shutil.rmtree(directory)
     directory.mkdir(parents=True)
@@ -343,24 +389,71 @@ def prepare(directory, point, extra):
     (directory / "runner.json").write_text(json.dumps(extra, sort_keys=True) + "\n")
 
 
-def resume_or_prepare(directory, point, extra):
-    """The variables of a point's next run beyond its own: the runner.json ones and {"resume": N}
-    for a point whose directory holds a checkpoint (checkpoint.N.restart) of the same point,
-    its outputs cut back to it; else `extra` and a fresh directory. The deck itself refuses a
-    checkpoint of another point or plugin layout, by name (fix checkpoint/mn)."""
+def kept_aside(directory):
+    """Where a point's run that could not be resumed is kept while the point starts afresh:
+    <output>/unresumed/<scene>/<point> (not a point's place: the post-processing reads
+    <output>/<scene>/<point>)."""
+    return directory.parents[1] / "unresumed" / directory.parent.name / directory.name
+
+
+def resume_or_prepare(directory, point, extra, keep=False):
+    """The variables of a point's next run beyond its own: the runner.json ones and {"resume": N,
+    "resume_step": S} for a point whose directory holds a checkpoint (checkpoint.N.restart, at
+    step S) of the same point, its outputs cut back to it; else `extra` and a fresh directory.
+    The deck itself refuses a checkpoint of another point or plugin layout, by name (fix
+    checkpoint/mn), and one of another step than S. With `keep` (its resumes failed: the
+    ERROR may be lmp's or the plugin's rather than the checkpoints'), the directory a fresh
+    start replaces is kept aside (kept_aside), not removed."""
     try:
         same_point = json.loads((directory / "point.json").read_text()) == point
-        latest = same_point and checkpoints.latest(directory)
-        if latest:
-            step, slot = latest
+        found = same_point and checkpoints.candidates(directory)
+        if found:
+            step, slot = found[0]
             kept = json.loads((directory / "runner.json").read_text()) \
                 if (directory / "runner.json").exists() else {}
             checkpoints.cut_outputs(directory, step)
-            return {**kept, "resume": slot}
+            return {**kept, "resume": slot, "resume_step": step}
     except (OSError, ValueError, KeyError):
         pass
+    if keep and directory.exists() and not foreign(directory, point):
+        aside = kept_aside(directory)
+        if aside.exists() and not foreign(aside, point):   # of an earlier sweep
+            shutil.rmtree(aside)
+        aside.parent.mkdir(parents=True, exist_ok=True)
+        directory.replace(aside)
     prepare(directory, point, extra)
     return dict(extra)
+
+
+# In the log of a run that has passed its first LAMMPS setup (Output::setup prints it there)
+SETUP_DONE = "Per MPI rank memory allocation"
+
+
+def set_aside_failed_resume(directory, variables):
+    """After a failed run: if it resumed from a checkpoint and failed before its first setup
+    (read_restart's ERROR on a file cut short, a checkpoint of another point, step or layout),
+    the file is set aside (checkpoint.N.unreadable), so that the next run of the point resumes
+    from the older checkpoint, or starts afresh; what happened, for the progress line and
+    failed.txt. None for any other failure."""
+    if "resume" not in variables:
+        return None
+    name = f"checkpoint.{variables['resume']}.restart"
+    try:
+        log = (directory / "log.lammps").read_text(errors="replace")
+    except OSError:
+        return None
+    # the deck's line before read_restart (its command, echoed, names ${resume_file}): a run
+    # that failed before it (the plugin not loaded, say) says nothing about the checkpoint
+    if f"resuming from checkpoint {directory / name}\n" not in log or SETUP_DONE in log:
+        return None
+    (directory / name).replace(directory / f"checkpoint.{variables['resume']}.unreadable")
+    errors = error_lines(directory / "log.lammps") or ["no ERROR line"]
+    following = checkpoints.candidates(directory)
+    then = (f"resuming from checkpoint.{following[0][1]}.restart (step {following[0][0]})"
+            if following else f"starting it afresh (the run so far kept in "
+                              f"{kept_aside(directory)})")
+    return (f"the resume from {name} (step {variables['resume_step']}) failed ({errors[0]}); "
+            f"it is set aside as checkpoint.{variables['resume']}.unreadable; {then}")
 
 
 def completed(directory):
@@ -513,42 +606,58 @@ def wait(proc, directories, ended=None):
     return proc.returncode, elapsed, usage.ru_utime + usage.ru_stime, stuck
 
 
-def run_serial(point, directory, paths, env, ranks, extra):
+def run_serial(point, directory, paths, env, ranks, extra, notes):
     """(outcome, wall seconds, note) of a point run as one lmp process, or as `mpirun -np
-    ranks lmp` (one LAMMPS world of `ranks` ranks: the domain decomposed)."""
-    if _stopped_by:
-        return "stopped", 0.0, ""
-    token = secrets.token_hex(8)
-    resume = resume_or_prepare(directory, point, extra)
-    mpirun = [paths["mpiexec"], "-np", str(ranks)] if ranks > 1 else []
-    command = mpirun + [str(paths["lmp"]), "-in", str(ROOT / "inputs" / f"{point['scene']}.lmp"),
-               "-log", str(directory / "log.lammps"), "-screen", "none", "-nocite"]
-    for name, value in {**point_variables(point, directory, paths, token), **resume}.items():
-        command += ["-var", name, format_value(value)]
-    (directory / "command.txt").write_text(shlex.join(command) + "\n")
-    proc = start(command, directory / "run.out", env, [directory])
-    if proc is None:
-        return "stopped", 0.0, ""
-    status, elapsed, cpu, _ = wait(proc, [directory])
-    outcome = finish(directory, token, status, elapsed, cpu,
-                     [directory / "log.lammps", directory / "run.out"], directory / "run.out")
-    return outcome, elapsed, ""
+    ranks lmp` (one LAMMPS world of `ranks` ranks: the domain decomposed). A resume that fails
+    (set_aside_failed_resume) is followed at once by the next try: the older checkpoint, then
+    a fresh start; `notes[directory]` says what happened."""
+    while True:
+        if _stopped_by:
+            return "stopped", 0.0, ""
+        token = secrets.token_hex(8)
+        variables = resume_or_prepare(directory, point, extra, keep=directory in notes)
+        mpirun = [paths["mpiexec"], "-np", str(ranks)] if ranks > 1 else []
+        command = mpirun + [str(paths["lmp"]), "-in",
+                            str(ROOT / "inputs" / f"{point['scene']}.lmp"),
+                            "-log", str(directory / "log.lammps"), "-screen", "none", "-nocite"]
+        for name, value in {**point_variables(point, directory, paths, token),
+                            **variables}.items():
+            command += ["-var", name, format_value(value)]
+        (directory / "command.txt").write_text(shlex.join(command) + "\n")
+        proc = start(command, directory / "run.out", env, [directory])
+        if proc is None:
+            return "stopped", 0.0, ""
+        status, elapsed, cpu, _ = wait(proc, [directory])
+        failed_resume = not wrote_done(directory, token) and not _stopped_by and \
+            set_aside_failed_resume(directory, variables)
+        if failed_resume:
+            notes.setdefault(directory, []).append(failed_resume)
+            print(f"sweep: {directory}: {failed_resume}", flush=True)
+            continue
+        outcome = finish(directory, token, status, elapsed, cpu,
+                         [directory / "log.lammps", directory / "run.out"],
+                         directory / "run.out", variables, notes.get(directory, []))
+        return outcome, elapsed, ""
 
 
-def run_partitions(batch, batch_dir, paths, env, ranks, extras):
+def run_partitions(batch, batch_dir, paths, env, ranks, extras, notes):
     """Points of one batch as the partitions of one lmp run, `ranks` MPI ranks each:
     [(outcome, wall seconds, note)]. Each partition's rank 0 writes its point's log and outputs.
     A LAMMPS ERROR in one partition aborts them all (MPI_Abort): a sibling without an ERROR of
-    its own did not fail, its outcome is "rerun"."""
+    its own did not fail, its outcome is "rerun"; so is a point whose resume failed
+    (set_aside_failed_resume: its next run takes the older checkpoint, or starts afresh)."""
     batch_dir.mkdir(parents=True, exist_ok=True)
     directories = [directory for _, directory in batch]
     tokens = [secrets.token_hex(8) for _ in batch]
+    resumes = []
     for (point, directory), token in zip(batch, tokens):
-        resume = resume_or_prepare(directory, point, extras[directory])
+        variables = resume_or_prepare(directory, point, extras[directory],
+                                      keep=directory in notes)
+        resumes.append(variables)
         lines = [f"log {directory / 'log.lammps'}"]
         lines += [f"variable {name} index {format_value(value)}"
                   for name, value in {**point_variables(point, directory, paths, token),
-                                      **resume}.items()]
+                                      **variables}.items()]
         lines.append(f"include {ROOT / 'inputs' / (point['scene'] + '.lmp')}")
         (directory / "settings.lmp").write_text("\n".join(lines) + "\n")
     driver = batch_dir / "driver.lmp"
@@ -574,34 +683,63 @@ def run_partitions(batch, batch_dir, paths, env, ranks, extras):
             "does not return once a partition has quit)") if stuck else ""
     culprits = [d for d in directories if error_lines(d / "log.lammps")]
     results = []
-    for directory, token in zip(directories, tokens):
+    for directory, token, variables in zip(directories, tokens, resumes):
         if culprits and directory not in culprits and not wrote_done(directory, token) \
                 and not _stopped_by:
             results.append(("rerun", elapsed, "its batch ended with the ERROR of " +
                             ", ".join(d.name for d in culprits)))
             continue
+        failed_resume = not wrote_done(directory, token) and not _stopped_by and \
+            set_aside_failed_resume(directory, variables)
+        if failed_resume:
+            notes.setdefault(directory, []).append(failed_resume)
+            results.append(("rerun", elapsed, failed_resume))
+            continue
         # one process for the batch: its time is shared out equally
         outcome = finish(directory, token, status, elapsed, cpu / n,
                          [directory / "log.lammps", batch_dir / "log.lammps",
-                          batch_dir / "run.out"], batch_dir / "run.out", note)
+                          batch_dir / "run.out"], batch_dir / "run.out", variables,
+                         notes.get(directory, []), note)
         results.append((outcome, elapsed, ""))
     return results
 
 
-def finish(directory, token, status, elapsed, cpu, logs, output, note=""):
+def finish(directory, token, status, elapsed, cpu, logs, output, variables, notes, note=""):
     """A point's outcome: "done" (done.txt carries the run's token; timing.json is written with
     it), "stopped" (by a signal to the sweep), else "failed" (failed.txt: the exit status, the
-    ERROR lines of logs, the end of output)."""
+    ERROR lines of logs, how the run began (afresh or from which checkpoint) and what went
+    before it (notes: failed resumes), what to do, the end of output)."""
+    aside = kept_aside(directory)
     if wrote_done(directory, token):
         (directory / "timing.json").write_text(
             json.dumps({"seconds": elapsed, "cpu_seconds": cpu, "run": token}) + "\n")
+        # a fresh start that completed: the run it replaced is of no more use
+        if notes and "resume" not in variables and aside.exists() and \
+                not foreign(aside, json.loads((directory / "point.json").read_text())):
+            shutil.rmtree(aside)
+            try:    # unresumed/<scene>/ and unresumed/, if nothing else is kept there
+                os.removedirs(aside.parent)
+            except OSError:
+                pass
         return "done"
     if _stopped_by:
         return "stopped"
     errors = error_lines(*logs) or [f"(no ERROR line in {', '.join(str(p) for p in logs)})"]
+    began = (f"from checkpoint.{variables['resume']}.restart (step {variables['resume_step']})"
+             if "resume" in variables else "afresh")
+    history = "".join(f"before it: {line}\n" for line in notes)
+    if notes and "resume" not in variables and aside.exists():
+        history += (f"the run that could not be resumed is kept in {aside}: if the ERROR is not "
+                    "its checkpoints' (but lmp's or the plugin's, as here where the fresh start "
+                    "failed too), mend that, put it back in place of this directory, rename its "
+                    "checkpoint.N.unreadable back to checkpoint.N.restart (a resume takes the "
+                    "newest its outputs reach) and run the sweep again\n")
     printed = output.read_text(errors="replace") if output.exists() else ""
-    (directory / "failed.txt").write_text(f"exit status {status}{note}\n" + "\n".join(errors) +
-                                          f"\n--- the end of {output}\n{printed[-40000:]}\n")
+    (directory / "failed.txt").write_text(
+        f"exit status {status}{note}\n" + "\n".join(errors) + f"\nthis run began {began}\n" +
+        history + "what to do: mend what the ERROR names, then run the sweep again: it runs "
+        "this point from its newest checkpoint if it has one, else afresh (remove this "
+        f"directory to start it afresh)\n--- the end of {output}\n{printed[-40000:]}\n")
     return "failed"
 
 
@@ -618,8 +756,11 @@ def lock_output(output):
     """Holds <output>/sweep.lock while the sweep runs (an flock: the kernel lets go when the
     runner dies, kill -9 included); two sweeps on one output would run its points twice at
     once."""
-    output.mkdir(parents=True, exist_ok=True)
-    handle = open(output / "sweep.lock", "a+")
+    try:
+        output.mkdir(parents=True, exist_ok=True)
+        handle = open(output / "sweep.lock", "a+")
+    except OSError as error:    # made a file since check_output, or not writable
+        raise SweepError(f"--output {output}: {error.strerror}; choose another --output")
     try:
         fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
     except BlockingIOError:
@@ -706,6 +847,7 @@ def main(argv=None):
         output = args.output or ROOT / "results" / config.get("name", Path(args.config).stem)
         for what, path in (("--output", output), ("--build", args.build), ("the checkout", ROOT)):
             check_path(what, path)
+        check_output(output)
         steps = [predicted_steps(p, paths["mn_law"]) for p in points]
     except SweepError as error:
         print(f"sweep: {error}", file=sys.stderr)
@@ -753,6 +895,12 @@ def main(argv=None):
         elif args.ranks > 1 and todo:
             check_slots(paths["mpiexec"], args.ranks, env, f"--ranks {args.ranks}")
         lock = lock_output(output)
+        others = [(d, why) for p, d, _ in todo for why in [foreign(d, p)] if why]
+        if others:
+            raise SweepError(
+                f"{len(others)} point directories are not the runner's to remove and run afresh "
+                "(move them away, then run the sweep again): " +
+                "; ".join(f"{d}: {why}" for d, why in others[:5]))
         live = live_runs(d for _, d, _ in todo)
         if live:
             raise SweepError(
@@ -767,6 +915,7 @@ def main(argv=None):
 
     unfinished = {d: (p, s) for p, d, s in todo}
     failures = []
+    resume_notes = {}      # {directory: [what each failed resume of it did]}
 
     def report(point, directory, predicted, outcome, elapsed, note):
         if outcome == "stopped":
@@ -799,7 +948,7 @@ def main(argv=None):
                 batch, queue = queue[:args.partitions], queue[args.partitions:]
                 results = pool.submit(run_partitions, [(p, d) for p, d, _ in batch],
                                       output / "batches" / f"batch{number}", paths, env,
-                                      args.ranks, extra).result()
+                                      args.ranks, extra, resume_notes).result()
                 number += 1
                 for (p, d, s), (outcome, elapsed, note) in zip(batch, results):
                     if outcome == "rerun":
@@ -807,7 +956,8 @@ def main(argv=None):
                     # each point of the batch ran for the batch's wall time
                     report(p, d, model.predict(p, s), outcome, elapsed, note)
         else:
-            futures = {pool.submit(run_serial, p, d, paths, env, args.ranks, extra[d]): (p, d, s)
+            futures = {pool.submit(run_serial, p, d, paths, env, args.ranks, extra[d],
+                                   resume_notes): (p, d, s)
                        for p, d, s in todo}
             for future in concurrent.futures.as_completed(futures):
                 p, d, s = futures[future]

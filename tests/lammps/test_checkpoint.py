@@ -5,6 +5,7 @@ a checkpoint of another point, another restart layout or a damaged file is refus
 import glob
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -94,7 +95,9 @@ def test_killed_point_resumes_from_its_checkpoint_to_the_same_outputs(tmp_path, 
     (directory / "done.txt").write_text("kn 1 steps 1 dt 1\n")
     proc = sweep(config, tmp_path / "killed", "--jobs", "1")
     assert "1 to run" in proc.stdout
-    assert "resuming from checkpoint" in (directory / "log.lammps").read_text()
+    # (the deck's print, not its command echoed in the log)
+    assert f"resuming from checkpoint {directory}/checkpoint." in \
+        (directory / "log.lammps").read_text()
     whole = point_dir(tmp_path / "whole")
     names = ["energy.txt", "snapshots.lammpstrj"]
     names += ["counts.txt", "profile_chunks.txt", "contacts.txt"] if scene != "single_disk" \
@@ -138,7 +141,9 @@ def test_stiff_point_with_its_stop_test_resumes_to_the_same_outputs(tmp_path, pi
     directory, step = kill_mid_chunk(config, tmp_path / "killed", *every, after=after)
     proc = sweep(config, tmp_path / "killed", "--jobs", "1", *every)
     assert "1 to run" in proc.stdout
-    assert "resuming from checkpoint" in (directory / "log.lammps").read_text()
+    # (the deck's print, not its command echoed in the log)
+    assert f"resuming from checkpoint {directory}/checkpoint." in \
+        (directory / "log.lammps").read_text()
     whole = point_dir(tmp_path / "whole")
     assert "checkpoint" not in whole.name and whole.name == directory.name
     for name in ("energy.txt", "counts.txt", "contacts.txt", "profile_chunks.txt",
@@ -154,6 +159,114 @@ def test_stiff_point_with_its_stop_test_resumes_to_the_same_outputs(tmp_path, pi
     else:
         assert not (whole / "stopped.txt").exists()
         assert not (directory / "stopped.txt").exists()
+
+
+def confirmed(directory):
+    """(step, path) of the newest checkpoint checkpoint.txt names and of the older one (the
+    other file's last line)."""
+    lines = [line.split() for line in (directory / "checkpoint.txt").read_text().splitlines()]
+    older = [words for words in lines if words[2] != lines[-1][2]][-1]
+    return [(int(words[1]), directory / words[2]) for words in (lines[-1], older)]
+
+
+# Checkpoints that checkpoint.txt names complete but that cannot be resumed from:
+# {case: (what is done to them, the checkpoint the point is resumed from: "older" or None)}.
+# "cut short": half the file (a full disk); "later step": the older file holds, complete, the
+# newest file's step (begun again for a later checkpoint and written, the kill before its line).
+CUT_SHORT = {"the newest cut short": ("cut short", "older"),
+             "both cut short": ("both cut short", None),
+             "the newest cut short, the older of a later step": ("later step", None)}
+
+
+@pytest.mark.parametrize("mode", ["jobs", "partitions"])
+@pytest.mark.parametrize("case", sorted(CUT_SHORT))
+def test_a_checkpoint_that_cannot_be_resumed_is_passed_over(tmp_path, case, mode):
+    """A checkpoint named complete in checkpoint.txt but cut short failed every later resume of
+    the point (read_restart's ERROR, failed.txt), the older intact checkpoint never tried: the
+    runner sets it aside and resumes from the older one, or, where that cannot be resumed from
+    either (cut short; a file of another step than checkpoint.txt names, which the deck
+    refuses), starts the point afresh, saying so; the point ends with the uninterrupted run's
+    outputs (a fresh start repeats the run to the bit)."""
+    damage, resumed = CUT_SHORT[case]
+    options = ("--jobs", "1") if mode == "jobs" else ("--partitions", "1")
+    config = write_config(tmp_path, "single_disk")
+    sweep(config, tmp_path / "whole", "--jobs", "1")
+    directory, _ = kill_mid_chunk(config, tmp_path / "killed")
+    (newest_step, newest), (older_step, older) = confirmed(directory)
+    complete = newest.read_bytes()
+    newest.write_bytes(complete[:len(complete) // 2])
+    if damage == "both cut short":
+        older.write_bytes(older.read_bytes()[:len(complete) // 2])
+    elif damage == "later step":
+        older.write_bytes(complete)
+    proc = sweep(config, tmp_path / "killed", *options)
+    said = proc.stdout
+    assert f"the resume from {newest.name} (step {newest_step}) failed (ERROR" in said, said
+    # (the deck's print, not its command echoed in the log)
+    resumed_line = f"resuming from checkpoint {directory}/checkpoint."
+    if resumed == "older":
+        assert f"resuming from {older.name} (step {older_step})" in said, said
+        assert f"resuming from checkpoint {older}\n" in (directory / "log.lammps").read_text()
+    else:
+        assert f"the resume from {older.name} (step {older_step}) failed" in said, said
+        assert "starting it afresh" in said, said
+        assert resumed_line not in (directory / "log.lammps").read_text()
+    if damage == "later step":
+        assert f"holds step {newest_step}, not the checkpoint checkpoint.txt names" in said
+    # the run kept aside while the point started afresh goes once the fresh start has completed
+    assert not (tmp_path / "killed" / "unresumed").exists()
+    whole = point_dir(tmp_path / "whole")
+    for name in ("energy.txt", "snapshots.lammpstrj", "trajectory.txt"):
+        assert data_lines(directory / name) == data_lines(whole / name), name
+
+
+def test_a_point_whose_fresh_start_fails_too_keeps_its_run(tmp_path):
+    """Where lmp or the plugin is at fault (here the plugin is no library: LAMMPS loads nothing
+    and read_restart meets an unknown pair style), every resume fails and so does the fresh
+    start: the run so far must not be lost with the checkpoints it blamed. It is kept aside,
+    failed.txt says where and what to do, and once the build is mended and the run put back,
+    the point resumes to the uninterrupted run's outputs."""
+    config = write_config(tmp_path, "single_disk")
+    sweep(config, tmp_path / "whole", "--jobs", "1")
+    directory, _ = kill_mid_chunk(config, tmp_path / "killed")
+    broken = tmp_path / "broken"
+    (broken / "plugin").mkdir(parents=True)
+    (broken / "lammps").mkdir()
+    (broken / "lammps" / "lmp").symlink_to(BUILD / "lammps" / "lmp")
+    (broken / "plugin" / "mn-law").symlink_to(BUILD / "plugin" / "mn-law")
+    (broken / "plugin" / "granmnplugin.so").write_text("not a library\n")
+    proc = subprocess.run(SWEEP + [str(config), "--output", str(tmp_path / "killed"), "--build",
+                                   str(broken), "--jobs", "1"], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    aside = tmp_path / "killed" / "unresumed" / "single_disk" / directory.name
+    failed = (directory / "failed.txt").read_text()
+    assert "this run began afresh" in failed and f"is kept in {aside}" in failed, failed
+    assert len(list(aside.glob("checkpoint.*.unreadable"))) == 2
+    # mended: the run put back, its checkpoints named again
+    shutil.rmtree(directory)
+    aside.replace(directory)
+    for kept in directory.glob("checkpoint.*.unreadable"):
+        kept.replace(kept.with_suffix(".restart"))
+    sweep(config, tmp_path / "killed", "--jobs", "1")
+    assert f"resuming from checkpoint {directory}/checkpoint." in \
+        (directory / "log.lammps").read_text()
+    whole = point_dir(tmp_path / "whole")
+    for name in ("energy.txt", "snapshots.lammpstrj", "trajectory.txt"):
+        assert data_lines(directory / name) == data_lines(whole / name), name
+
+
+def test_failed_txt_says_how_the_run_began_and_what_to_do(tmp_path):
+    """failed.txt gave the exit status and the ERROR alone: whether the run had resumed, and
+    what to do about it, were left to guess."""
+    config = write_config(tmp_path, "single_disk")
+    config.write_text(config.read_text().replace("average_start = 5", "average_start = 50"))
+    proc = sweep(config, tmp_path / "out", "--jobs", "1", check=False)
+    assert proc.returncode == 1
+    failed = (point_dir(tmp_path / "out") / "failed.txt").read_text()
+    assert "ERROR: deck variable average_start = 50 must lie in [0, run_time = 40)" in failed
+    assert "this run began afresh" in failed
+    assert "what to do: mend what the ERROR names, then run the sweep again" in failed
 
 
 def test_truncated_done_is_not_taken(tmp_path):

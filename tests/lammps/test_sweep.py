@@ -269,6 +269,10 @@ BAD_CONFIGS = {
     "a variable the scene's deck does not use": (
         '[[grid]]\nscene = "single_disk"\nrun_time = 1\naverage_start = 0.5\nseed = [1, 2, 3]\n',
         "seed: inputs/single_disk.lmp does not use it"),
+    # its point's name would be empty and its directory <output>/single_disk: starting it
+    # removed every point of the scene
+    "a grid of the scene alone": ('[[grid]]\nscene = "single_disk"\n',
+                                  "a point of scene single_disk with no variable but the scene"),
     "one value in two spellings": (
         '[[grid]]\nscene = "collisional_flow"\nrun_time = 1\naverage_start = 0.5\n'
         'seed = [1, "01"]\n', 
@@ -473,3 +477,96 @@ def test_done_txt_of_another_run_is_not_taken(tmp_path):
     resumed = sweep(config, output)
     assert "1 already done, 2 to run" in resumed.stdout, resumed.stdout
     assert "3 already done, 0 to run" in sweep(config, output).stdout
+
+
+def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
+    """A grid of 2000 points made of 10 materials (k_n, e, beta) asks build/plugin/mn-law 10
+    times: it started mn-law once per point (44 s for the --dry-run of such a grid)."""
+    import importlib
+    import sweep as runner
+    runner = importlib.reload(runner)     # no material known yet
+    asked = []
+    law = runner.derived
+    monkeypatch.setattr(runner, "derived",
+                        lambda tool, *material: asked.append(material) or law(tool, *material))
+    config = tmp_path / "grid.toml"
+    config.write_text('[[grid]]\nscene = "collisional_flow"\n'
+                      f'kn = [{", ".join(str(5e4 * 2 ** k) for k in range(10))}]\n'
+                      f'seed = [{", ".join(str(seed) for seed in range(1, 201))}]\n')
+    assert runner.main([str(config), "--output", str(tmp_path / "out"), "--build", str(BUILD),
+                        "--dry-run"]) == 0
+    assert "2000 points" in capsys.readouterr().out
+    assert sorted(asked) == sorted(set(asked)) and len(asked) == 10
+
+
+# --output that names a file, or a path through one: {case: (script and options, message)};
+# it gave a traceback (FileExistsError, NotADirectoryError), and --dry-run listed every point
+# as to do and exited 0.
+ACCURACY = [sys.executable, str(ROOT / "scripts" / "accuracy.py")]
+BAD_OUTPUTS = {
+    "`--output` naming a file": ((SWEEP, "{file}"), "is a file, not a directory; choose another --output"),
+    "`--output` naming a file, with --dry-run": ((SWEEP, "{file}", "--dry-run"),
+                                                  "is a file, not a directory; choose another --output"),
+    "`--output` inside a file (a file on the path)": ((SWEEP, "{file}/results"),
+                                                        "is a file, not a directory; choose another --output"),
+    "`scripts/accuracy.py --output` naming a file": ((ACCURACY, "{file}"),
+                                                     "is a file, not a directory; choose another --output"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_OUTPUTS))
+def test_output_that_is_a_file_is_refused_with_a_message(tmp_path, case):
+    (script, output, *options), message = BAD_OUTPUTS[case]
+    file = tmp_path / "notes.txt"
+    file.write_text("mine\n")
+    config = single_disk_config(tmp_path, "run_time = 0.5\naverage_start = 0.1\n")
+    arguments = [] if script is ACCURACY else [str(config)]
+    proc = subprocess.run(script + arguments + ["--output", output.format(file=file), "--build",
+                                                str(BUILD), *options],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2 and message in proc.stderr, proc.stdout + proc.stderr
+    assert "Traceback" not in proc.stderr and file.read_text() == "mine\n"
+
+
+def test_a_grid_of_the_scene_alone_deletes_no_point(tmp_path):
+    """A [[grid]] that sets only the scene made a point with an empty name, whose directory
+    was <output>/<scene>: starting it removed (rmtree) every completed point of the scene."""
+    output = tmp_path / "out"
+    sweep(single_disk_config(tmp_path, "run_time = 0.5\naverage_start = 0.1\n"), output)
+    done = next((output / "single_disk").iterdir())
+    assert (done / "done.txt").exists()
+    alone = tmp_path / "alone.toml"
+    alone.write_text('[[grid]]\nscene = "single_disk"\n')
+    proc = sweep(alone, output, check=False, timeout=60)
+    assert proc.returncode == 2 and "no variable but the scene" in proc.stderr, proc.stderr
+    assert (done / "done.txt").exists()
+
+
+# A directory at a point's place that the runner did not make for it, or that holds more than
+# a point's outputs: {case: what is put there}. The runner removed it (rmtree) to run the point
+# afresh, with whatever was in it.
+FOREIGN = {"no point.json": {"mine.txt": "notes\n"},
+           "a folder in the point": {"point.json": None, "analysis/fit.txt": "a fit\n"}}
+
+
+@pytest.mark.parametrize("case", sorted(FOREIGN))
+def test_a_directory_the_runner_did_not_make_is_not_removed(tmp_path, case):
+    config = single_disk_config(tmp_path, "run_time = 0.5\naverage_start = 0.1\n")
+    directory = tmp_path / "out" / "single_disk" / "average_start0.1_run_time0.5"
+    for name, text in FOREIGN[case].items():
+        (directory / name).parent.mkdir(parents=True, exist_ok=True)
+        (directory / name).write_text(text or json.dumps(
+            {"scene": "single_disk", "run_time": 0.5, "average_start": 0.1}))
+    proc = sweep(config, tmp_path / "out", check=False)
+    assert proc.returncode == 2 and "not the runner's to remove" in proc.stderr, \
+        proc.stdout + proc.stderr
+    for name, text in FOREIGN[case].items():
+        assert (directory / name).exists(), name
+
+
+def test_a_negative_checkpoint_interval_is_refused(tmp_path):
+    config = single_disk_config(tmp_path, "run_time = 0.5\naverage_start = 0.1\n")
+    proc = sweep(config, tmp_path / "out", "--checkpoint-interval", "-1", check=False)
+    assert proc.returncode == 2 and "--checkpoint-interval -1 must be >= 0 (0: none)" in \
+        proc.stderr, proc.stderr
+    assert not (tmp_path / "out").exists()
