@@ -11,8 +11,10 @@ GOOD_PAIR = "pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5"
 
 def deck(pair=GOOD_PAIR, coeff="pair_coeff * *", fix="", timestep="timestep 5e-5",
          dimension="dimension 2", atom_style="atom_style sphere", comm="comm_modify vel yes",
-         z="-0.5 0.5", second="1.2 0.5 0"):
+         z="-0.5 0.5", second="1.2 0.5 0", boundary="p f p"):
+    """Two disks (y not periodic: the wall fixes' cases need it) and `fix`."""
     header = (HEADER.format(plugin=PLUGIN)
+              .replace("boundary p p p", f"boundary {boundary}")
               .replace("dimension 2", dimension)
               .replace("atom_style sphere", atom_style)
               .replace("comm_modify vel yes", comm))
@@ -101,6 +103,11 @@ ERRORS = {
         "fix wall/gran/mn: timestep 5e-05 exceeds the stability limit"),
     "atom behind the wall": (deck(fix="fix floor all wall/gran/mn yplane 0.6 NULL"),
                              "has passed through the wall at 0.6"),
+    # an atom re-entering through the periodic boundary came back inside the wall (and was shot
+    # out at v = 233)
+    "wall in a periodic dimension": (
+        deck(boundary="p p p", fix="fix floor all wall/gran/mn yplane -2.0 NULL"),
+        "Fix wall/gran/mn: cannot use wall in periodic dimension y"),
     "kn so large the law overflows": (
         deck(pair="pair_style gran/mn kn 1e308 e 0.7 beta 0.7 mu 0.5"),
         "kn is too large: the derived coefficients (tau_c, eta_n, kt) overflow"),

@@ -6,7 +6,7 @@ import pytest
 
 from collision_decks import DISC_DENSITY, bounces, disk_over_floor, two_disks
 from granmn_run import law, restitution_error_bound, run_lammps, run_scene
-from pile_decks import BETA, E, FIXES, KN, styles
+from pile_decks import BETA, BOUNDARY, E, FIXES, KN, styles
 
 COUNTS = "id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]"
 SUMS = "$(f_c[1]) $(f_c[2]) $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6]) $(f_c[7]) $(f_c[8])"
@@ -121,8 +121,8 @@ FINAL_COUNTS = f"write_dump mobile custom counts.txt {COUNTS} modify sort id\n"
 
 
 def counted_run(settled, workdir, newton="on", nprocs=1, integrator="nve/sphere disc"):
-    deck = (f"newton {newton}\nprocessors * 1 1\nread_data {settled}\ngroup mobile type 1\n" +
-            styles(0.5, integrator=integrator) +
+    deck = (f"newton {newton}\nprocessors * 1 1\n{BOUNDARY}read_data {settled}\n"
+            "group mobile type 1\n" + styles(0.5, integrator=integrator) +
             COUNTERS + f"run {HALF}\nwrite_restart mid.restart\nrun {HALF}\n" + FINAL_COUNTS)
     return run_lammps(deck, workdir, nprocs=nprocs)
 
@@ -248,8 +248,9 @@ def test_restart_with_a_different_contact_history_is_refused(settled, counted_re
     """A restart written with counters (u_t and 3 values per contact) read without them (u_t
     only), or the other way round, would misread every contact's history: it is an error."""
     if counters:    # a restart without counters, continued with them
-        written = run_lammps(f"read_data {settled}\ngroup mobile type 1\n" + styles(0.5) +
-                             "run 10\nwrite_restart plain.restart\n", tmp_path / "plain")
+        written = run_lammps(f"{BOUNDARY}read_data {settled}\ngroup mobile type 1\n" +
+                             styles(0.5) + "run 10\nwrite_restart plain.restart\n",
+                             tmp_path / "plain")
         restart, held, needed = written.workdir / "plain.restart", 1, 4
     else:
         restart, held, needed = counted_reference.workdir / "mid.restart", 4, 1
@@ -310,7 +311,7 @@ def test_two_wall_fixes_keep_their_own_contacts(tmp_path):
     def corner(x, name):
         deck = disk_over_floor(kn, 0.5 - 1.0 / kn, dt).replace(
             "create_atoms 1 single 0 ", f"create_atoms 1 single {x!r} ").replace(
-            "vector 0 -1 0", "vector -0.3 -1 0")
+            "vector 0 -1 0", "vector -0.3 -1 0").replace("boundary p f p", "boundary f f p")
         deck += f"""fix side mobile wall/gran/mn xplane -2.0 NULL
 fix_modify c reset
 dump rows all local 1 rows.txt f_c[1] f_c[2] f_c[3]
@@ -383,8 +384,8 @@ def restart_between_dumps(settled, workdir, nprocs):
     """The counted pile for 2 HALF steps, writing a restart file at step RESTART_STEP, between
     two dumps of the rows (two runs, so that the run continued from the file has its neighbor
     lists built at the same step: the same trajectory to rounding, hence the same contacts)."""
-    deck = (f"processors * 1 1\nread_data {settled}\ngroup mobile type 1\n" + styles(0.5) +
-            COUNTERS + f"run {RESTART_STEP}\nwrite_restart mid.restart\n"
+    deck = (f"processors * 1 1\n{BOUNDARY}read_data {settled}\ngroup mobile type 1\n" +
+            styles(0.5) + COUNTERS + f"run {RESTART_STEP}\nwrite_restart mid.restart\n"
             f"run {2 * HALF - RESTART_STEP}\n" + FINAL_COUNTS)
     return run_lammps(deck, workdir, nprocs=nprocs)
 
@@ -479,9 +480,9 @@ def test_times_equal_a_direct_per_step_sum(settled, tmp_path):
     """Each disk's times (touching disks, touching the floor or lid, two or more contacts) equal
     the sum of dt over the steps at which it touched so, counted directly at each step, also
     read at steps that are not output steps of the fix and across a restart file."""
-    first = (f"newton on\nread_data {settled}\ngroup mobile type 1\ngroup bumps type 2\n"
-             "delete_atoms group bumps compress no\n" + styles(0.5) + DIRECT_OUTPUTS +
-             f"run {DIRECT_RESTART}\nwrite_restart half.restart\n")
+    first = (f"newton on\n{BOUNDARY}read_data {settled}\ngroup mobile type 1\n"
+             "group bumps type 2\ndelete_atoms group bumps compress no\n" + styles(0.5) +
+             DIRECT_OUTPUTS + f"run {DIRECT_RESTART}\nwrite_restart half.restart\n")
     run = run_lammps(first, tmp_path)
     second = ("read_restart half.restart\nneighbor 0.1 bin\ncomm_modify vel yes\n" +
               FIXES.format(tilt=0.3, integrator="nve/sphere disc") + DIRECT_OUTPUTS +
@@ -523,3 +524,4 @@ def test_times_equal_a_direct_per_step_sum(settled, tmp_path):
         for i in ids:
             disks, y, radius = direct[step][i]
             assert counters[step][i][3] == disks + (y < radius) + (LID - y < radius)
+

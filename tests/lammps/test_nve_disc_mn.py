@@ -114,8 +114,10 @@ def test_neigh_check_builds_the_lists_at_the_steps_lammps_would(tmp_path, scheme
 
 
 def one_disk(fix, steps, dt, y0, wall="", mu=0.5):
-    """A unit disk (mass 1) at (1, y0) at rest under fix `fix`, `steps` steps of dt."""
+    """A unit disk (mass 1) at (1, y0) at rest under fix `fix`, `steps` steps of dt (y not
+    periodic, for a wall)."""
     return f"""
+boundary p f p
 region box block -50 50 -50 50 -0.5 0.5
 create_box 1 box
 create_atoms 1 single 1.0 {y0!r} 0
