@@ -108,6 +108,21 @@ ERRORS = {
     "wall in a periodic dimension": (
         deck(boundary="p p p", fix="fix floor all wall/gran/mn yplane -2.0 NULL"),
         "Fix wall/gran/mn: cannot use wall in periodic dimension y"),
+    # a bump of diameter 0 was accepted, and its first touch said "use a time step below 0"
+    "bump of diameter 0": (
+        deck(pair=GOOD_PAIR + " wall_types 2",
+             fix="set atom 2 type 2\nset atom 2 diameter 0.0\nunfix integrate\n"
+                 "group mobile type 1\nfix integrate mobile nve"),
+        "pair_style gran/mn: 1 atoms of wall_types have diameter 0"),
+    # a mobile point particle: its first touch said "use a time step below 0"
+    "point particle touching a disk": (
+        deck(second="0.6 0.5 0", fix="set atom 2 diameter 0.0\nset atom 2 vx -1000"),
+        "atom 2 has diameter 0 (a point particle), so its centre is inside the other at its "
+        "first touch"),
+    # off the plane, the neighbor list (3D distances) missed its contacts: disks got inside it
+    "disk off the plane in two dimensions": (
+        deck(fix="set atom 2 z 0.3"),
+        "pair_style gran/mn: atom 2 is at z = 0.3 in a 2D simulation"),
     "kn so large the law overflows": (
         deck(pair="pair_style gran/mn kn 1e308 e 0.7 beta 0.7 mu 0.5"),
         "kn is too large: the derived coefficients (tau_c, eta_n, kt) overflow"),

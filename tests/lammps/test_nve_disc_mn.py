@@ -176,12 +176,12 @@ def test_a_disk_rolls_down_the_slope_at_two_thirds_of_g_sin_theta(tmp_path, sche
 
 def bad_deck(fix, dimension="dimension 2", atom_style="atom_style sphere", extra="",
              pair_extra="", diameter="1.0"):
-    """Two disks and a bump (type 2) under `fix`."""
+    """Two disks of diameter `diameter` and a bump (type 2, diameter 1) under `fix`."""
     header = (HEADER.format(plugin=PLUGIN).replace("dimension 2", dimension)
               .replace("atom_style sphere", atom_style))
     density = "density/disc 1.2732395447351628" if dimension == "dimension 2" else "density 1.9"
     mass = ("mass * 1.0" if atom_style == "atom_style atomic"
-            else f"set type * diameter {diameter}\nset type * {density}")
+            else f"set type 1 diameter {diameter}\nset type 2 diameter 1.0\nset type * {density}")
     z = "-0.5 0.5" if dimension == "dimension 2" else "-3 3"
     return header + f"""
 region box block -3 3 -3 3 {z}
