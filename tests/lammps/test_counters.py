@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from collision_decks import DISC_DENSITY, bounces, disk_over_floor, two_disks
-from granmn_run import law, restitution_error_bound, run_lammps, run_scene
+from granmn_run import HEADER, PLUGIN, law, restitution_error_bound, run_lammps, run_scene
 from pile_decks import BETA, BOUNDARY, E, FIXES, KN, styles
 
 COUNTS = "id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]"
@@ -525,3 +525,67 @@ def test_times_equal_a_direct_per_step_sum(settled, tmp_path):
             disks, y, radius = direct[step][i]
             assert counters[step][i][3] == disks + (y < radius) + (LID - y < radius)
 
+
+def stack(map_array, deletion, dt):
+    """Disk B resting on the floor, disk A resting on B, centres one above the other (the
+    forces stay along y: the stack stands), placed at their static overlaps (A on B: g/kn,
+    B on the floor: 2 g/kn, equal masses), with counters; `deletion` removes A. Without
+    map_array, no atom map (LAMMPS's default)."""
+    kn = 2e5
+    floor_overlap, pair_overlap = 2.0 / kn, 1.0 / kn
+    y_b = 0.5 - floor_overlap
+    header = HEADER.format(plugin=PLUGIN)
+    if not map_array:
+        header = header.replace("atom_modify map array\n", "")
+    return header + f"""
+boundary p f p
+region box block -3 3 -1 5 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 {y_b!r} 0
+create_atoms 1 single 0 {y_b + 1.0 - pair_overlap!r} 0
+set type 1 diameter 1.0
+set type 1 density/disc {DISC_DENSITY!r}
+group top id 2
+pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+timestep {dt!r}
+fix integrate all nve/sphere disc
+fix gravity all gravity 1.0 vector 0 -1 0
+fix floor all wall/gran/mn yplane 0.0 NULL
+fix c all contacts/mn
+thermo 0
+{deletion}
+print "RESULT sums $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6]) $(f_c[7])"
+"""
+
+
+DELETIONS = {
+    # fix evaporate takes A out at step 1000 (before its force evaluation): B touched it at
+    # steps 1..999
+    "evaporate": ("region above block -3 3 1 5 -0.5 0.5\n"
+                  "fix kill top evaporate 1000 1 above 4321\nrun 3000", 999),
+    # between runs: B touched A at the 1000 steps of the first run
+    "delete_atoms": ("run 1000\ndelete_atoms group top compress no\nrun 2000", 1000),
+}
+
+
+@pytest.mark.parametrize("map_array", [True, False])
+@pytest.mark.parametrize("deletion", sorted(DELETIONS))
+def test_a_deleted_partner_is_no_contact_any_more(tmp_path, deletion, map_array):
+    """A disk deleted while in contact (fix evaporate during the run, delete_atoms between
+    runs) takes the contact with it: its partner B, left resting on the floor, has touched a
+    particle (and two things at once) for exactly the steps before the deletion, touches the
+    floor all 3000 steps and has one contact now. On one process with atom_modify map array
+    (contact changes applied at once, ghosts folded onto their atoms) the partner stayed "in
+    contact" with the deleted disk for the rest of the run: 2 contacts now, its particle and
+    multiple-contact times growing to the end; with no atom map (every step counted anew) it
+    was right. Times are whole steps times dt, to a rounding."""
+    dt = law(2e5, 0.7, 0.7)["tau_w"] / 50
+    text, touched_steps = DELETIONS[deletion]
+    run = run_lammps(stack(map_array, text, dt), tmp_path, header=False)
+    t_particle, t_boundary, t_multiple, now, window = run.result("sums")
+    assert now == 1
+    assert t_particle == pytest.approx(touched_steps * dt, rel=1e-12)
+    assert t_multiple == pytest.approx(touched_steps * dt, rel=1e-12)
+    assert t_boundary == pytest.approx(3000 * dt, rel=1e-12)
+    assert window == pytest.approx(3000 * dt, rel=1e-12)
