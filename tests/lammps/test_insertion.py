@@ -31,19 +31,19 @@ def pile_overlaps(atoms, dimension, periods):
 
 def assert_resting_pile(atoms, dimension, periods, n, speed_scale, resting=None):
     """n atoms in a pile on the floor (those of `resting` at rest, all if None), each touching
-    something, none inside another,
-    every overlap within the statics: no contact carries more than the weight of all n atoms,
-    an overlap of at most n m g / (m kn) = n g / kn (the mass scale of two equal atoms is m,
-    against the floor m). A pile whose contacts were not computed would have fallen through
-    itself onto the floor (overlaps of the order of the radius)."""
+    something, none inside another, every overlap within the statics: no contact carries more
+    than the weight of all n atoms, an overlap of at most n m g / (m kn) = n g / kn (the mass
+    scale of two atoms of equal mass is m, against the floor m). A pile whose contacts were not
+    computed would have fallen through itself onto the floor (overlaps of the order of the
+    radius)."""
     pair, floor, dist = pile_overlaps(atoms, dimension, periods)
     r = atoms["radius"]
     speed = np.sqrt(sum(atoms[v] ** 2 for v in ("vx", "vy", "vz")[:dimension]))
     assert len(r) == n
     bound = n * G / KN
+    height = atoms[("x", "y", "z")[dimension - 1]].max()
     print(f"{n} atoms: largest overlap {max(pair.max(), floor.max()):.3g} (bound {bound:.3g}), "
-          f"nearest centres {dist.min():.4g}, highest {atoms[('x', 'y', 'z')[dimension - 1]].max():.3g}, "
-          f"fastest {speed.max():.3g}")
+          f"nearest centres {dist.min():.4g}, highest {height:.3g}, fastest {speed.max():.3g}")
     assert pair.max() < bound and floor.max() < bound
     assert np.all(dist > np.maximum(r[:, None], r[None, :]))
     touching = (pair > 0).any(axis=1) | (floor > 0)
@@ -77,7 +77,8 @@ timestep {dt!r}
 fix integrate all nve/disc/mn gravity {G} 0 -1
 fix floor all wall/gran/mn yplane 0.0 NULL
 region slab block 0.5 7.5 20 28 0 0
-fix drop all deposit 40 1 {int(0.4 / dt)} 4821 region slab near 1.0 vy -1.0 -1.0 units box
+fix drop all deposit 40 1 {int(0.4 / dt)} 4821 region slab near 1.0 vy -1.0 -1.0 &
+    units box
 thermo {int(5.0 / dt)}
 run {steps}
 write_dump all custom final.txt id radius x y vx vy modify sort id format float %.17g
@@ -124,9 +125,10 @@ write_dump all custom final.txt id radius x y z vx vy vz modify sort id format f
 
 def test_atoms_grown_past_the_cut_off_are_not_blamed_on_kn(tmp_path):
     """Two disks of diameter 0.2 (the cut-off: 0.2) grown to diameter 1 by fix adapt in the
-    run (atom_style sphere 1: radii that change), then approaching at a relative speed of 1: they enter the neighbor list (cut-off +
-    skin 0.1) with their centres 0.3 apart, inside each other. The error names the cut-off,
-    not kn: a stiffer spring (the former advice, kn > 2e5 (0.5/0.2)^2...) changes nothing."""
+    run (atom_style sphere 1: radii that change), then approaching at a relative speed of 1:
+    they enter the neighbor list (cut-off + skin 0.1) with their centres under 0.3 apart,
+    inside each other. The error names the cut-off, not kn: a stiffer spring (the former
+    advice, kn > 392015, from a speed of 443 it inferred) changes nothing."""
     dt = law(KN, E, BETA)["tau_c"] / 50
     header = HEADER.format(plugin=PLUGIN).replace("atom_style sphere", "atom_style sphere 1")
     deck = header + f"""
