@@ -28,7 +28,7 @@ static constexpr int ROW_COLS = 8;          // tag_i tag_j kind start duration v
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), step_particle(nullptr),
     step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
-    fold_ghosts(false), recounting(false), every(1),
+    fold_ghosts(false), recounting(false), atoms_deleted(false), every(1),
     now(0.0), change_time(0.0), clock_step(0), base_time(0.0), base_step(0), window_start(0.0),
     convert_layout(false),
     rows_every(0), row_array(nullptr), nmax_rows(0), rows_handed(0), handed_step(-1),
@@ -52,6 +52,8 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
       error->all(FLERR, "Illegal fix contacts/mn command: unknown keyword {}", arg[iarg]);
     }
   }
+  // end_of_step at every step: on one process it has work only where an output reads the fix
+  // or after a deletion; on more it compares every step's tallies with the atoms' contacts
   nevery = 1;
   peratom_flag = 1;
   size_peratom_cols = NCOLS;
@@ -98,15 +100,6 @@ void FixContactsMN::init()
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");
   fold_ghosts = comm->nprocs == 1 && atom->map_style != Atom::MAP_NONE;
-  // one process: end_of_step has work only where an output reads the fix; else it compares
-  // every step's tallies with the atoms' contacts
-  int steps = every;
-  for (int other = rows_every; other;) {    // the greatest common divisor with local's N
-    const int rest = steps % other;
-    steps = other;
-    other = rest;
-  }
-  nevery = fold_ghosts ? steps : 1;
   // during a run, the per-atom output is current every `every` steps (between runs always)
   peratom_freq = every;
 }
@@ -186,16 +179,29 @@ void FixContactsMN::setup_pre_force(int)
   }
   zero_step_arrays();
   recounting = fold_ghosts;
+  atoms_deleted = false;
   drop_handed_rows();
 }
 
 // On more than one process, this step's tallies are zero before the pair style and the wall
-// fix fill them.
+// fix fill them; on one, after atoms were deleted (fix evaporate, atoms lost at this step's
+// exchange), this step's contacts are tallied to be counted anew.
 void FixContactsMN::pre_force(int)
 {
   advance_clock();
-  if (!fold_ghosts) zero_step_arrays();
+  if (!fold_ghosts || atoms_deleted) zero_step_arrays();
+  recounting = atoms_deleted;
+  atoms_deleted = false;
   drop_handed_rows();
+}
+
+// An atom deleted (delflag: LAMMPS moves the last atom into its place) takes its contacts with
+// it, which on one process its partners still count. (On more, delflag also marks an atom
+// that moved to another process, and each step's contacts are counted anew anyway.)
+void FixContactsMN::copy_arrays(int i, int j, int delflag)
+{
+  FixPerAtomState::copy_arrays(i, j, delflag);
+  if (delflag && fold_ghosts) atoms_deleted = true;
 }
 
 void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary,
@@ -246,10 +252,10 @@ void FixContactsMN::collect()
   }
 }
 
-// One process, at a run's setup: each atom's contacts are those the pair style tallied and the
-// wall sides it touches (as the wall fixes keep them, whether their setup ran yet or not:
-// each change of theirs is reported). An atom that differs (nothing between two runs should
-// make one) takes the count from here on.
+// One process, at a run's setup or after a deletion: each atom's contacts are those the pair
+// style tallied and the wall sides it touches (as the wall fixes keep them, whether they have
+// evaluated this step yet or not: each change of theirs is reported). An atom that differs
+// (one whose partner was deleted) takes the count from here on.
 void FixContactsMN::recount()
 {
   recounting = false;
@@ -293,9 +299,12 @@ void FixContactsMN::setup(int)
   publish_rows();
 }
 
+// On one process after a deletion, the atoms that lost a partner lose its contact at this
+// step, as a contact found ended by this step's force evaluation.
 void FixContactsMN::end_of_step()
 {
   if (!fold_ghosts) collect();
+  if (recounting) recount();
   if (update->ntimestep % every == 0) update_outputs();
   if (rows_every && update->ntimestep % rows_every == 0) publish_rows();
 }

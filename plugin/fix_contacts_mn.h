@@ -44,6 +44,7 @@ class FixContactsMN : public FixPerAtomState {
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
   void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
 
@@ -81,9 +82,12 @@ class FixContactsMN : public FixPerAtomState {
   // One process: a ghost's contacts are its image's (atom->map), each begin and end of a
   // contact changes its atoms' contacts at once, and a step costs nothing per contact beyond
   // its record. A run's setup counts all contacts anew and corrects any atom that differs
-  // (one that lost a partner to delete_atoms, say).
+  // (one that lost a partner to delete_atoms, say); so does a step at which atoms were deleted
+  // (fix evaporate, lost atoms): a contact with a deleted atom never ends in the force loop.
   bool fold_ghosts;
-  bool recounting;             // this step's pair contacts are tallied too (one process, setup)
+  bool recounting;             // this step's pair contacts are tallied too (one process: setup,
+                               // a step after a deletion)
+  bool atoms_deleted;          // since the last count (one process)
   int every;                   // the per-atom output is current at multiples of it
   bool outputs_current;        // ... and between runs
   // The fix's own clock: the time of the current step, the sum of the time steps actually

@@ -1,7 +1,8 @@
 /* ----------------------------------------------------------------------
    fix nve/disc/mn (and fix nve/ab2, its Adams-Bashforth 2 without keywords).
    velocity Verlet: v += dt/2 F/m, x += dt v; the force; v += dt/2 F/m (omega_z alike), the
-     operations of fix nve/sphere disc, with F = the forces + m g;
+     operations of fix nve/sphere disc, with F = the forces + m g, which goes into f (as fix
+     gravity puts it there);
    Adams-Bashforth 2: v(t+dt) = v + dt (3/2 a(t) - 1/2 a(t-dt)), x(t+dt) = x + dt/2 (v(t) +
      v(t+dt)), the same for spins (disks, I = m r^2/2); the force at a step sees that step's
      positions and velocities (no half-step velocity).
@@ -30,7 +31,8 @@ using namespace FixConst;
 FixNVEDiscMN::FixNVEDiscMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), integrator(mn::Integrator::VelocityVerlet),
     has_gravity(false), gravity{0.0, 0.0}, dtv(0.0), dtf(0.0), factors_every_step(false),
-    factors_lastcall(-1), neigh_check(false), trigger_sq(0.0), held_lastcall(-1)
+    factors_stale(false), factors_lastcall(-1), gravity_at_setup(true), gravity_pending(false),
+    neigh_check(false), trigger_sq(0.0), held_lastcall(-1)
 {
   if (strcmp(style, "nve/ab2") == 0) {
     if (narg != 3) error->all(FLERR, "Illegal fix nve/ab2 command: it takes no arguments");
@@ -86,10 +88,13 @@ FixNVEDiscMN::FixNVEDiscMN(LAMMPS *lmp, int narg, char **arg) :
   if (integrator == mn::Integrator::AdamsBashforth2) register_state(NSTATE);
 }
 
+// Adams-Bashforth 2 moves the disks in one pass at the start of a step; with gravity a second
+// pass at its end puts m g into the step's forces. POST_RUN: the factors may be stale after it.
 int FixNVEDiscMN::setmask()
 {
-  return integrator == mn::Integrator::VelocityVerlet ? INITIAL_INTEGRATE | FINAL_INTEGRATE
-                                                      : INITIAL_INTEGRATE;
+  int mask = INITIAL_INTEGRATE | POST_RUN;
+  if (integrator == mn::Integrator::VelocityVerlet || has_gravity) mask |= FINAL_INTEGRATE;
+  return mask;
 }
 
 void FixNVEDiscMN::init()
@@ -113,13 +118,25 @@ void FixNVEDiscMN::init()
         error->all(FLERR, "Fix {} ({}) with neigh_check yes tests only the atoms it moves, and "
                           "fix {} ({}) moves atoms too; use neigh_check no (LAMMPS's own test)",
                    id, style, fix->id, fix->style);
-    // (a shrink-wrapped box changes only at builds, where LAMMPS's test does not look)
+    // A box that changes between builds moves LAMMPS's trigger distance (its test adds the
+    // box's corners' motion since the last build), which this test does not follow. A
+    // shrink-wrapped box changes only at builds, and fix balance (BOX_CHANGE_DOMAIN) moves
+    // only the sub-domains, at builds it forces itself (LAMMPS's decision, through its
+    // next_reneighbor): between builds the box and the trigger stay.
     for (Fix *fix : granmn::all_fixes(modify))
-      if (fix->box_change)
+      if (fix->box_change & ~Fix::BOX_CHANGE_DOMAIN)
         error->all(FLERR, "Fix {} ({}) with neigh_check yes needs a box that no fix changes "
                           "during a run, and fix {} ({}) does; use neigh_check no (LAMMPS's own "
                           "test)", id, style, fix->id, fix->style);
     trigger_sq = 0.25 * neighbor->skin * neighbor->skin;
+  }
+  // At a run's setup each fix adds its forces in its own setup, in the order of definition:
+  // m g goes last there only if no fix after this one adds any (a post-force fix).
+  gravity_at_setup = true;
+  bool after_this = false;
+  for (Fix *fix : granmn::all_fixes(modify)) {
+    if (after_this && (fix->setmask() & POST_FORCE)) gravity_at_setup = false;
+    if (fix == this) after_this = true;
   }
   factors_every_step = !granmn::fixes_by_style(modify, "^adapt").empty();
   dtv = update->dt;
@@ -152,6 +169,27 @@ void FixNVEDiscMN::setup(int)
 {
   compute_factors();
   if (neigh_check) hold_positions();
+  gravity_pending = has_gravity && !gravity_at_setup;
+  if (has_gravity && gravity_at_setup) add_gravity();
+}
+
+// A command between runs may change masses or radii (set), and run ... pre no skips the setup.
+void FixNVEDiscMN::post_run()
+{
+  factors_stale = true;
+}
+
+// m g into the forces of the group's atoms, as fix gravity adds it.
+void FixNVEDiscMN::add_gravity()
+{
+  double **f = atom->f;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit) {
+      f[i][0] += factors[i].weight_x;
+      f[i][1] += factors[i].weight_y;
+    }
 }
 
 // The positions at the last build, as LAMMPS holds them (x is unchanged from the build to
@@ -191,38 +229,72 @@ void FixNVEDiscMN::compute_factors()
     factors[i] = {scale / m, scale_rotation / (r * r * m), m * gravity[0], m * gravity[1]};
   }
   factors_lastcall = neighbor->lastcall;
+  factors_stale = false;
 }
 
-// Velocity Verlet's half step of one disk's velocity and spin. The new values are computed
-// into locals first: v, f and omega could alias for the compiler, which would store and reload.
+// Velocity Verlet's half step of one disk's velocity and spin under the force f, which holds
+// m g (the final kick puts it there). The new values are computed into locals first: v, f and
+// omega could alias for the compiler, which would store and reload.
 static inline void half_kick(const FixNVEDiscMN::Factors &c, const double *f,
                              const double *torque, double *v, double *omega)
 {
-  const double vx = v[0] + c.per_mass * (f[0] + c.weight_x);
-  const double vy = v[1] + c.per_mass * (f[1] + c.weight_y);
+  const double vx = v[0] + c.per_mass * f[0];
+  const double vy = v[1] + c.per_mass * f[1];
   const double wz = omega[2] + c.per_inertia * torque[2];
   v[0] = vx;
   v[1] = vy;
   omega[2] = wz;
 }
 
+// The second half step, m g first added to the step's force sum (after every other force).
+static inline void final_kick_with_gravity(const FixNVEDiscMN::Factors &c, double *f,
+                                           const double *torque, double *v, double *omega)
+{
+  const double fx = f[0] + c.weight_x;
+  const double fy = f[1] + c.weight_y;
+  const double vx = v[0] + c.per_mass * fx;
+  const double vy = v[1] + c.per_mass * fy;
+  const double wz = omega[2] + c.per_inertia * torque[2];
+  f[0] = fx;
+  f[1] = fy;
+  v[0] = vx;
+  v[1] = vy;
+  omega[2] = wz;
+}
+
 // The factors follow the atoms: recomputed after a neighbour-list build (atoms re-sorted or
-// exchanged) or at every step under a fix adapt.
+// exchanged), at the first step after another run, or at every step under a fix adapt.
 void FixNVEDiscMN::refresh_factors()
 {
-  if (factors_every_step || neighbor->lastcall != factors_lastcall) compute_factors();
+  if (factors_stale || factors_every_step || neighbor->lastcall != factors_lastcall)
+    compute_factors();
   if (neigh_check && neighbor->lastcall != held_lastcall) hold_positions();
 }
 
-// neigh_check: LAMMPS's own test (Neighbor::check_distance, the same operations: z does not
-// move), so that the lists are built at the same steps.
-void FixNVEDiscMN::request_build(bool moved)
+// neigh_check: whether LAMMPS's Neighbor::decide() would look at this step (its `ago` is
+// counted up when it decides, after this pass): the steps since the last build if at least
+// `delay` and a multiple of `every`, else 0.
+int FixNVEDiscMN::build_due() const
 {
-  int flag = moved ? 1 : 0;
-  if (comm->nprocs > 1) {
-    int flag_all = 0;
-    MPI_Allreduce(&flag, &flag_all, 1, MPI_INT, MPI_MAX, world);
-    flag = flag_all;
+  const int ago = neighbor->ago + 1;
+  return ago >= neighbor->delay && ago % neighbor->every == 0 ? ago : 0;
+}
+
+// neigh_check at a step where LAMMPS would decide: with check no, a build; with check yes,
+// LAMMPS's own test (Neighbor::check_distance, the same operations: z does not move, reduced
+// over the processes), and a build found needed at the first step it could be is dangerous,
+// as LAMMPS counts it.
+void FixNVEDiscMN::request_build(bool moved, int ago)
+{
+  int flag = 1;
+  if (neighbor->dist_check) {
+    flag = moved ? 1 : 0;
+    if (comm->nprocs > 1) {
+      int flag_all = 0;
+      MPI_Allreduce(&flag, &flag_all, 1, MPI_INT, MPI_MAX, world);
+      flag = flag_all;
+    }
+    if (flag && ago == MAX(neighbor->every, neighbor->delay)) neighbor->ndanger++;
   }
   if (flag) next_reneighbor = update->ntimestep;
 }
@@ -230,6 +302,10 @@ void FixNVEDiscMN::request_build(bool moved)
 void FixNVEDiscMN::initial_integrate(int)
 {
   refresh_factors();
+  if (gravity_pending) {
+    add_gravity();
+    gravity_pending = false;
+  }
   double **x = atom->x;
   double **v = atom->v;
   double **f = atom->f;
@@ -239,7 +315,8 @@ void FixNVEDiscMN::initial_integrate(int)
   const int nlocal = atom->nlocal;
   const Factors *c = factors.data();
 
-  const bool check = neigh_check;
+  const int ago = neigh_check ? build_due() : 0;    // > 0: LAMMPS would decide at this step
+  const bool check = ago > 0 && neighbor->dist_check;
   const double *hold = held.data();
   const double trigger = trigger_sq;
   bool moved = false;
@@ -255,14 +332,13 @@ void FixNVEDiscMN::initial_integrate(int)
         if (dx * dx + dy * dy > trigger) moved = true;
       }
     }
-    if (check) request_build(moved);
+    if (ago) request_build(moved, ago);
     return;
   }
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     double *previous = state[i];
-    const double a[3] = {(f[i][0] + c[i].weight_x) * c[i].per_mass,
-                         (f[i][1] + c[i].weight_y) * c[i].per_mass,
+    const double a[3] = {f[i][0] * c[i].per_mass, f[i][1] * c[i].per_mass,
                          torque[i][2] * c[i].per_inertia};
     // The first step has no previous acceleration: it takes a(t - dt) = a(t), an Euler step.
     if (previous[HAS_PREVIOUS] == 0.0) {
@@ -281,13 +357,18 @@ void FixNVEDiscMN::initial_integrate(int)
       if (dx * dx + dy * dy > trigger) moved = true;
     }
   }
-  if (check) request_build(moved);
+  if (ago) request_build(moved, ago);
 }
 
-// velocity Verlet's second half (the atoms may have been re-sorted since the first)
+// The end of a step: m g into the step's forces; under velocity Verlet the second half kick in
+// the same pass (the atoms may have been re-sorted since the first).
 void FixNVEDiscMN::final_integrate()
 {
   refresh_factors();
+  if (integrator != mn::Integrator::VelocityVerlet) {
+    add_gravity();
+    return;
+  }
   double **v = atom->v;
   double **f = atom->f;
   double **omega = atom->omega;
@@ -295,8 +376,13 @@ void FixNVEDiscMN::final_integrate()
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const Factors *c = factors.data();
-  for (int i = 0; i < nlocal; i++)
-    if (mask[i] & groupbit) half_kick(c[i], f[i], torque[i], v[i], omega[i]);
+  if (has_gravity) {
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit) final_kick_with_gravity(c[i], f[i], torque[i], v[i], omega[i]);
+  } else {
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit) half_kick(c[i], f[i], torque[i], v[i], omega[i]);
+  }
 }
 
 double FixNVEDiscMN::memory_usage()

@@ -24,6 +24,7 @@ class FixNVEDiscMN : public FixPerAtomState {
   void setup(int) override;
   void initial_integrate(int) override;
   void final_integrate() override;
+  void post_run() override;
   void reset_dt() override;
   double memory_usage() override;
 
@@ -41,7 +42,9 @@ class FixNVEDiscMN : public FixPerAtomState {
   // and 1 once they exist.
   enum { AX, AY, ALPHA, HAS_PREVIOUS, NSTATE };
   // Per local atom, from its mass and radius, recomputed only when they may have changed (a run's
-  // setup, a new dt, atoms re-sorted at a neighbour-list build, a fix adapt in the run):
+  // setup, a new dt, atoms re-sorted at a neighbour-list build, the first step after another
+  // run (run ... pre no skips the setup: a set command may have come between), a fix adapt in
+  // the run):
   // velocity Verlet: dt/2 / m and dt/2 / (m r^2/2) (times ftm2v), as fix nve/sphere disc;
   // Adams-Bashforth 2: 1/m and 1/(m r^2/2) (times ftm2v); and the body force m g.
   std::vector<Factors> factors;
@@ -50,20 +53,29 @@ class FixNVEDiscMN : public FixPerAtomState {
   double gravity[2];          // the acceleration, as fix gravity's vector style makes it
   double dtv, dtf;
   bool factors_every_step;    // a fix adapt may change masses or radii at any step
+  bool factors_stale;         // a run ended since they were computed
   bigint factors_lastcall;    // the neighbour-list build the factors were computed after
-  // neigh_check yes: LAMMPS's test for a neighbour-list build (a disk moved more than half the
-  // skin since the last) done in this fix's pass over the disks, which asks LAMMPS for the
-  // build (next_reneighbor); with neigh_modify once yes LAMMPS does not test again
+  // m g is added to f after every other force, as by a fix gravity defined last: at each step
+  // in the final pass, at a run's setup in this fix's setup if no fix defined after it adds
+  // forces there (post-force fixes), else at the first step, before its kick
+  bool gravity_at_setup;
+  bool gravity_pending;       // not yet in this run's setup forces
+  // neigh_check yes: LAMMPS's decision for a neighbour-list build (Neighbor::decide: every,
+  // delay, check yes/no; with check yes, has a disk moved more than half the skin since the
+  // last build) taken in this fix's pass over the disks, which asks LAMMPS for the build
+  // (next_reneighbor); with neigh_modify once yes LAMMPS does not decide again
   bool neigh_check;
   double trigger_sq;          // (skin/2)^2, as LAMMPS computes it
   std::vector<double> held;   // x, y of each local atom at the last build
   bigint held_lastcall;
 
   void hold_positions();
-  void request_build(bool moved);
+  int build_due() const;
+  void request_build(bool moved, int ago);
 
   void compute_factors();
   void refresh_factors();
+  void add_gravity();
   void check_other_fixes();
 };
 

@@ -101,6 +101,12 @@ void FixWallGranMN::resolve_law()
 
 void FixWallGranMN::init()
 {
+  // as LAMMPS's fix wall/gran: an atom that crosses the periodic boundary comes back on the
+  // wall's other side, inside it (checked here, for change_box between runs too)
+  if (domain->periodicity[axis])
+    error->all(FLERR, "Fix wall/gran/mn: cannot use wall in periodic dimension {}: an atom "
+                      "re-entering through the boundary would be inside the wall; make the "
+                      "boundary of {} non-periodic (f, s or m)", "xyz"[axis], "xyz"[axis]);
   resolve_law();
   granmn::check_disc_integration(lmp, "fix wall/gran/mn");
   // the law gives mass x acceleration; LAMMPS turns force back into acceleration with ftm2v

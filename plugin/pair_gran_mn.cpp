@@ -107,10 +107,13 @@ void PairGranMN::report_end(int i, int j, const double *d, double rsq, const dou
 
 // Two disks whose centres came within the larger radius: the law has lost them (their normal
 // flips once the centres cross, and they fly apart on swapped sides). Says what stops them.
-// A pair that got there within one step (its overlap is less than the step's motion) needs a
-// finer step: one with ten steps across the smaller radius r. Otherwise the spring was already
-// acting and is too soft: a head-on approach at speed v stops within an overlap v/w (undamped;
-// w^2 = 2 kn for two disks, kn against a bump), which must stay below r.
+// A pair whose radii the cut-off of their types does not cover was not in the neighbour list
+// when they met (atoms larger than the run was set up for): no step or stiffness helps. An
+// atom of diameter 0 has its centre inside the other at its first touch. A pair that got
+// there within one step (its overlap is less than the step's motion) needs a finer step: one
+// with ten steps across the smaller radius r. Otherwise the spring was already acting and is
+// too soft: a head-on approach at speed v stops within an overlap v/w (undamped; w^2 = 2 kn for
+// two disks, kn against a bump), which must stay below r.
 void PairGranMN::report_passed_through(int i, int j, double r)
 {
   const tagint *tag = atom->tag;
@@ -129,10 +132,24 @@ void PairGranMN::report_passed_through(int i, int j, double r)
   const double vn = fabs(dot) / r;
   const bool boundary = is_wall_type[atom->type[i]] || is_wall_type[atom->type[j]];
   const double dt = update->dt;
+  const int itype = atom->type[i], jtype = atom->type[j];
+  const double radsum = atom->radius[i] + atom->radius[j];
   std::string cause;
-  double speed;
-  if (vn * dt >= delta) {
-    speed = vn;
+  double speed = vn;
+  if (radsum * radsum > cutsq[itype][jtype]) {
+    cause = fmt::format("the pair style's cut-off for atom types {} and {}, {:.6g}, is less "
+                        "than their radii's sum {:.6g}, so they were not in the neighbor list "
+                        "when they met: atoms larger than the cut-offs were set for (at the "
+                        "start of the run, from the atoms present and the radii fix pour and "
+                        "fix deposit insert) came in or grew during the run; create or set "
+                        "them before the run, or insert them with fix pour or fix deposit",
+                        itype, jtype, sqrt(cutsq[itype][jtype]), radsum);
+  } else if (radius_min == 0.0) {
+    cause = fmt::format("atom {} has diameter 0 (a point particle), so its centre is inside "
+                        "the other at its first touch: the law is for {}; give it a diameter",
+                        atom->radius[i] == 0.0 ? tag[i] : tag[j],
+                        domain->dimension == 3 ? "spheres" : "disks");
+  } else if (vn * dt >= delta) {
     cause = fmt::format("they got there within one step (the time step {:.6g} moves them by "
                         "{:.6g}): use a time step below {:.6g} (ten steps across the radius)",
                         dt, vn * dt, 0.1 * radius_min / vn);
@@ -158,10 +175,27 @@ void PairGranMN::report_passed_through(int i, int j, double r)
 void PairGranMN::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (domain->dimension == 3)
+  if (domain->dimension == 3) {
     compute_loop<3>();
-  else
+  } else {
+    if (neighbor->ago == 0) check_in_plane();
     compute_loop<2>();
+  }
+}
+
+// In 2D the law measures distances in the plane, the neighbor list in 3D: an atom off z = 0
+// would be missed by disks it touches, which then get inside it. Atoms come in at a build
+// (fix deposit places them at random z within its region): checked after each.
+void PairGranMN::check_in_plane()
+{
+  double **x = atom->x;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (x[i][2] != 0.0)
+      error->one(FLERR, "pair_style gran/mn: atom {} is at z = {:.6g} in a 2D simulation, where "
+                        "every disk must be at z = 0 (the neighbor list measures distances in "
+                        "3D and would miss its contacts); fix deposit places atoms at random z "
+                        "within its region: give the region a z extent of 0 0",
+                 atom->tag[i], x[i][2]);
 }
 
 // The force loop in dimension DIM: 2, disks (u_t a scalar; torques about z); 3, spheres (u_t a
@@ -342,11 +376,21 @@ void PairGranMN::check_wall_types()
 }
 
 // The boundary rule holds for immobile bumps: a bump that moves would collide with e and
-// tau of neither a pair nor the boundary.
-void PairGranMN::check_wall_types_not_integrated()
+// tau of neither a pair nor the boundary. A bump of diameter 0 would have its centre inside
+// the disk at the first touch.
+void PairGranMN::check_bumps()
 {
   if (wall_types.empty()) return;
   const int *type = atom->type, *mask = atom->mask;
+  bigint points = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (is_wall_type[type[i]] && atom->radius[i] == 0.0) points++;
+  bigint points_all = 0;
+  MPI_Allreduce(&points, &points_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (points_all)
+    error->all(FLERR, "pair_style gran/mn: {} atoms of wall_types have diameter 0: a bump is a "
+                      "fixed {} with a radius (a disk would touch its centre at once); set "
+                      "their diameter", points_all, domain->dimension == 3 ? "sphere" : "disk");
   for (const Fix *fix : granmn::all_fixes(modify)) {
     if (!fix->time_integrate) continue;
     bigint integrated = 0;
@@ -400,7 +444,7 @@ void PairGranMN::init_style()
     error->all(FLERR, "Pair style gran/mn requires ghost atoms store velocity "
                       "(comm_modify vel yes)");
   check_wall_types();
-  check_wall_types_not_integrated();
+  check_bumps();
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
   bool builds_checked = false;    // fix nve/disc/mn neigh_check yes asks for the builds
@@ -480,10 +524,20 @@ void PairGranMN::init_style()
 
   update_exclusions();
 
-  // Cutoffs follow the largest radius of each type.
+  // Cutoffs follow the largest radius of each type: of the atoms present and of those fix pour
+  // and fix deposit will insert during the run (they tell it through extract("radius"), as
+  // LAMMPS's granular pair styles ask them; every such fix here, not the first one only).
   std::vector<double> local_max(atom->ntypes + 1, 0.0);
   for (int i = 0; i < atom->nlocal; i++)
     local_max[atom->type[i]] = MAX(local_max[atom->type[i]], atom->radius[i]);
+  std::vector<Fix *> inserting = granmn::fixes_by_style(modify, "^pour");
+  for (Fix *fix : granmn::fixes_by_style(modify, "^deposit")) inserting.push_back(fix);
+  for (Fix *fix : inserting)
+    for (int type = 1; type <= atom->ntypes; type++) {
+      int asked = type;    // extract() overwrites it with the dimension of what it returns
+      const auto *inserted = static_cast<const double *>(fix->extract("radius", asked));
+      if (inserted) local_max[type] = MAX(local_max[type], *inserted);
+    }
   MPI_Allreduce(&local_max[1], &max_radius[1], atom->ntypes, MPI_DOUBLE, MPI_MAX, world);
 }
 

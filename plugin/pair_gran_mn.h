@@ -61,7 +61,8 @@ class PairGranMN : public Pair {
   void allocate();
   void publish_law();
   void check_wall_types();
-  void check_wall_types_not_integrated();
+  void check_bumps();
+  void check_in_plane();
   void update_exclusions();
   void remove_exclusions();
   void report_passed_through(int, int, double);

@@ -57,7 +57,8 @@ write_dump all custom final.txt id x y vx vy omegaz modify sort id format float 
 def disk_on_boundary(material, dt, boundary, v_n=1.0, phase=0.5, pre_steps=10, spin=0.0,
                      integrator="verlet"):
     """A unit disk falling at v_n (no gravity), spinning at `spin`, onto a fixed bump below it
-    (a type-2 atom listed in wall_types, not integrated) or onto the flat wall y = 0."""
+    (a type-2 atom listed in wall_types, not integrated) or onto the flat wall y = 0 (y not
+    periodic: fix wall/gran/mn refuses a wall in a periodic dimension)."""
     tau = law(material[0], material[1], material[2])["tau_w"]
     gap = v_n * (pre_steps + phase) * dt
     steps = pre_steps + int(math.ceil(tau / dt)) + 20
@@ -76,6 +77,7 @@ create_atoms 1 single 0 {1.0 + gap!r} 0
         floor = 0.0
         contact = 0.5
     return f"""
+boundary p f p
 region box block -5 5 -5 5 -0.5 0.5
 create_box 2 box
 {atoms}
@@ -113,8 +115,10 @@ def contact_interval(trace, contact_distance, dt):
 
 
 def disk_over_floor(kn, height, dt, mu=0.5):
-    """A unit disk at `height` over the flat wall y = 0 under gravity, with counters c."""
+    """A unit disk at `height` over the flat wall y = 0 under gravity, with counters c (y not
+    periodic)."""
     return f"""
+boundary p f p
 region box block -3 3 -1 5 -0.5 0.5
 create_box 1 box
 create_atoms 1 single 0 {height!r} 0

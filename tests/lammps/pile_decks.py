@@ -1,5 +1,5 @@
 """The pile scene shared by the consistency and counter tests: 48 disks (diameters 0.8-1.0)
-on the floor of a periodic box, fixed bumps on the floor, a ceiling (fix wall/gran/mn)."""
+on the floor of a box periodic in x, fixed bumps on the floor, a ceiling (fix wall/gran/mn)."""
 
 from granmn_run import law
 
@@ -30,7 +30,11 @@ thermo 1000
 """
 
 
-PILE = """
+# The pile's box is periodic in x only: y holds the floor and the lid (fix wall/gran/mn refuses a
+# wall in a periodic dimension). Given before create_box or read_data (a data file holds none).
+BOUNDARY = "boundary p f p\n"
+
+PILE = BOUNDARY + """
 region box block 0 10 -1 12 -0.5 0.5
 create_box 2 box
 lattice sq 1.0 origin 0.5 0.5 0

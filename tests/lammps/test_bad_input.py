@@ -11,8 +11,10 @@ GOOD_PAIR = "pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5"
 
 def deck(pair=GOOD_PAIR, coeff="pair_coeff * *", fix="", timestep="timestep 5e-5",
          dimension="dimension 2", atom_style="atom_style sphere", comm="comm_modify vel yes",
-         z="-0.5 0.5", second="1.2 0.5 0"):
+         z="-0.5 0.5", second="1.2 0.5 0", boundary="p f p"):
+    """Two disks (y not periodic: the wall fixes' cases need it) and `fix`."""
     header = (HEADER.format(plugin=PLUGIN)
+              .replace("boundary p p p", f"boundary {boundary}")
               .replace("dimension 2", dimension)
               .replace("atom_style sphere", atom_style)
               .replace("comm_modify vel yes", comm))
@@ -101,6 +103,26 @@ ERRORS = {
         "fix wall/gran/mn: timestep 5e-05 exceeds the stability limit"),
     "atom behind the wall": (deck(fix="fix floor all wall/gran/mn yplane 0.6 NULL"),
                              "has passed through the wall at 0.6"),
+    # an atom re-entering through the periodic boundary came back inside the wall (and was shot
+    # out at v = 233)
+    "wall in a periodic dimension": (
+        deck(boundary="p p p", fix="fix floor all wall/gran/mn yplane -2.0 NULL"),
+        "Fix wall/gran/mn: cannot use wall in periodic dimension y"),
+    # a bump of diameter 0 was accepted, and its first touch said "use a time step below 0"
+    "bump of diameter 0": (
+        deck(pair=GOOD_PAIR + " wall_types 2",
+             fix="set atom 2 type 2\nset atom 2 diameter 0.0\nunfix integrate\n"
+                 "group mobile type 1\nfix integrate mobile nve"),
+        "pair_style gran/mn: 1 atoms of wall_types have diameter 0"),
+    # a mobile point particle: its first touch said "use a time step below 0"
+    "point particle touching a disk": (
+        deck(second="0.6 0.5 0", fix="set atom 2 diameter 0.0\nset atom 2 vx -1000"),
+        "atom 2 has diameter 0 (a point particle), so its centre is inside the other at its "
+        "first touch"),
+    # off the plane, the neighbor list (3D distances) missed its contacts: disks got inside it
+    "disk off the plane in two dimensions": (
+        deck(fix="set atom 2 z 0.3"),
+        "pair_style gran/mn: atom 2 is at z = 0.3 in a 2D simulation"),
     "kn so large the law overflows": (
         deck(pair="pair_style gran/mn kn 1e308 e 0.7 beta 0.7 mu 0.5"),
         "kn is too large: the derived coefficients (tau_c, eta_n, kt) overflow"),

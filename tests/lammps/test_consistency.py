@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from granmn_run import law, run_lammps
-from pile_decks import BETA, E, FINAL, FIXES, KN, styles
+from pile_decks import BETA, BOUNDARY, E, FINAL, FIXES, KN, styles
 STEPS = 1500
 ROUNDING = 1e-8
 OMEGA = (2 * KN) ** 0.5
@@ -52,7 +52,7 @@ def full_run(settled, workdir, newton="on", nprocs=1, mu=0.5, shuffle=False,
     deck = f"""
 newton {newton}
 processors * 1 1
-{shuffle_settings}read_data {settled}
+{shuffle_settings}{BOUNDARY}read_data {settled}
 {shuffle_neighbors}
 group mobile type 1
 """ + styles(mu, integrator=integrator) + f"""
@@ -147,7 +147,7 @@ def test_mirror_image_evolves_as_the_mirror_image(settled, tmp_path):
     pile and its mirror image must evolve as mirror images of each other, to rounding. This
     holds only if the signs of t, v_t, the tangential force and the torques agree."""
     def run(data, tilt, name):
-        deck = (f"read_data {data}\ngroup mobile type 1\n"
+        deck = (f"{BOUNDARY}read_data {data}\ngroup mobile type 1\n"
                 "neigh_modify every 1 delay 0 check no\n" + styles(0.5, tilt=tilt) +
                 f"run {STEPS}\nwrite_dump mobile custom final.txt id xu y vx vy omegaz "
                 "modify sort id format float %.17g\n")

@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from collision_decks import DISC_DENSITY, bounces, disk_over_floor, two_disks
-from granmn_run import law, restitution_error_bound, run_lammps, run_scene
-from pile_decks import BETA, E, FIXES, KN, styles
+from granmn_run import HEADER, PLUGIN, law, restitution_error_bound, run_lammps, run_scene
+from pile_decks import BETA, BOUNDARY, E, FIXES, KN, styles
 
 COUNTS = "id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]"
 SUMS = "$(f_c[1]) $(f_c[2]) $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6]) $(f_c[7]) $(f_c[8])"
@@ -121,8 +121,8 @@ FINAL_COUNTS = f"write_dump mobile custom counts.txt {COUNTS} modify sort id\n"
 
 
 def counted_run(settled, workdir, newton="on", nprocs=1, integrator="nve/sphere disc"):
-    deck = (f"newton {newton}\nprocessors * 1 1\nread_data {settled}\ngroup mobile type 1\n" +
-            styles(0.5, integrator=integrator) +
+    deck = (f"newton {newton}\nprocessors * 1 1\n{BOUNDARY}read_data {settled}\n"
+            "group mobile type 1\n" + styles(0.5, integrator=integrator) +
             COUNTERS + f"run {HALF}\nwrite_restart mid.restart\nrun {HALF}\n" + FINAL_COUNTS)
     return run_lammps(deck, workdir, nprocs=nprocs)
 
@@ -248,8 +248,9 @@ def test_restart_with_a_different_contact_history_is_refused(settled, counted_re
     """A restart written with counters (u_t and 3 values per contact) read without them (u_t
     only), or the other way round, would misread every contact's history: it is an error."""
     if counters:    # a restart without counters, continued with them
-        written = run_lammps(f"read_data {settled}\ngroup mobile type 1\n" + styles(0.5) +
-                             "run 10\nwrite_restart plain.restart\n", tmp_path / "plain")
+        written = run_lammps(f"{BOUNDARY}read_data {settled}\ngroup mobile type 1\n" +
+                             styles(0.5) + "run 10\nwrite_restart plain.restart\n",
+                             tmp_path / "plain")
         restart, held, needed = written.workdir / "plain.restart", 1, 4
     else:
         restart, held, needed = counted_reference.workdir / "mid.restart", 4, 1
@@ -310,7 +311,7 @@ def test_two_wall_fixes_keep_their_own_contacts(tmp_path):
     def corner(x, name):
         deck = disk_over_floor(kn, 0.5 - 1.0 / kn, dt).replace(
             "create_atoms 1 single 0 ", f"create_atoms 1 single {x!r} ").replace(
-            "vector 0 -1 0", "vector -0.3 -1 0")
+            "vector 0 -1 0", "vector -0.3 -1 0").replace("boundary p f p", "boundary f f p")
         deck += f"""fix side mobile wall/gran/mn xplane -2.0 NULL
 fix_modify c reset
 dump rows all local 1 rows.txt f_c[1] f_c[2] f_c[3]
@@ -383,8 +384,8 @@ def restart_between_dumps(settled, workdir, nprocs):
     """The counted pile for 2 HALF steps, writing a restart file at step RESTART_STEP, between
     two dumps of the rows (two runs, so that the run continued from the file has its neighbor
     lists built at the same step: the same trajectory to rounding, hence the same contacts)."""
-    deck = (f"processors * 1 1\nread_data {settled}\ngroup mobile type 1\n" + styles(0.5) +
-            COUNTERS + f"run {RESTART_STEP}\nwrite_restart mid.restart\n"
+    deck = (f"processors * 1 1\n{BOUNDARY}read_data {settled}\ngroup mobile type 1\n" +
+            styles(0.5) + COUNTERS + f"run {RESTART_STEP}\nwrite_restart mid.restart\n"
             f"run {2 * HALF - RESTART_STEP}\n" + FINAL_COUNTS)
     return run_lammps(deck, workdir, nprocs=nprocs)
 
@@ -479,9 +480,9 @@ def test_times_equal_a_direct_per_step_sum(settled, tmp_path):
     """Each disk's times (touching disks, touching the floor or lid, two or more contacts) equal
     the sum of dt over the steps at which it touched so, counted directly at each step, also
     read at steps that are not output steps of the fix and across a restart file."""
-    first = (f"newton on\nread_data {settled}\ngroup mobile type 1\ngroup bumps type 2\n"
-             "delete_atoms group bumps compress no\n" + styles(0.5) + DIRECT_OUTPUTS +
-             f"run {DIRECT_RESTART}\nwrite_restart half.restart\n")
+    first = (f"newton on\n{BOUNDARY}read_data {settled}\ngroup mobile type 1\n"
+             "group bumps type 2\ndelete_atoms group bumps compress no\n" + styles(0.5) +
+             DIRECT_OUTPUTS + f"run {DIRECT_RESTART}\nwrite_restart half.restart\n")
     run = run_lammps(first, tmp_path)
     second = ("read_restart half.restart\nneighbor 0.1 bin\ncomm_modify vel yes\n" +
               FIXES.format(tilt=0.3, integrator="nve/sphere disc") + DIRECT_OUTPUTS +
@@ -523,3 +524,68 @@ def test_times_equal_a_direct_per_step_sum(settled, tmp_path):
         for i in ids:
             disks, y, radius = direct[step][i]
             assert counters[step][i][3] == disks + (y < radius) + (LID - y < radius)
+
+
+def stack(map_array, deletion, dt):
+    """Disk B resting on the floor, disk A resting on B, centres one above the other (the
+    forces stay along y: the stack stands), placed at their static overlaps (A on B: g/kn,
+    B on the floor: 2 g/kn, equal masses), with counters; `deletion` removes A. Without
+    map_array, no atom map (LAMMPS's default)."""
+    kn = 2e5
+    floor_overlap, pair_overlap = 2.0 / kn, 1.0 / kn
+    y_b = 0.5 - floor_overlap
+    header = HEADER.format(plugin=PLUGIN)
+    if not map_array:
+        header = header.replace("atom_modify map array\n", "")
+    return header + f"""
+boundary p f p
+region box block -3 3 -1 5 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 {y_b!r} 0
+create_atoms 1 single 0 {y_b + 1.0 - pair_overlap!r} 0
+set type 1 diameter 1.0
+set type 1 density/disc {DISC_DENSITY!r}
+group top id 2
+pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+timestep {dt!r}
+fix integrate all nve/sphere disc
+fix gravity all gravity 1.0 vector 0 -1 0
+fix floor all wall/gran/mn yplane 0.0 NULL
+fix c all contacts/mn
+thermo 0
+{deletion}
+print "RESULT sums $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6]) $(f_c[7])"
+"""
+
+
+DELETIONS = {
+    # fix evaporate takes A out at step 1000 (before its force evaluation): B touched it at
+    # steps 1..999
+    "evaporate": ("region above block -3 3 1 5 -0.5 0.5\n"
+                  "fix kill top evaporate 1000 1 above 4321\nrun 3000", 999),
+    # between runs: B touched A at the 1000 steps of the first run
+    "delete_atoms": ("run 1000\ndelete_atoms group top compress no\nrun 2000", 1000),
+}
+
+
+@pytest.mark.parametrize("map_array", [True, False])
+@pytest.mark.parametrize("deletion", sorted(DELETIONS))
+def test_a_deleted_partner_is_no_contact_any_more(tmp_path, deletion, map_array):
+    """A disk deleted while in contact (fix evaporate during the run, delete_atoms between
+    runs) takes the contact with it: its partner B, left resting on the floor, has touched a
+    particle (and two things at once) for exactly the steps before the deletion, touches the
+    floor all 3000 steps and has one contact now. On one process with atom_modify map array
+    (contact changes applied at once, ghosts folded onto their atoms) the partner stayed "in
+    contact" with the deleted disk for the rest of the run: 2 contacts now, its particle and
+    multiple-contact times growing to the end; with no atom map (every step counted anew) it
+    was right. Times are whole steps times dt, to a rounding."""
+    dt = law(2e5, 0.7, 0.7)["tau_w"] / 50
+    text, touched_steps = DELETIONS[deletion]
+    run = run_lammps(stack(map_array, text, dt), tmp_path, header=False)
+    t_particle, t_boundary, t_multiple, now, window = run.result("sums")
+    assert now == 1
+    assert t_particle == pytest.approx(touched_steps * dt, rel=1e-12)
+    assert t_multiple == pytest.approx(touched_steps * dt, rel=1e-12)
+    assert t_boundary == pytest.approx(3000 * dt, rel=1e-12)
+    assert window == pytest.approx(3000 * dt, rel=1e-12)

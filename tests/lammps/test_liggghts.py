@@ -43,6 +43,7 @@ neigh_modify delay 0
         integrate = "fix integrate all nve/sphere\n"
     else:
         setup = HEADER.format(plugin=PLUGIN) + f"""
+boundary p f p
 region reg block -5 5 -5 5 -0.5 0.5 units box
 create_box 1 reg
 neigh_modify delay 0

@@ -66,28 +66,28 @@ def test_fused_verlet_differs_only_by_the_order_of_the_force_sum(tmp_path):
     assert np.all(np.abs(separate - fused) <= 1e-12 * scale), np.abs(separate - fused).max(axis=0)
 
 
-def test_fused_ab2_is_nve_ab2_plus_gravity_to_rounding(tmp_path):
-    """fix nve/ab2 is this fix's ab2 scheme without gravity; with gravity fused the
-    acceleration is (F + m g) / m instead of F / m with m g in F: a rounding apart. The pair
-    takes Adams-Bashforth 2's u_t rule under either (a first-order u_t would differ by
-    v_t dt / 2 per step, ~1e-6 of u_t here). 500 steps: 1e-11 of the scale."""
-    separate = final_state(tmp_path, "separate", ("nve/ab2", "gravity"), 500)
-    fused = final_state(tmp_path, "fused", (f"nve/disc/mn scheme ab2 {GRAVITY}",), 500)
-    scale = np.abs(separate).max(axis=0)
-    assert np.all(np.abs(separate - fused) <= 1e-11 * scale), np.abs(separate - fused).max(axis=0)
+def test_fused_ab2_is_nve_ab2_plus_gravity_to_the_bit(tmp_path):
+    """The ab2 scheme's acceleration is nve/ab2's with a fix gravity defined after the wall:
+    f/m, with m g added to f after the other forces, the same operations. 3000 steps of the
+    flowing pile end in the same state to the last bit."""
+    separate = final_state(tmp_path, "separate", ("nve/ab2", "gravity"))
+    fused = final_state(tmp_path, "fused", (f"nve/disc/mn scheme ab2 {GRAVITY}",))
+    assert np.array_equal(separate, fused), np.abs(separate - fused).max()
 
 
-def builds_and_state(tmp_path, name, fix, neighbor, nprocs=1, steps=3000):
-    """The pile under `fix` with the neighbour settings `neighbor`: LAMMPS's count of list
-    builds and the final state."""
-    deck = pile_deck((fix,), steps, True).replace("timestep", f"{neighbor}\ntimestep")
+def builds_and_state(tmp_path, name, fix, neighbor, nprocs=1, steps=3000, extra=""):
+    """The pile under `fix` (and the fixes `extra`) with the neighbour settings `neighbor`:
+    LAMMPS's count of list builds and what it says of dangerous builds, and the final state."""
+    deck = pile_deck((fix,), steps, True).replace("timestep", f"{neighbor}\n{extra}\ntimestep")
     run = run_lammps(deck, tmp_path / name, nprocs=nprocs)
     builds = int(re.search(r"Neighbor list builds = (\d+)", run.output).group(1))
+    # (with check no LAMMPS counts none: "Dangerous builds not checked")
+    dangerous = re.search(r"Dangerous builds (= \d+|not checked)", run.output).group(1)
     # pair_style gran/mn's warning about once yes is for a run where no fix asks for builds
     assert ("only at the start of a run" in run.output) == ("once yes" in neighbor and
                                                             "neigh_check yes" not in fix)
     a = run.atoms()
-    return builds, np.column_stack([a[k] for k in ("x", "y", "vx", "vy", "omegaz")])
+    return (builds, dangerous), np.column_stack([a[k] for k in ("x", "y", "vx", "vy", "omegaz")])
 
 
 LAMMPS_CHECK = "neigh_modify delay 0 every 1 check yes"
@@ -107,15 +107,113 @@ def test_neigh_check_builds_the_lists_at_the_steps_lammps_would(tmp_path, scheme
     builds, state = builds_and_state(tmp_path, "lammps", fix, LAMMPS_CHECK, nprocs)
     own_builds, own_state = builds_and_state(tmp_path, "own", f"{fix} neigh_check yes",
                                              OWN_CHECK, nprocs)
-    print(f"{builds} builds with LAMMPS's test, {own_builds} with the fix's")
-    assert builds > 5
+    print(f"{builds} (builds, dangerous) with LAMMPS's test, {own_builds} with the fix's")
+    assert builds[0] > 5
     assert own_builds == builds
     assert np.array_equal(state, own_state), np.abs(state - own_state).max()
 
 
+@pytest.mark.parametrize("settings", ["delay 0 every 10 check yes", "delay 10 every 5 check yes",
+                                      "delay 5 every 1 check yes", "delay 0 every 20 check no"])
+def test_neigh_check_decides_as_lammps_with_every_and_delay(tmp_path, settings):
+    """neigh_check yes takes LAMMPS's decisions (Neighbor::decide): it looks only at steps at
+    least `delay` after the last build and a multiple of `every` since, and there builds (check
+    no) or tests the distance (check yes). It tested at every step: 187 builds against
+    LAMMPS's 150 with every 10, a trajectory of its own. The same builds, dangerous builds and
+    final state to the bit as LAMMPS's own decisions."""
+    fix = f"nve/disc/mn {GRAVITY}"
+    builds, state = builds_and_state(tmp_path, "lammps", fix, f"neigh_modify {settings}")
+    own_builds, own_state = builds_and_state(tmp_path, "own", f"{fix} neigh_check yes",
+                                             f"neigh_modify {settings} once yes")
+    print(f"{settings}: {builds} (builds, dangerous) with LAMMPS's decisions, {own_builds} "
+          "with the fix's")
+    assert own_builds == builds
+    assert np.array_equal(state, own_state), np.abs(state - own_state).max()
+
+
+def test_neigh_check_with_fix_balance_on_two_processes(tmp_path):
+    """fix balance moves the sub-domains (no box change: the trigger distance stays) at builds
+    it forces itself; neigh_check yes refused it as a fix that changes the box. On two
+    processes, rebalanced every 250 steps: the same builds and final state to the bit as
+    LAMMPS's own test."""
+    fix = f"nve/disc/mn {GRAVITY}"
+    balance = "fix balance all balance 250 1.0 shift xy 10 1.0"
+    builds, state = builds_and_state(tmp_path, "lammps", fix, LAMMPS_CHECK, 2, extra=balance)
+    own_builds, own_state = builds_and_state(tmp_path, "own", f"{fix} neigh_check yes",
+                                             OWN_CHECK, 2, extra=balance)
+    print(f"{builds} (builds, dangerous) with LAMMPS's test, {own_builds} with the fix's")
+    assert own_builds == builds
+    assert np.array_equal(state, own_state), np.abs(state - own_state).max()
+
+
+def test_a_mass_set_between_runs_is_followed_without_a_setup(tmp_path):
+    """`set ... density/disc` between two runs, the second run ... pre no (no setup: no
+    fix's setup is called): the fused fix integrated the second run with the old 1/m, fix
+    nve/sphere divides by the mass at every step. Now (its factors are recomputed at the
+    first step after a run) the same final state to the bit as nve/sphere disc + fix gravity,
+    both with m g of the old mass in the forces of the first step (fix gravity added it at the
+    last step of the first run)."""
+    def state(name, integration):
+        deck = pile_deck(integration, 500, True).replace(
+            "run 500\n", "run 500\nset group mobile density/disc 2.5\nrun 500 pre no\n")
+        a = run_lammps(deck, tmp_path / name).atoms()
+        return np.column_stack([a[k] for k in ("x", "y", "vx", "vy", "omegaz")])
+    separate = state("separate", ("nve/sphere disc", "gravity"))
+    fused = state("fused", (f"nve/disc/mn {GRAVITY}",))
+    assert np.array_equal(separate, fused), np.abs(separate - fused).max()
+
+
+def forces(tmp_path, name, integration, integrator_last=False):
+    """The pile's dumped forces every 100 steps (500 steps; fix `integrate` defined first, or
+    after the wall): {step: array of (id, type, mass, fx, fy)}."""
+    deck = pile_deck(integration, 500, True).replace(
+        "run 500\n", "dump f all custom 100 forces.txt id type mass fx fy\n"
+                     "dump_modify f sort id format float %.17g\nrun 500\n")
+    if integrator_last:
+        lines = deck.splitlines()
+        integrate = next(l for l in lines if l.startswith("fix integrate"))
+        lines.remove(integrate)
+        lines.insert(lines.index(next(l for l in lines if l.startswith("fix floor"))) + 1,
+                     integrate)
+        deck = "\n".join(lines) + "\n"
+    run_lammps(deck, tmp_path / name)
+    snapshots = (tmp_path / name / "forces.txt").read_text().split("ITEM: TIMESTEP\n")[1:]
+    return {int(s.splitlines()[0]): np.loadtxt(s.splitlines()[9:], ndmin=2) for s in snapshots}
+
+
+@pytest.mark.parametrize("scheme", ["verlet", "ab2"])
+def test_dumped_forces_hold_gravity_as_fix_gravity_puts_it(tmp_path, scheme):
+    """fix nve/disc/mn's gravity was never in f: dumped forces (and fix dt/reset, anything
+    reading f) saw the contact forces alone. Now m g goes into f after every other force, as
+    by a fix gravity defined after them: the dumped forces are those of nve/sphere disc (or
+    nve/ab2) + fix gravity (defined after the wall) to the bit, at every step of the run. At a
+    run's setup each fix adds its forces in its own setup: m g goes in last there when no fix
+    after nve/disc/mn adds forces (the integrator defined after the wall: step 0 equal too);
+    else at the first step (f at step 0 then lacks m g, the trajectory is the same)."""
+    separate_fix = "nve/sphere disc" if scheme == "verlet" else "nve/ab2"
+    separate = forces(tmp_path, "separate", (separate_fix, "gravity"))
+    fused = forces(tmp_path, "fused", (f"nve/disc/mn scheme {scheme} {GRAVITY}",))
+    last = forces(tmp_path, "last", (f"nve/disc/mn scheme {scheme} {GRAVITY}",), True)
+    assert sorted(separate) == sorted(fused) == list(range(0, 501, 100))
+    for step in separate:
+        assert np.array_equal(separate[step], last[step]), step
+        if step > 0:
+            assert np.array_equal(separate[step], fused[step]), step
+    # step 0 of the integrator-first deck: the other forces alone, to which fix gravity added
+    # m g (its vector style's acceleration: the magnitude times the normalised direction)
+    length = math.sqrt(TILT[0] ** 2 + TILT[1] ** 2)
+    g = np.array([1.0 * (TILT[0] / length), 1.0 * (TILT[1] / length)])
+    mobile = fused[0][:, 1] == 1
+    with_gravity = fused[0][:, 3:5] + np.where(mobile[:, None], fused[0][:, 2:3] * g, 0.0)
+    assert np.array_equal(with_gravity, separate[0][:, 3:5])
+    assert not np.array_equal(fused[0][mobile, 3:5], separate[0][mobile, 3:5])
+
+
 def one_disk(fix, steps, dt, y0, wall="", mu=0.5):
-    """A unit disk (mass 1) at (1, y0) at rest under fix `fix`, `steps` steps of dt."""
+    """A unit disk (mass 1) at (1, y0) at rest under fix `fix`, `steps` steps of dt (y not
+    periodic, for a wall)."""
     return f"""
+boundary p f p
 region box block -50 50 -50 50 -0.5 0.5
 create_box 1 box
 create_atoms 1 single 1.0 {y0!r} 0
@@ -174,12 +272,12 @@ def test_a_disk_rolls_down_the_slope_at_two_thirds_of_g_sin_theta(tmp_path, sche
 
 def bad_deck(fix, dimension="dimension 2", atom_style="atom_style sphere", extra="",
              pair_extra="", diameter="1.0"):
-    """Two disks and a bump (type 2) under `fix`."""
+    """Two disks of diameter `diameter` and a bump (type 2, diameter 1) under `fix`."""
     header = (HEADER.format(plugin=PLUGIN).replace("dimension 2", dimension)
               .replace("atom_style sphere", atom_style))
     density = "density/disc 1.2732395447351628" if dimension == "dimension 2" else "density 1.9"
     mass = ("mass * 1.0" if atom_style == "atom_style atomic"
-            else f"set type * diameter {diameter}\nset type * {density}")
+            else f"set type 1 diameter {diameter}\nset type 2 diameter 1.0\nset type * {density}")
     z = "-0.5 0.5" if dimension == "dimension 2" else "-3 3"
     return header + f"""
 region box block -3 3 -3 3 {z}
@@ -256,3 +354,4 @@ def test_bad_input_stops_with_a_named_error(tmp_path, case):
     assert run.returncode != 0, run.output[-2000:]
     assert "ERROR" in run.output
     assert message in run.output, run.output[-2000:]
+

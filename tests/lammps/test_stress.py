@@ -5,7 +5,7 @@ import pytest
 
 from collision_decks import DISC_DENSITY, bounces, two_disks
 from granmn_run import law, restitution_error_bound, run_lammps
-from pile_decks import FIXES
+from pile_decks import BOUNDARY, FIXES
 
 VERY_STIFF = 2 ** 20 * 1e5
 
@@ -96,7 +96,7 @@ def test_settled_pile_held_at_high_stiffness_neither_heats_nor_creeps(settled, t
         kn = 2 ** p * 1e5
         stiffen += (f"pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu 0.5 wall_types 2\n"
                     "timestep $(v_mn_tau_c/50)\nrun $(ceil(0.5/dt))\n")
-    deck = f"read_data {settled}\ngroup mobile type 1\n" + f"""
+    deck = f"{BOUNDARY}read_data {settled}\ngroup mobile type 1\n" + f"""
 pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5 wall_types 2
 pair_coeff * *
 timestep $(v_mn_tau_c/50)

@@ -107,6 +107,7 @@ def sphere_on_boundary(material, dt, tau, boundary, pre_steps=10, phase=0.5):
         contact = 1.0
     steps = pre_steps + int(np.ceil(tau / dt)) + 20
     deck = f"""
+boundary p p f
 region box block -5 5 -5 5 -5 5
 create_box 2 box
 {atoms}
@@ -209,7 +210,12 @@ PILE_KN = 2e5
 PILE_STEPS = 2000
 PILE_OMEGA = (2 * PILE_KN) ** 0.5
 
+# periodic in x and y: z holds the floor and the ceiling (walls need a non-periodic dimension);
+# given before create_box and read_data (a data file holds none)
+PILE_BOUNDARY = "boundary p p f"
+
 PILE_START = f"""
+{PILE_BOUNDARY}
 region box block 0 5 0 5 -1 8
 create_box 2 box
 lattice sc 1.0 origin 0.5 0.5 0.5
@@ -259,6 +265,7 @@ def pile_run(start, workdir, newton="on", nprocs=1, shuffle=False, mu=0.5):
     deck = f"""
 newton {newton}
 processors * 1 1
+{PILE_BOUNDARY}
 read_data {start}
 {shuffle_settings}group mobile type 1
 pair_style gran/mn kn {PILE_KN} e 0.7 beta 0.7 mu {mu} wall_types 2
