@@ -3,21 +3,22 @@ directory (<scene>/<point>/, docs/scenes.md) or the compact summaries that `pyth
 postprocess summarize` writes of them (<scene>/<point>.json, docs/sweeps.md). The report,
 compare and any later analysis start from load_runs; read_run is the one place that reads a
 point directory (through an io.Point, which reads each file once)."""
-import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from . import rundir
 from .io import DataError, Point
 from .observables import RESOLUTIONS, measure, observables, relative
 from .scenes import SCENES, scene
 from .selection import Selection, in_energy_range, window_means
 
-# How a run ended: ran to run_time, its pile stopped and the run ended early (stopped.txt),
-# lmp failed (the sweep runner's failed.txt), no done.txt (still running, or killed), or (a
-# summary only) the summary itself could not be read.
+# How a run ended: completed (rundir.completed) and ran to run_time, completed and its pile
+# stopped and the run ended early (stopped.txt), lmp failed (the sweep runner's failed.txt), not
+# completed (still running, or killed: rundir), or (a summary only) the summary itself could not
+# be read.
 ENDINGS = ("flowing", "stopped", "failed", "incomplete", "unreadable")
 # The window (time units) over which a record's E(t) is averaged for drawing (energy), unless
 # energy.txt's lines are further apart.
@@ -86,16 +87,11 @@ def energy_curve(record):
     return drawn["t0"] + drawn["window"] * np.arange(len(drawn["E"])), np.array(drawn["E"])
 
 
-def unfinished_reason(ending, failure):
-    """The left-out reason of a run that did not complete (io.read_ending)."""
-    return (f"crashed ({failure}; see failed.txt)" if ending == "failed"
-            else "did not complete (no done.txt)")
-
-
-def read_cpu_seconds(point):
+def cpu_seconds(outputs):
+    """What the run cost (timing.json), or None if it does not say."""
     try:
-        return float(json.loads((Path(point) / "timing.json").read_text())["cpu_seconds"])
-    except (OSError, ValueError, KeyError, TypeError):
+        return float(outputs.timing["cpu_seconds"])
+    except (KeyError, TypeError, ValueError):
         return None
 
 
@@ -107,7 +103,7 @@ def read_run(point, resolutions=RESOLUTIONS, selection=Selection()):
     point = Path(point)
     outputs = Point(point)
     record = RunRecord(point=point, scene=point.parent.name, source="raw",
-                       cpu_seconds=read_cpu_seconds(point), outputs=outputs)
+                       cpu_seconds=cpu_seconds(outputs), outputs=outputs)
     try:
         scene(record.scene)
     except KeyError as error:
@@ -116,13 +112,13 @@ def read_run(point, resolutions=RESOLUTIONS, selection=Selection()):
     ending, record.failure = outputs.ending
     if ending != "completed":
         record.ended = ending
-        record.reason = unfinished_reason(ending, record.failure)
+        record.reason = rundir.incomplete_reason(ending, record.failure)
         try:
             record.variables = outputs.variables
         except DataError:
             pass        # the reason is the crash
         return record
-    record.ended = "stopped" if (point / "stopped.txt").exists() else "flowing"
+    record.ended = "stopped" if (point / rundir.STOPPED).exists() else "flowing"
     try:
         record.variables = outputs.variables
         record.params = outputs.params
@@ -159,7 +155,7 @@ def load_runs(source, selection=Selection()):
     source = Path(source)
     if not source.is_dir():
         raise DataError(f"{source}: no such sweep directory")
-    points = sorted(p for p in source.glob("*/*") if (p / "point.json").exists())
+    points = sorted(p for p in source.glob("*/*") if (p / rundir.POINT).exists())
     if points:
         resolutions = sorted(set(RESOLUTIONS) | {selection.resolution})
         records = [read_run(p, resolutions, selection) for p in points]

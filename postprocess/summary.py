@@ -15,6 +15,7 @@ import json
 import math
 from pathlib import Path
 
+from . import rundir
 from .durations import DURATION_EDGES, LASTING, LASTING_ALSO, SPLIT_NAMES
 from .io import CONTACT_KINDS, DataError, checked_params, checked_variables
 from .observables import BLOCK_QUANTITIES, RESOLUTIONS, SIGNED_QUANTITIES
@@ -87,7 +88,7 @@ def write_summaries(results_dir, to, selection=Selection(), replace=False):
     results_dir = Path(results_dir)
     if not results_dir.is_dir():
         raise DataError(f"{results_dir}: no such results directory")
-    points = sorted(p for p in results_dir.glob("*/*") if (p / "point.json").exists())
+    points = sorted(p for p in results_dir.glob("*/*") if (p / rundir.POINT).exists())
     if not points:
         raise DataError(f"{results_dir}: no sweep points here (no <scene>/<point>/point.json)")
     written, kept = [], []
