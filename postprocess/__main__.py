@@ -50,6 +50,7 @@ import numpy as np
 
 from . import figures, limit
 from .io import DataError
+from .quantities import TABLE
 from .reference import accepted, evaluate, tally
 from .report import comparison_line, fmt, write_report, write_transition_report
 from .scenes import SCENES, scene as scene_of
@@ -244,7 +245,7 @@ def limit_scene_lines(name, rows, out, records, rule):
                       "longer than the rows window, lasting ones).", ""]
             lines += limit.split_lines(splits)
         for d in decisions:
-            print(f"{scene_def.title}, {title}: {limit.NAMES[d.quantity]}: {d.verdict}" +
+            print(f"{scene_def.title}, {title}: {TABLE[d.quantity].label}: {d.verdict}" +
                   (f" ({d.why})" if d.why else ""))
     if records:
         lines += ["## Runaway events", "",

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .durations import LASTING, LASTING_ALSO
+from .quantities import TABLE
 
 MIN_RUNS = 3               # selected runs a k_n needs to enter the fits
 MIN_RUNS_IN_LEVEL = 2      # ... within one energy level
@@ -317,17 +318,13 @@ def decide_within_levels(runs, quantity, levels, samples=BOOTSTRAP, rule=RULE):
     return out
 
 
-NAMES = {"mc_c": "t_c - N_c tau_c", "mc_w": "t_w - N_w tau_w",
-         "t_multiple": "time with two or more contacts"}
-
-
 def report_lines(decisions, within, levels):
     """Markdown: per quantity the per-k_n values, running exponents, fits and verdict; then
     the verdicts within each energy level. decisions: [Decision]; within: {quantity: {level:
     Decision}}; levels: {name: (low, high)} (empty: the scene's flows have no levels)."""
     lines = []
     for d in decisions:
-        lines += [f"### {NAMES[d.quantity]}: **{d.verdict}**", ""]
+        lines += [f"### {TABLE[d.quantity].label}: **{d.verdict}**", ""]
         if d.why:
             lines += [d.why, ""]
         s = d.series
@@ -362,14 +359,14 @@ def report_lines(decisions, within, levels):
                                            in levels.items()) + " |",
               "|---|" + "---|" * len(levels)]
     for quantity, by_level in within.items():
-        lines.append(f"| {NAMES[quantity]} | " + " | ".join(
+        lines.append(f"| {TABLE[quantity].label} | " + " | ".join(
             by_level[n].verdict for n in levels) + " |")
     lines.append("")
     for quantity, by_level in within.items():
         for n, d in by_level.items():
             if d.fits:
                 s = d.series
-                lines.append(f"- {NAMES[quantity]}, {n} level: **{d.verdict}** ({d.why}); "
+                lines.append(f"- {TABLE[quantity].label}, {n} level: **{d.verdict}** ({d.why}); "
                              + ", ".join(f"{k:.3g}: {v:.4g} ({int(r)} runs)"
                                          for k, v, r in zip(s.kn, s.value, s.runs)))
     return lines + [""]

@@ -12,7 +12,8 @@ from .runs import energy_curve
 from .scenes import scene as scene_of
 from .selection import Selection
 from .limit import split_lines
-from .study import (CROSSOVER_SIGMAS, QUANTITIES, VARIANT_QUANTITIES, contact_series, crossover,
+from .quantities import COLUMNS, EXPONENTS, SCENE_TABLE, TABLE, VARIANTS
+from .study import (CROSSOVER_SIGMAS, contact_series, crossover,
                     fit_power, main_series, run_summary, same_series, series,
                     variant_differences)
 
@@ -31,7 +32,7 @@ def write_tables(scenes, out):
         with open(out / f"observables_{scene}.csv", "w", newline="") as f:
             writer = csv.writer(f)
             header = ["kn", "tau_c", "tau_w", "span", "n_boundary"]
-            for q in QUANTITIES:
+            for q in COLUMNS:
                 header += [q, q + "_err"]
             writer.writerow(header + ["point"])
             for o in rows:
@@ -89,7 +90,6 @@ def make_figures(scenes, completed, out, selection):
 
 # the quantities whose stiffness exponents the report fits, and how many of the stiffest k_n
 # the second fit takes (where a power law bends, the stiff end's exponent differs)
-EXPONENT_QUANTITIES = ("N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w", "t_multiple", "z", "E_total")
 STIFF_END = 3
 
 
@@ -106,7 +106,7 @@ def exponent_lines(rows):
         lines += [f"Stiffness exponents ({name or 'main series'}; {len(points)} k_n, "
                   f"{kn[0]:g} to {kn[-1]:g}): a in quantity ~ k_n^a, least squares in log-log.",
                   "", f"| quantity | all k_n | stiffest {STIFF_END} |", "|---|---|---|"]
-        for q in EXPONENT_QUANTITIES:
+        for q in EXPONENTS:
             values = np.array([o[q] for o in points])
             cells = []
             for k, v in ((kn, values), (kn[-STIFF_END:], values[-STIFF_END:])):
@@ -179,10 +179,10 @@ def variant_lines(rows):
     main = main_series(rows)[0]["label"] or "-"
     lines = [f"Variants against the main series ({main}) at the same k_n: the variant's value, "
              "then (variant - main) in units of the combined error.", "",
-             "| k_n | variant | " + " | ".join(VARIANT_QUANTITIES) + " |",
-             "|---|---|" + "---|" * len(VARIANT_QUANTITIES)]
+             "| k_n | variant | " + " | ".join(VARIANTS) + " |",
+             "|---|---|" + "---|" * len(VARIANTS)]
     for o, m, diffs in pairs:
-        cells = [f"{fmt(o[q], o[q + '_err'])} ({diffs[q][1]:+.1f} σ)" for q in VARIANT_QUANTITIES]
+        cells = [f"{fmt(o[q], o[q + '_err'])} ({diffs[q][1]:+.1f} σ)" for q in VARIANTS]
         lines.append(f"| {o['kn']:g} | {o['label']} | " + " | ".join(cells) + " |")
     return lines + [""]
 
@@ -270,14 +270,11 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
         if not rows:
             lines += ["No usable point (see Left out).", ""]
         lines += [
-                  "| k_n | E | N_c | N_w | t_c | t_w | t_c - N_c tau_c | t_w - N_w tau_w | "
-                  "two or more contacts | span | point |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|"] if rows else []
+                  "| k_n | " + " | ".join(TABLE[q].short for q in SCENE_TABLE) + " | span | point |",
+                  "|---|" + "---|" * len(SCENE_TABLE) + "---|---|"] if rows else []
         for o in rows:
             lines.append("| " + " | ".join(
-                [f"{o['kn']:g}"] + [fmt(o[q], o[q + "_err"]) for q in
-                                    ("E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w",
-                                     "t_multiple")] + [f"{o['span']:g}", o["label"]]) + " |")
+                [f"{o['kn']:g}"] + [fmt(o[q], o[q + "_err"]) for q in SCENE_TABLE] + [f"{o['span']:g}", o["label"]]) + " |")
         notes = [f"k_n = {o['kn']:g}{' (' + o['label'] + ')' if o['label'] else ''}: {o['notes']}"
                  for o in rows if o["notes"]]
         if scene_def.selects_steady_parts:
@@ -338,11 +335,11 @@ def write_transition_report(sweep_dir, runs, groups, left_out, out):
     with open(out / "transition_points.csv", "w", newline="") as f:
         writer = csv.writer(f)
         header = ["scene", "sin_theta", "kn", "tau_c", "tau_w", "span", "n_boundary"]
-        writer.writerow(header + [x for q in QUANTITIES for x in (q, q + "_err")] + ["notes"])
+        writer.writerow(header + [x for q in COLUMNS for x in (q, q + "_err")] + ["notes"])
         for (scene, sin_theta), rows in groups.items():
             for o in rows:
                 writer.writerow([scene, sin_theta] + [o[k] for k in header[2:]] +
-                                [o[x] for q in QUANTITIES for x in (q, q + "_err")] +
+                                [o[x] for q in COLUMNS for x in (q, q + "_err")] +
                                 [o["notes"]])
     with open(out / "transition_runs.csv", "w", newline="") as f:
         writer = csv.writer(f)

@@ -18,7 +18,8 @@ from pathlib import Path
 from . import rundir
 from .durations import DURATION_EDGES, LASTING, LASTING_ALSO, SPLIT_NAMES
 from .io import CONTACT_KINDS, DataError, checked_params, checked_variables
-from .observables import BLOCK_QUANTITIES, RESOLUTIONS, SIGNED_QUANTITIES
+from .observables import RESOLUTIONS
+from .quantities import BLOCKS, SIGNED
 from .runs import DRAWN_WINDOW, ENDINGS, RunRecord, read_run
 from .scenes import scene
 from .selection import Selection
@@ -189,8 +190,8 @@ class _Checker:
             columns = self.mapping(self.key(data, "blocks", where), f"{where}.blocks")
             part["blocks"] = {q: self.numbers(self.key(columns, q, f"{where}.blocks"),
                                               f"{where}.blocks.{q}",
-                                              non_negative=q not in SIGNED_QUANTITIES)
-                              for q in BLOCK_QUANTITIES}
+                                              non_negative=q not in SIGNED)
+                              for q in BLOCKS}
             if len({len(v) for v in part["blocks"].values()}) > 1:
                 self.fail(f"{where}.blocks", "has columns of different lengths")
         return part

@@ -584,10 +584,11 @@ def test_compare_fails_when_nothing_could_be_evaluated(tmp_path, capsys):
 def test_the_report_fits_each_series_stiffness_exponents():
     # a series with N_c ~ k_n^0.3 that bends to k_n^0.1 over its stiffest three k_n, and an
     # estimate that crosses zero (no power law): the exponents found, the crossing said
-    from postprocess.report import EXPONENT_QUANTITIES, exponent_lines
+    from postprocess.quantities import EXPONENTS
+    from postprocess.report import exponent_lines
     kn = 1e4 * 4.0 ** np.arange(6)
     n_c = np.where(kn <= kn[3], kn ** 0.3, kn[3] ** 0.3 * (kn / kn[3]) ** 0.1)
-    rows = [dict({q: 1.0 for q in EXPONENT_QUANTITIES}, kn=k, label="", N_c=n, mc_c=m)
+    rows = [dict({q: 1.0 for q in EXPONENTS}, kn=k, label="", N_c=n, mc_c=m)
             for k, n, m in zip(kn, n_c, (0.01, 0.005, 0.002, -1e-4, 1e-5, 2e-5))]
     lines = exponent_lines(rows)
     n_c_line = next(line for line in lines if line.startswith("| N_c |"))
