@@ -7,6 +7,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .durations import density_of_counts  # noqa: E402
 from .io import DataError, read_text  # noqa: E402
 from .quantities import TABLE  # noqa: E402
 from .scenes import scene as scene_of  # noqa: E402
@@ -291,7 +292,6 @@ def duration_stiffness(scene, series, edges, path):
     """P(tau/tau_c) of particle contacts and P(tau/tau_w) of boundary contacts (columns) of each
     series of a scene (rows), one line per k_n, log-log; series: [(label, [(kn, pooled)])]
     with durations.pooled's result per k_n."""
-    from .durations import density_of_counts
     particle = scene_of(scene).particle
     fig, axes = plt.subplots(len(series), 2, figsize=(10, 3.8 * len(series)), squeeze=False)
     centres = np.sqrt(edges[1:] * edges[:-1])

@@ -585,7 +585,7 @@ def test_the_report_fits_each_series_stiffness_exponents():
     # a series with N_c ~ k_n^0.3 that bends to k_n^0.1 over its stiffest three k_n, and an
     # estimate that crosses zero (no power law): the exponents found, the crossing said
     from postprocess.quantities import EXPONENTS
-    from postprocess.report import exponent_lines
+    from postprocess.write_report import exponent_lines
     kn = 1e4 * 4.0 ** np.arange(6)
     n_c = np.where(kn <= kn[3], kn ** 0.3, kn[3] ** 0.3 * (kn / kn[3]) ** 0.1)
     rows = [dict({q: 1.0 for q in EXPONENTS}, kn=k, label="", N_c=n, mc_c=m)
