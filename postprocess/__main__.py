@@ -46,17 +46,16 @@ import argparse
 import sys
 from pathlib import Path
 
-import numpy as np
-
-from . import figures, limit
+from . import limit
 from .io import DataError
-from .reference import accepted, evaluate, tally
-from .report import comparison_line, fmt, write_report, write_transition_report
-from .scenes import SCENES, scene as scene_of
 from .selection import Selection
-from .study import analyse, label, main_series, varying_variables
-from .summary import write_summaries
+from .study import analyse
 from .transition import analyse_transition
+from .write_compare import write_compare
+from .write_limit import write_limit
+from .write_report import write_report
+from .write_summaries import write_summaries
+from .write_transition import write_transition_report
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 
@@ -142,14 +141,7 @@ def main(argv=None):
         path = write_report(named, scenes, left_out, completed, out, runs, selection)
         print(f"report: {path}")
         return 0
-    results = evaluate(scenes, rule=args.rule)
-    width = max(len(c["id"]) for c, *_ in results)
-    for claim, value, error, status in results:
-        print(f"{claim['id']:<{width}}  {fmt(value, error):>18}  "
-              f"{accepted(claim)}  {status}")
-    print(comparison_line(results))
-    counts = tally(results)
-    return 1 if counts["FAIL"] or counts["not evaluated"] == len(results) else 0
+    return write_compare(scenes, args.rule)
 
 
 def in_the_way(directory):
@@ -159,100 +151,6 @@ def in_the_way(directory):
         if path.exists():
             return None if path.is_dir() else path
     return None
-
-
-def contact_splits(runs):
-    """[(kn, {3.0: split, 10.0: split})] of the runs whose contact rows cover a window
-    (measured by durations.run_contacts, raw or from summaries)."""
-    return [(o["kn"], {float(k): v for k, v in o["contacts"]["split"].items()})
-            for o in runs if o.get("contacts") and "split" in o["contacts"]]
-
-
-def runaway_lines(records):
-    """Markdown: per series and k_n, the completed runs, those with a runaway event (limit.
-    runaway_events on E(t) over windows of one time unit) and the events' times."""
-    varying = varying_variables([r.variables for r in records])
-    table = {}
-    for r in records:
-        e = r.energy
-        t = e["t0"] + e["window"] * np.arange(len(e["E"]))
-        events = limit.runaway_events(t, e["E"])
-        row = table.setdefault((label(r.variables, varying), r.params["kn"]), [0, 0, []])
-        row[0] += 1
-        row[1] += bool(events)
-        row[2] += [f"{x:g}" for x in events]
-    lines = ["| series | k_n | completed runs | runs with a runaway | events at t = |",
-             "|---|---|---|---|---|"]
-    for (name, kn), (runs, hit, times) in sorted(table.items()):
-        lines.append(f"| {name or '-'} | {kn:.4g} | {runs} | {hit} | {', '.join(times)} |")
-    return lines + [""]
-
-
-def write_limit(sweep, scenes, out, selection, completed, rule=limit.RULE):
-    """The limit command: limit.md and a figure per series in out, for each scene the rule
-    applies to (Scene.decides_limit): its main series first, then each variant with enough
-    k_n; the verdicts on the terminal. completed: {scene: [RunRecord of each completed run]},
-    for the runaway events; rule: 1 or 2."""
-    names = [name for name in scenes if scene_of(name).decides_limit and scenes[name]]
-    if not names:
-        print(f"postprocess: {sweep}: no usable points of a scene the rule applies to ("
-              + ", ".join(n for n, s in SCENES.items() if s.decides_limit) + ")",
-              file=sys.stderr)
-        return 2
-    out.mkdir(parents=True, exist_ok=True)
-    lines = [f"# The hard-sphere-limit rule {rule} on {sweep}", "",
-             f"Selection of the steady parts (scenes that select them): {selection.describe()}.",
-             ""]
-    for name in names:
-        lines += limit_scene_lines(name, scenes[name], out, completed.get(name, []), rule)
-    (out / "limit.md").write_text("\n".join(lines))
-    print(f"limit report: {out / 'limit.md'}")
-    return 0
-
-
-def limit_scene_lines(name, rows, out, records, rule):
-    """limit.md's lines for one scene (its series, figures written to out) under rule 1 or 2;
-    the verdicts printed."""
-    scene_def = scene_of(name)
-    levels = dict(scene_def.limit_levels)
-    main = main_series(rows)
-    labels = [main[0]["label"]] + sorted({o["label"] for o in rows} - {main[0]["label"]})
-    lines = [f"# {scene_def.title}", ""]
-    for number, series_label in enumerate(labels):
-        runs = [run for o in rows if o["label"] == series_label for run in o.get("runs", [o])]
-        decisions = [limit.decide(runs, q, rule=rule) for q in scene_def.limit_quantities]
-        if number and all(d.verdict.startswith("not applied") for d in decisions):
-            continue    # a variant at too few k_n (a check of the step at one k_n)
-        within = {q: limit.decide_within_levels(runs, q, levels, rule=rule)
-                  for q in scene_def.limit_quantities}
-        title = (f"{'main series' if number == 0 else 'variant'} "
-                 f"{series_label or '(no variable varies)'}")
-        lines += [f"## {title}: {len(runs)} selected runs", ""]
-        lines += limit.report_lines(decisions, within, levels)
-        if any(d.fits for d in decisions):
-            figure = f"limit_{name}_{number}.png"
-            figures.limit_figure([d for d in decisions if d.fits], out / figure)
-            lines += [f"![the rule's data and fits]({figure})", ""]
-        splits = contact_splits(runs)
-        if splits:
-            lines += ["### What the time with two or more contacts is made of", "",
-                      f"Per {scene_def.particle} and unit time over each run's contact-rows "
-                      "window (the span's first rows_time, less 0.5 at its end), the mean over "
-                      "the runs with rows: the part during which one of the contacts lasts more "
-                      "than 3 (or 10) binary durations, and the part made of short contacts "
-                      "only (bursts); `unseen`: the counters' time not in the rows (contacts "
-                      "longer than the rows window, lasting ones).", ""]
-            lines += limit.split_lines(splits)
-        for d in decisions:
-            print(f"{scene_def.title}, {title}: {limit.NAMES[d.quantity]}: {d.verdict}" +
-                  (f" ({d.why})" if d.why else ""))
-    if records:
-        lines += ["## Runaway events", "",
-                  f"E(t), averaged over windows of one time unit, above {limit.RUNAWAY_FACTOR:g} "
-                  f"times the run's median and above {limit.RUNAWAY_ENERGY:g} after t = "
-                  f"{limit.SETTLED:g}, in every completed run (selected or not):", ""]
-        lines += runaway_lines(records)
-    return lines
 
 
 if __name__ == "__main__":

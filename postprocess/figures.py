@@ -7,7 +7,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .durations import density_of_counts  # noqa: E402
 from .io import DataError, read_text  # noqa: E402
+from .quantities import TABLE  # noqa: E402
 from .scenes import scene as scene_of  # noqa: E402
 from .selection import Selection, select_steady, window_means  # noqa: E402
 from .study import series  # noqa: E402
@@ -28,8 +30,8 @@ def stiffness(scene, rows, path, variants=()):
     inverse = lambda k: 1.0 / k
     scene_def = scene_of(scene)
     particle = scene_def.particle
-    for q, label in (("E_total", "E"), ("E_trans", "translational"), ("E_rot", "rotational")):
-        _errorbar(a, q, rows, label, x=inverse)
+    for q in ("E_total", "E_trans", "E_rot"):
+        _errorbar(a, q, rows, TABLE[q].short, x=inverse)
     a.set(xscale="log", xlabel="1/k_n", ylabel=f"E per {particle}", title="(a) kinetic energy")
     for q, label in (("N_c", f"N_c ({particle}s)"), ("N_w", "N_w (boundary)")):
         _errorbar(b, q, rows, label)
@@ -39,16 +41,16 @@ def stiffness(scene, rows, path, variants=()):
     else:
         b.set(xscale="log", yscale="log", title="(b) collision rates")
     b.set(xlabel="k_n", ylabel=f"collisions per {particle} per unit time")
-    for q, label in (("t_c", "t_c"), ("t_w", "t_w"), ("t_multiple", "two or more contacts")):
-        _errorbar(c, q, rows, label)
+    for q in ("t_c", "t_w", "t_multiple"):
+        _errorbar(c, q, rows, TABLE[q].short)
     for guide in scene_def.guides if len(kn) > 1 else ():
         values = series(rows, guide.quantity)[1]
         ax = b if guide.panel == "rates" else c
         ax.plot(kn, values[0] * (kn / kn[0]) ** guide.exponent, "k--", lw=1, label=guide.label)
     c.set(xscale="log", yscale="log", xlabel="k_n", ylabel="fraction of time",
           title="(c) contact-time fractions")
-    for q, label in (("mc_c", "t_c - N_c tau_c"), ("mc_w", "t_w - N_w tau_w")):
-        _errorbar(d, q, rows, label)
+    for q in ("mc_c", "mc_w"):
+        _errorbar(d, q, rows, TABLE[q].short)
     d.axhline(0, color="gray", lw=0.5)
     d.set(xscale="log", xlabel="k_n", ylabel="fraction of time",
           title="(d) multiple-contact estimates")
@@ -240,7 +242,7 @@ def transition_figure(table, path):
         top.axhline(0.0, color="k", lw=0.6, ls=":", label="collisional (paper): 0")
         top.axhline(0.4, color="k", lw=0.6, ls="--", label="frictional (paper): 0.4")
         top.set(ylabel="stiffness exponent", title=f"{scene_of(scene).base}")
-        plot(bottom, "mc_fraction", "(t_c - N_c tau_c)/t_c", "o")
+        plot(bottom, "mc_fraction", f"({TABLE['mc_c'].short})/t_c", "o")
         plot(bottom, "t_multiple", "time with >= 2 contacts (any kind)", "^")
         bottom.plot(s, [r.get("tail_disk", np.nan) for r in rows], "D--",
                     label="disk contacts > 2 tau_c")
@@ -290,7 +292,6 @@ def duration_stiffness(scene, series, edges, path):
     """P(tau/tau_c) of particle contacts and P(tau/tau_w) of boundary contacts (columns) of each
     series of a scene (rows), one line per k_n, log-log; series: [(label, [(kn, pooled)])]
     with durations.pooled's result per k_n."""
-    from .durations import density_of_counts
     particle = scene_of(scene).particle
     fig, axes = plt.subplots(len(series), 2, figsize=(10, 3.8 * len(series)), squeeze=False)
     centres = np.sqrt(edges[1:] * edges[:-1])
@@ -324,8 +325,6 @@ def limit_figure(decisions, path):
     per-k_n means with their errors, the pure power law and the power law onto a floor, the
     floor's bootstrap interval; and the running exponents."""
     fig, axes = plt.subplots(1, len(decisions) + 1, figsize=(4.2 * (len(decisions) + 1), 4))
-    names = {"mc_c": "t_c - N_c tau_c", "mc_w": "t_w - N_w tau_w",
-             "t_multiple": "time with >= 2 contacts"}
     for ax, d in zip(axes, decisions):
         s = d.series
         ax.errorbar(s.kn, s.value, yerr=s.error, fmt="o", ms=4, capsize=2, label="runs' mean")
@@ -337,13 +336,13 @@ def limit_figure(decisions, path):
                     "-", label=f"floor {d.fits.floor:.3g}")
             low, high = d.floor_interval
             ax.axhspan(low, high, color="0.85", zorder=0, label="floor 95 % (bootstrap)")
-        ax.set(xscale="log", yscale="log", xlabel="k_n", title=f"{names[d.quantity]}: {d.verdict}")
+        ax.set(xscale="log", yscale="log", xlabel="k_n", title=f"{TABLE[d.quantity].title}: {d.verdict}")
         ax.legend(fontsize=7)
         running = [r for r in d.running if np.isfinite(r[2])]
         if running:
             centre = [np.sqrt(a * b) for a, b, *_ in running]
             axes[-1].errorbar(centre, [r[2] for r in running], yerr=[r[3] for r in running],
-                              fmt="o-", ms=4, capsize=2, label=names[d.quantity])
+                              fmt="o-", ms=4, capsize=2, label=TABLE[d.quantity].title)
     axes[-1].axhline(0.0, color="k", lw=0.5)
     axes[-1].set(xscale="log", xlabel="k_n", ylabel="d ln m / d ln k_n",
                  title="running exponents")

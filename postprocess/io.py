@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
+from . import rundir
+
 
 class DataError(Exception):
     """A point's output is missing, truncated or inconsistent."""
@@ -39,7 +41,7 @@ def read_text(path):
 
 
 def read_params(point):
-    path = Path(point) / "params.txt"
+    path = Path(point) / rundir.PARAMS
     if not path.exists():
         raise DataError(f"{path}: missing (the run did not start its outputs)")
     params = {}
@@ -124,13 +126,13 @@ def header_columns(path, first, needed):
 
 def read_energy(point, params):
     """energy.txt (columns as its header names them) with a time column (step * dt)."""
-    path = Path(point) / "energy.txt"
+    path = Path(point) / rundir.ENERGY
     table = numeric_table(path, header_columns(path, "step", ENERGY_COLUMNS))
     table["time"] = table["step"] * params["dt"]
     if len(table["time"]) < 2:
         raise DataError(f"{path}: 1 data row, the analysis needs at least 2: truncated?")
     if np.any(np.diff(table["step"]) <= 0):
-        raise DataError(f"{Path(point) / 'energy.txt'}: steps do not increase")
+        raise DataError(f"{Path(point) / rundir.ENERGY}: steps do not increase")
     return table
 
 
@@ -167,7 +169,7 @@ def read_dump_atoms(path, needed):
 def read_counts(point):
     """counts.txt: id, diameter and the counters of fix contacts/mn per disk, by name."""
     fix_columns = {f"f_c[{k}]": name for k, name in enumerate(COUNTER_COLUMNS, 1)}
-    table = read_dump_atoms(Path(point) / "counts.txt", ("id", "diameter", *fix_columns))
+    table = read_dump_atoms(Path(point) / rundir.COUNTS, ("id", "diameter", *fix_columns))
     return {fix_columns.get(name, name): values for name, values in table.items()}
 
 
@@ -198,8 +200,8 @@ def read_profile(point):
     checkpoints writes profile_chunks.txt instead: one block per chunk of the span, headed by
     '# chunk START END SAMPLES'; the span's profile is their mean weighted by SAMPLES (each
     block is a running average over its SAMPLES samples; a bin a block lacks counts as 0)."""
-    path = Path(point) / "profile.txt"
-    chunks = Path(point) / "profile_chunks.txt"
+    path = Path(point) / rundir.PROFILE
+    chunks = Path(point) / rundir.PROFILE_CHUNKS
     if not path.exists() and chunks.exists():
         blocks, weights = [], []
         for line in read_text(chunks).splitlines():
@@ -230,7 +232,7 @@ def read_profile(point):
 def read_rows(point):
     """contacts.txt (dump local of fix contacts/mn) as a dict of arrays, its columns named by
     each snapshot's own header (ITEM: ENTRIES f_c[1] ...); empty if none."""
-    path = Path(point) / "contacts.txt"
+    path = Path(point) / rundir.ROWS
     if not path.exists():
         raise DataError(f"{path}: missing (run the deck with -var rows yes)")
     fix_columns = {f"f_c[{k}]": name for k, name in enumerate(ROW_COLUMNS, 1)}
@@ -259,13 +261,13 @@ def read_rows(point):
 
 
 def read_trajectory(point):
-    return numeric_table(Path(point) / "trajectory.txt", ("time", "x", "y", "vx", "vy"))
+    return numeric_table(Path(point) / rundir.TRAJECTORY, ("time", "x", "y", "vx", "vy"))
 
 
 def read_stopped(point):
     """The time at which the run ended early because its pile had stopped (stopped.txt, written
     by inputs/lib/run.lmp), or None for a run that went on to run_time."""
-    path = Path(point) / "stopped.txt"
+    path = Path(point) / rundir.STOPPED
     if not path.exists():
         return None
     words = read_text(path).split()
@@ -276,7 +278,7 @@ def read_stopped(point):
 
 def read_variables(point):
     """point.json: the point's deck variables, as the sweep runner wrote them."""
-    path = Path(point) / "point.json"
+    path = Path(point) / rundir.POINT
     if not path.exists():
         raise DataError(f"{path}: missing (not a sweep's point)")
     try:
@@ -298,27 +300,6 @@ def checked_variables(variables, path):
     return variables
 
 
-def read_ending(point):
-    """How a sweep point's run ended, before its outputs are read: ('completed', None) if the
-    deck wrote done.txt, ('failed', the exit status failed.txt gives and lmp's last ERROR line)
-    if the sweep runner recorded a failure, else ('incomplete', None): still running, or
-    killed."""
-    point = Path(point)
-    if (point / "done.txt").exists():
-        return "completed", None
-    path = point / "failed.txt"
-    if not path.exists():
-        return "incomplete", None
-    lines = path.read_text(errors="replace").splitlines()
-    # lmp run with -screen none prints its errors only to its log
-    for said in (lines, (point / "log.lammps").read_text(errors="replace").splitlines()
-                 if (point / "log.lammps").exists() else []):
-        errors = [l.strip() for l in said if l.startswith("ERROR")]
-        if errors:
-            break
-    return "failed", "; ".join(([lines[0].strip()] if lines else []) + errors[-1:])
-
-
 class Point:
     """A point directory's outputs, each file read once, when first asked for (the large
     optional ones, rows, trajectory and profile, only then); a file that cannot be read raises
@@ -327,7 +308,8 @@ class Point:
     def __init__(self, directory):
         self.directory = Path(directory)
 
-    ending = cached_property(lambda self: read_ending(self.directory))
+    timing = cached_property(lambda self: rundir.read_timing(self.directory))
+    ending = cached_property(lambda self: rundir.ending(self.directory, self.timing))
     variables = cached_property(lambda self: read_variables(self.directory))
     params = cached_property(lambda self: read_params(self.directory))
     stopped_at = cached_property(lambda self: read_stopped(self.directory))

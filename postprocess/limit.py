@@ -9,7 +9,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .durations import LASTING, LASTING_ALSO
 
 MIN_RUNS = 3               # selected runs a k_n needs to enter the fits
 MIN_RUNS_IN_LEVEL = 2      # ... within one energy level
@@ -317,91 +316,7 @@ def decide_within_levels(runs, quantity, levels, samples=BOOTSTRAP, rule=RULE):
     return out
 
 
-NAMES = {"mc_c": "t_c - N_c tau_c", "mc_w": "t_w - N_w tau_w",
-         "t_multiple": "time with two or more contacts"}
-
-
-def report_lines(decisions, within, levels):
-    """Markdown: per quantity the per-k_n values, running exponents, fits and verdict; then
-    the verdicts within each energy level. decisions: [Decision]; within: {quantity: {level:
-    Decision}}; levels: {name: (low, high)} (empty: the scene's flows have no levels)."""
-    lines = []
-    for d in decisions:
-        lines += [f"### {NAMES[d.quantity]}: **{d.verdict}**", ""]
-        if d.why:
-            lines += [d.why, ""]
-        s = d.series
-        lines += ["| k_n | runs | value | error | running exponent to the next k_n |",
-                  "|---|---|---|---|---|"]
-        running = {r[0]: r for r in d.running}
-        for k, v, e, n in zip(s.kn, s.value, s.error, s.runs):
-            r = running.get(k)
-            exponent = f"{r[2]:.3f} +- {r[3]:.3f}" if r and np.isfinite(r[2]) else ""
-            lines.append(f"| {k:.4g} | {int(n)} | {v:.4g} | {e:.2g} | {exponent} |")
-        for k, n in d.lacking:
-            lines.append(f"| {k:.4g} | {n} | (too few runs) | | |")
-        if d.fits:
-            f = d.fits
-            lines += ["", f"- pure power law: b = {f.b_power:.3f} +- {f.b_power_error:.3f}, "
-                          f"chi2 = {f.chi2_power:.2f} ({len(s.kn) - 2} dof)",
-                      f"- power law onto a floor: c = {f.floor:.4g}, b = {f.b_floor:.3f}, "
-                      f"chi2 = {f.chi2_floor:.2f} ({len(s.kn) - 3} dof); dAIC = {f.d_aic:.2f}",
-                      f"- floor's bootstrap 95 % interval: [{d.floor_interval[0]:.3g}, "
-                      f"{d.floor_interval[1]:.3g}]"]
-            if d.rule == 2 and np.isfinite(d.decay[0]):
-                lines.append(f"- log-log decay exponent (rule 2): b = {d.decay[0]:.3f} +- "
-                             f"{d.decay[1]:.3f}, one-sided {NO_FALL_CONFIDENCE:.0%} upper bound "
-                             f"{d.decay[2]:.3f}; 'does not fall' below {d.decay_limit:.3f} (at "
-                             f"most {NO_FALL_FRACTION:.0%} lost over the range)")
-        lines.append("")
-    if not levels:
-        return lines + ["The scene's flows have no energy levels to apply the rule within "
-                        "(postprocess/scenes.py, limit_levels).", ""]
-    lines += ["### Within one energy level", "",
-              "| quantity | " + " | ".join(f"{n} E in [{lo:g}, {hi:g})" for n, (lo, hi)
-                                           in levels.items()) + " |",
-              "|---|" + "---|" * len(levels)]
-    for quantity, by_level in within.items():
-        lines.append(f"| {NAMES[quantity]} | " + " | ".join(
-            by_level[n].verdict for n in levels) + " |")
-    lines.append("")
-    for quantity, by_level in within.items():
-        for n, d in by_level.items():
-            if d.fits:
-                s = d.series
-                lines.append(f"- {NAMES[quantity]}, {n} level: **{d.verdict}** ({d.why}); "
-                             + ", ".join(f"{k:.3g}: {v:.4g} ({int(r)} runs)"
-                                         for k, v, r in zip(s.kn, s.value, s.runs)))
-    return lines + [""]
-
-
 # ---- what the multiple-contact time is made of (docs/hard_sphere_limit.md)
-
-def split_lines(splits):
-    """Markdown: per k_n the mean over runs of the split and, from two runs on, its standard
-    error over the runs (splits: [(kn, {threshold: split})], thresholds durations.LASTING and
-    LASTING_ALSO; a value a run lacks (None) is left out)."""
-    a, b = LASTING, LASTING_ALSO
-    lines = [f"| k_n | runs | >= 2 contacts (counters) | from rows | lasting (> {a:g} tau) | "
-             f"bursts (<= {a:g} tau) | lasting (> {b:g} tau) | bursts (<= {b:g} tau) | "
-             f"unseen (> window) | contact time in > {a:g} tau contacts |", "|---|" + "---|" * 9]
-    for k in sorted({kn for kn, _ in splits}):
-        mine = [s for kn, s in splits if kn == k]
-
-        def mean(threshold, name, digits=4):
-            values = [s[threshold][name] for s in mine if s[threshold][name] is not None]
-            if not values:
-                return "nan"
-            text = f"{np.mean(values):.{digits}f}"
-            if len(values) > 1:
-                text += f" +- {np.std(values, ddof=1) / np.sqrt(len(values)):.{digits}f}"
-            return text
-        lines.append(f"| {k:.4g} | {len(mine)} | {mean(a, 't_multiple_counters')} | "
-                     f"{mean(a, 't_multiple_rows')} | {mean(a, 'lasting')} | "
-                     f"{mean(a, 'bursts')} | {mean(b, 'lasting')} | "
-                     f"{mean(b, 'bursts')} | {mean(a, 'unseen')} | "
-                     f"{mean(a, 'lasting_share_of_contact_time', 3)} |")
-    return lines + [""]
 
 
 # ---- runaway events of the literal law (docs/hard_sphere_limit.md)

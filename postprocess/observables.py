@@ -4,6 +4,7 @@ from dataclasses import replace
 import numpy as np
 
 from .durations import run_contacts
+from .quantities import BLOCKS
 from .io import CUMULATIVE_COUNTERS, DataError, Point
 from .scenes import SCENES, scene
 from .selection import Selection, in_energy_range, steady_parts
@@ -85,19 +86,11 @@ def relative(error, point):
     return str(error).replace(f"{point}/", "").replace(f"{point}: ", "")
 
 
-# the observables of one block, in the order the tables list them
-BLOCK_QUANTITIES = ("E_trans", "E_rot", "E_total", "N_c", "N_w", "t_c", "t_w", "t_multiple",
-                    "mc_c", "mc_w", "z")
-# those of them that can be negative: t - N tau is, where contacts last less than tau on
-# average; the others are energies, rates, time fractions and contacts per disk, >= 0
-SIGNED_QUANTITIES = ("mc_c", "mc_w")
-
-
 def span_blocks(energy, a, b, params, n_boundary, n_blocks):
     """The span [a, b) of energy.txt's rows cut into n_blocks pieces: the piece's time span
     and {quantity: [its value in each piece]} (pieces of fewer than 2 rows left out)."""
     n = params["n_mobile"]
-    blocks = {q: [] for q in BLOCK_QUANTITIES}
+    blocks = {q: [] for q in BLOCKS}
     edges = np.linspace(a, b, n_blocks + 1).astype(int)
     for lo, hi in zip(edges[:-1], edges[1:]):
         if hi - lo < 2:
@@ -108,7 +101,7 @@ def span_blocks(energy, a, b, params, n_boundary, n_blocks):
         block["mc_c"] = block["t_c"] - block["N_c"] * params["tau_c"]
         block["mc_w"] = block["t_w"] - block["N_w"] * params["tau_w"]
         block["z"] = contacts_per_disk(energy["contacts_now"][lo:hi], n)
-        for q in BLOCK_QUANTITIES:
+        for q in BLOCKS:
             blocks[q].append(float(block[q]))
     return {"span": float(energy["time"][b - 1] - energy["time"][a]), "blocks": blocks}
 
@@ -148,7 +141,7 @@ def measure(point, resolutions=(), selection=Selection()):
       contacts, contacts_problem   (runs with contact rows) durations.run_contacts: P(tau)'s
                     histogram and the split of the time with two or more contacts; or why the
                     rows could not be read (contacts None)
-    where blocks is {quantity: [value in each of N_BLOCKS pieces]} (BLOCK_QUANTITIES)."""
+    where blocks is {quantity: [value in each of N_BLOCKS pieces]} (BLOCKS)."""
     params, energy, stopped_at = point.params, point.energy, point.stopped_at
     inside = averaging_rows(energy, params)
     first = int(np.argmax(inside))
@@ -191,7 +184,7 @@ def measure(point, resolutions=(), selection=Selection()):
     def part(a, b):
         if n_boundary == 0:     # no rates per boundary disk: observables() says so
             return {"span": float(energy["time"][b - 1] - energy["time"][a]),
-                    "blocks": {q: [] for q in BLOCK_QUANTITIES}}
+                    "blocks": {q: [] for q in BLOCKS}}
         return span_blocks(energy, a, b, params, n_boundary, N_BLOCKS)
 
     def located(a, b):
@@ -256,7 +249,7 @@ def observables(params, measured, stopped_at, selection=Selection(), scene_def=N
                             f"{REST_ENERGY:g} from then on): no steady motion to average")
     if measured["n_boundary"] == 0:
         raise DataError("no disk touched the boundary in the averaging window")
-    blocks = {q: [v for p in parts for v in p["blocks"][q]] for q in BLOCK_QUANTITIES}
+    blocks = {q: [v for p in parts for v in p["blocks"][q]] for q in BLOCKS}
     if len(blocks["E_total"]) < 2:
         raise DataError("the averaging span is too short for error bars")
     result = with_errors(blocks)

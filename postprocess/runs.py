@@ -3,99 +3,23 @@ directory (<scene>/<point>/, docs/scenes.md) or the compact summaries that `pyth
 postprocess summarize` writes of them (<scene>/<point>.json, docs/sweeps.md). The report,
 compare and any later analysis start from load_runs; read_run is the one place that reads a
 point directory (through an io.Point, which reads each file once)."""
-import json
 import math
-from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
-
+from . import rundir
 from .io import DataError, Point
 from .observables import RESOLUTIONS, measure, observables, relative
 from .scenes import SCENES, scene
-from .selection import Selection, in_energy_range, window_means
-
-# How a run ended: ran to run_time, its pile stopped and the run ended early (stopped.txt),
-# lmp failed (the sweep runner's failed.txt), no done.txt (still running, or killed), or (a
-# summary only) the summary itself could not be read.
-ENDINGS = ("flowing", "stopped", "failed", "incomplete", "unreadable")
-# The window (time units) over which a record's E(t) is averaged for drawing (energy), unless
-# energy.txt's lines are further apart.
-DRAWN_WINDOW = 1.0
+from .record import RunRecord, drawn_energy, run_name
+from .selection import Selection
+from .summary import read_summaries
 
 
-@dataclass
-class RunRecord:
-    """One run of a sweep.
-
-    point        its directory (raw) or its summary file
-    scene        the scene directory it is in
-    source       "raw" or "summary"
-    ended        one of ENDINGS
-    stopped_at   the time its pile stopped (ended "stopped"), else None
-    failure      (ended "failed") the exit status and lmp's last ERROR line
-    variables    point.json: the deck variables the sweep set (kn, seed, integrator, ...)
-    params       params.txt: every value the deck derived (tau_c, dt, n_mobile, ...)
-    measured     observables.measure's result: what its averages are made of
-    energy       {"window", "t0", "E"}: E(t) per disk averaged over consecutive windows from
-                 the first sample t0, window k starting at t0 + k window (window: DRAWN_WINDOW
-                 or, if larger, the largest time between two lines of energy.txt, so that no
-                 window is empty); E to 4 significant digits: for drawing
-    cpu_seconds  what the run cost (timing.json), if known
-    reason       why it has no observables (a DataError's text), else None
-    observables  (load_runs) observables.observables' result with load_runs' selection
-    outputs      (raw) its io.Point: the files read so far, and the others when asked for
-    copies       (load_runs of several directories) the other files of this same run, which
-                 another directory given holds too: counted once, as this record"""
-    point: Path
-    scene: str
-    source: str
-    ended: str = "incomplete"
-    stopped_at: float = None
-    failure: str = None
-    variables: dict = None
-    params: dict = None
-    measured: dict = None
-    energy: dict = None
-    cpu_seconds: float = None
-    reason: str = None
-    observables: dict = None
-    outputs: Point = field(default=None, compare=False, repr=False)
-    copies: list = field(default_factory=list)
-
-    def kept(self, selection, resolutions):
-        """{resolution: steady parts the selection keeps at it} (frictional runs)."""
-        return {r: sum(in_energy_range(p["mean"], selection)
-                       for p in self.measured["steady"][r]) for r in resolutions}
-
-
-def drawn_energy(energy):
-    """energy.txt's E(t) per disk as RunRecord.energy keeps it."""
-    t = energy["time"]
-    window = max(DRAWN_WINDOW, float(np.max(np.diff(t))))
-    _, e, _ = window_means(t, energy["e_total"], window)
-    return {"window": window, "t0": float(t[0]), "E": [float(f"{v:.4g}") for v in e]}
-
-
-def energy_curve(record):
-    """(t, E per disk) of a completed run: every sample of energy.txt (raw), or the means over
-    the windows of RunRecord.energy at their start times (summary)."""
-    if record.source == "raw":
-        return record.outputs.energy["time"], record.outputs.energy["e_total"]
-    drawn = record.energy
-    return drawn["t0"] + drawn["window"] * np.arange(len(drawn["E"])), np.array(drawn["E"])
-
-
-def unfinished_reason(ending, failure):
-    """The left-out reason of a run that did not complete (io.read_ending)."""
-    return (f"crashed ({failure}; see failed.txt)" if ending == "failed"
-            else "did not complete (no done.txt)")
-
-
-def read_cpu_seconds(point):
+def cpu_seconds(outputs):
+    """What the run cost (timing.json), or None if it does not say."""
     try:
-        return float(json.loads((Path(point) / "timing.json").read_text())["cpu_seconds"])
-    except (OSError, ValueError, KeyError, TypeError):
+        return float(outputs.timing["cpu_seconds"])
+    except (KeyError, TypeError, ValueError):
         return None
 
 
@@ -107,7 +31,7 @@ def read_run(point, resolutions=RESOLUTIONS, selection=Selection()):
     point = Path(point)
     outputs = Point(point)
     record = RunRecord(point=point, scene=point.parent.name, source="raw",
-                       cpu_seconds=read_cpu_seconds(point), outputs=outputs)
+                       cpu_seconds=cpu_seconds(outputs), outputs=outputs)
     try:
         scene(record.scene)
     except KeyError as error:
@@ -116,13 +40,13 @@ def read_run(point, resolutions=RESOLUTIONS, selection=Selection()):
     ending, record.failure = outputs.ending
     if ending != "completed":
         record.ended = ending
-        record.reason = unfinished_reason(ending, record.failure)
+        record.reason = rundir.incomplete_reason(ending, record.failure)
         try:
             record.variables = outputs.variables
         except DataError:
             pass        # the reason is the crash
         return record
-    record.ended = "stopped" if (point / "stopped.txt").exists() else "flowing"
+    record.ended = "stopped" if (point / rundir.STOPPED).exists() else "flowing"
     try:
         record.variables = outputs.variables
         record.params = outputs.params
@@ -159,12 +83,11 @@ def load_runs(source, selection=Selection()):
     source = Path(source)
     if not source.is_dir():
         raise DataError(f"{source}: no such sweep directory")
-    points = sorted(p for p in source.glob("*/*") if (p / "point.json").exists())
+    points = sorted(p for p in source.glob("*/*") if (p / rundir.POINT).exists())
     if points:
         resolutions = sorted(set(RESOLUTIONS) | {selection.resolution})
         records = [read_run(p, resolutions, selection) for p in points]
     else:
-        from .summary import read_summaries     # here: summary builds on this module
         records = read_summaries(source, selection)
     for record in records:
         if record.reason is None:
@@ -174,12 +97,6 @@ def load_runs(source, selection=Selection()):
             except DataError as error:
                 record.reason = str(error)
     return records
-
-
-def run_name(record):
-    """What a run is called, whatever holds it: its scene and point, <scene>/<point> (a
-    point directory <scene>/<point>/ or its summary <scene>/<point>.json)."""
-    return f"{record.scene}/{record.point.stem if record.source == 'summary' else record.point.name}"
 
 
 # what two records of one run name must share to be the same run, counted once

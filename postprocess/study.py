@@ -3,13 +3,10 @@ import numpy as np
 
 from .durations import pooled
 from .observables import RESOLUTIONS
+from .quantities import COLUMNS, VARIANTS
 from .runs import load_runs
 from .scenes import SCENES
 from .selection import Selection
-
-QUANTITIES = ("E_trans", "E_rot", "E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w",
-              "t_multiple", "z")
-
 
 def analyse(source, selection=Selection()):
     """A sweep from its raw outputs or its summaries (runs.load_runs): {scene: [observables of
@@ -85,7 +82,7 @@ def combine_seeds(rows):
             weights = np.array([m["span"] for m in members], dtype=float)
             weights /= weights.sum()
             n = len(members)
-            for q in QUANTITIES + ("period", "bump_time"):
+            for q in COLUMNS + ("period", "bump_time"):
                 if q not in o:
                     continue
                 values = np.array([m[q] for m in members])
@@ -136,9 +133,6 @@ def main_series(rows):
     return [o for o in rows if o["label"] == best]
 
 
-VARIANT_QUANTITIES = ("E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w")
-
-
 def variant_differences(rows):
     """[(variant row, main row, {quantity: (difference, difference / combined error)})] for
     every point outside the main series that has a main-series point at the same k_n."""
@@ -150,7 +144,7 @@ def variant_differences(rows):
             continue
         m = by_kn[o["kn"]]
         diffs = {}
-        for q in VARIANT_QUANTITIES:
+        for q in VARIANTS:
             d = o[q] - m[q]
             sigma = np.hypot(o[q + "_err"], m[q + "_err"])
             diffs[q] = (d, d / sigma if sigma > 0 else np.nan)

@@ -1,5 +1,5 @@
 """Compact summaries of a sweep's runs (docs/sweeps.md, "Summaries"): one JSON file per run,
-<scene>/<point>.json, holding its RunRecord (postprocess/runs.py) but the observables, which
+<scene>/<point>.json, holding its RunRecord (postprocess/record.py) but the observables, which
 are recomputed on reading with the reader's selection. A few kB where the raw outputs take
 MB: committed under data/, they let the report and compare be redone without rerunning.
 
@@ -17,8 +17,9 @@ from pathlib import Path
 
 from .durations import DURATION_EDGES, LASTING, LASTING_ALSO, SPLIT_NAMES
 from .io import CONTACT_KINDS, DataError, checked_params, checked_variables
-from .observables import BLOCK_QUANTITIES, RESOLUTIONS, SIGNED_QUANTITIES
-from .runs import DRAWN_WINDOW, ENDINGS, RunRecord, read_run
+from .observables import RESOLUTIONS
+from .quantities import BLOCKS, SIGNED
+from .record import DRAWN_WINDOW, ENDINGS, RunRecord
 from .scenes import scene
 from .selection import Selection
 
@@ -76,36 +77,6 @@ def lost(old, new):
             new.measured and new.measured.get("contacts")):
         return "it holds the durations of the contact rows; the new one not"
     return None
-
-
-def write_summaries(results_dir, to, selection=Selection(), replace=False):
-    """Summarises every point of a results directory into `to`/<scene>/<point>.json, the
-    frictional steady parts found with the selection's min_length and max_width (which the
-    summary records: a reader must ask for the same). A summary there that is more complete
-    than the new one (lost), or that this code cannot read, is kept unless `replace`. Returns
-    the paths written and [(path kept, why)]."""
-    results_dir = Path(results_dir)
-    if not results_dir.is_dir():
-        raise DataError(f"{results_dir}: no such results directory")
-    points = sorted(p for p in results_dir.glob("*/*") if (p / "point.json").exists())
-    if not points:
-        raise DataError(f"{results_dir}: no sweep points here (no <scene>/<point>/point.json)")
-    written, kept = [], []
-    for point in points:
-        path = Path(to) / point.parent.name / f"{point.name}.json"
-        record = read_run(point, RESOLUTIONS, selection)
-        if path.exists() and not replace:
-            try:
-                why = lost(read_summary(path, selection=None), record)
-            except DataError as error:
-                why = f"this code cannot read it ({error})"
-            if why:
-                kept.append((path, why))
-                continue
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(summary_text(record, selection))
-        written.append(path)
-    return written, kept
 
 
 def read_summaries(directory, selection=Selection()):
@@ -188,8 +159,8 @@ class _Checker:
             columns = self.mapping(self.key(data, "blocks", where), f"{where}.blocks")
             part["blocks"] = {q: self.numbers(self.key(columns, q, f"{where}.blocks"),
                                               f"{where}.blocks.{q}",
-                                              non_negative=q not in SIGNED_QUANTITIES)
-                              for q in BLOCK_QUANTITIES}
+                                              non_negative=q not in SIGNED)
+                              for q in BLOCKS}
             if len({len(v) for v in part["blocks"].values()}) > 1:
                 self.fail(f"{where}.blocks", "has columns of different lengths")
         return part

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import rundir
 from .durations import contact_durations, tail_fraction
 from .io import CONTACT_KINDS, DataError
 from .observables import observables, relative, rest_time
@@ -76,7 +77,7 @@ def transition_run(record):
                         scene_def=transition_scene(params["scene"]))
         o.update(point=record.point, variables=record.variables)
         run["observables"] = o
-        if (record.point / "contacts.txt").exists():
+        if (record.point / rundir.ROWS).exists():
             run["durations"] = contact_durations(record.outputs.rows, params["tau_c"],
                                                  params["tau_w"], params["average_start"])
     return run
@@ -86,7 +87,7 @@ def analyse_transition(sweep_dir):
     """[transition_run of each run], {(scene, sin_theta): [observables per kn, seeds
     combined]}, [(point, reason) left out] of a transition sweep."""
     sweep_dir = Path(sweep_dir)
-    points = sorted(p for p in sweep_dir.glob("*/*") if (p / "point.json").exists())
+    points = sorted(p for p in sweep_dir.glob("*/*") if (p / rundir.POINT).exists())
     if not points and any(sweep_dir.glob("*/*.json")):
         raise DataError(f"{sweep_dir}: the transition study needs the raw outputs, and these are "
                         "run summaries (<scene>/<point>.json): summaries hold E(t) only as its "

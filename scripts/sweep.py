@@ -81,6 +81,7 @@ from pathlib import Path
 
 import checkpoints
 from mpirun_slots import slots_problem
+from postprocess.rundir import RUNNING, completed     # scripts/postprocess links the package
 from mn_law import LawError, derived
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -456,19 +457,6 @@ def set_aside_failed_resume(directory, variables):
             f"it is set aside as checkpoint.{variables['resume']}.unreadable; {then}")
 
 
-def completed(directory):
-    """Whether a point's outputs are those of a run that ended: done.txt (the deck's last
-    output) and timing.json (the runner's, once it saw the run end) carry the same run token,
-    or, from a runner before tokens, neither has one."""
-    try:
-        done = (directory / "done.txt").read_text()
-        timing = json.loads((directory / "timing.json").read_text())
-    except (OSError, ValueError):
-        return False
-    token = re.search(r"\brun (\w+)", done)
-    return isinstance(timing, dict) and timing.get("run") == (token and token.group(1))
-
-
 def wrote_done(directory, token):
     try:
         return re.search(rf"\brun {token}\b", (directory / "done.txt").read_text()) is not None
@@ -497,7 +485,6 @@ _stopped_by = []                 # the signal that stopped the sweep
 _libc = ctypes.CDLL(None, use_errno=True)
 PR_SET_PDEATHSIG = 1
 SIGTERM = int(signal.SIGTERM)
-RUNNING = "running.json"
 POLL, GRACE = 0.5, 5.0           # seconds
 
 

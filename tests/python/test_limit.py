@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from postprocess import durations, limit
+from postprocess.formatting import split_lines
 from postprocess.scenes import scene
 
 # The stiff preset's k_n (2^p x 10^5, p = 4, 6, ..., 14) and eight runs at each.
@@ -115,7 +116,7 @@ def test_the_papers_claim_passes_on_a_floor_and_fails_on_a_power_law():
 
 
 def test_limit_command_writes_the_verdicts_and_the_figure(tmp_path, capsys):
-    from postprocess.__main__ import write_limit
+    from postprocess.write_limit import write_limit
     from postprocess.selection import Selection
     runs = synthetic_runs(floor, 0.15)
     for i, r in enumerate(runs):
@@ -136,7 +137,7 @@ def test_limit_command_writes_the_verdicts_and_the_figure(tmp_path, capsys):
 def test_limit_command_decides_the_3d_chute_without_levels(tmp_path, capsys):
     # the same series as the 3D chute's: decided alike; the 3D flows have no energy levels,
     # so step 4 is said to be skipped rather than split by the 2D disks' levels
-    from postprocess.__main__ import write_limit
+    from postprocess.write_limit import write_limit
     from postprocess.selection import Selection
     runs = synthetic_runs(power, 0.05)
     for r in runs:
@@ -156,7 +157,7 @@ def test_limit_command_decides_the_3d_chute_without_levels(tmp_path, capsys):
 def test_limit_command_decides_the_collisional_floor_alone(tmp_path, capsys):
     # the collisional flow's disks collide binarily (t_c - N_c tau_c < 0): the rule decides on
     # t_w - N_w tau_w only, here a flat floor that rule 2 calls finite
-    from postprocess.__main__ import write_limit
+    from postprocess.write_limit import write_limit
     from postprocess.selection import Selection
     runs = synthetic_runs(flat, 0.10)
     for r in runs:
@@ -276,7 +277,7 @@ def test_split_table_gives_the_error_over_runs():
         one = {"t_multiple_counters": 0.03, "t_multiple_rows": 0.03, "lasting": lasting,
                "bursts": 0.03 - lasting, "unseen": 0.0, "lasting_share_of_contact_time": 0.5}
         return {durations.LASTING: one, durations.LASTING_ALSO: dict(one)}
-    lines = limit.split_lines([(1e6, split(0.010)), (1e6, split(0.020)), (4e6, split(0.01))])
+    lines = split_lines([(1e6, split(0.010)), (1e6, split(0.020)), (4e6, split(0.01))])
     assert "| 1e+06 | 2 | 0.0300 +- 0.0000 | 0.0300 +- 0.0000 | 0.0150 +- 0.0050 |" in lines[2]
     assert "| 4e+06 | 1 | 0.0300 | 0.0300 | 0.0100 |" in lines[3]
 

@@ -74,6 +74,14 @@ def test_span_rates_recover_the_rates():
 
 # ---- a whole synthetic point
 
+def completed(point):
+    """What the deck and the sweep runner leave in a point whose run ended (postprocess.rundir):
+    done.txt and timing.json, both carrying the run's token."""
+    (point / "done.txt").write_text("kn 1 steps 1 dt 1 run t0\n")
+    (point / "timing.json").write_text('{"seconds": 1.0, "cpu_seconds": 1.0, "run": "t0"}\n')
+    return point
+
+
 def write_point(tmp_path, scene="collisional_flow", n=4, run_time=100.0, average_start=20.0,
                 dt=0.001, e_level=0.6, truncate=False):
     tau_c, tau_w = 0.005, 0.007
@@ -400,7 +408,7 @@ def left_out_of_a_sweep(tmp_path, scene, point_json):
     (tmp_path / scene / "p1").mkdir(parents=True)
     point = write_point(tmp_path / scene / "p1")
     (point / "point.json").write_text(point_json)
-    (point / "done.txt").write_text("done\n")
+    completed(point)
     return point, analyse(tmp_path)[1]
 
 
@@ -449,12 +457,13 @@ def test_a_run_that_came_to_rest_has_no_steady_motion_to_average(tmp_path):
 
 def sweep_of(tmp_path, points):
     """A sweep directory of synthetic points: {(scene, name): writer(point directory)}; each
-    point gets point.json ({"kn": ..., "seed": 1}) and done.txt unless its writer removes them."""
+    point gets point.json ({"kn": ..., "seed": 1}) and the files of a completed run (done.txt
+    and timing.json) unless its writer removes them."""
     for (scene, name), write in points.items():
         point = tmp_path / scene / name
         point.mkdir(parents=True)
         (point / "point.json").write_text(f'{{"kn": {len(name)}, "seed": 1}}')
-        (point / "done.txt").write_text("done\n")
+        completed(point)
         write(point)
     return tmp_path
 
@@ -561,7 +570,7 @@ def test_a_crashed_point_is_reported_as_crashed(tmp_path):
     assert left_out[sweep / "collisional_flow" / "p1"] == (
         "crashed (exit status 1; ERROR: Lost atoms: original 4 current 3 (x.cpp:1); "
         "see failed.txt)")
-    assert left_out[sweep / "collisional_flow" / "p2"] == "did not complete (no done.txt)"
+    assert left_out[sweep / "collisional_flow" / "p2"] == "did not complete (no done.txt and timing.json of one run)"
 
 
 def test_compare_fails_when_nothing_could_be_evaluated(tmp_path, capsys):
@@ -575,10 +584,11 @@ def test_compare_fails_when_nothing_could_be_evaluated(tmp_path, capsys):
 def test_the_report_fits_each_series_stiffness_exponents():
     # a series with N_c ~ k_n^0.3 that bends to k_n^0.1 over its stiffest three k_n, and an
     # estimate that crosses zero (no power law): the exponents found, the crossing said
-    from postprocess.report import EXPONENT_QUANTITIES, exponent_lines
+    from postprocess.quantities import EXPONENTS
+    from postprocess.write_report import exponent_lines
     kn = 1e4 * 4.0 ** np.arange(6)
     n_c = np.where(kn <= kn[3], kn ** 0.3, kn[3] ** 0.3 * (kn / kn[3]) ** 0.1)
-    rows = [dict({q: 1.0 for q in EXPONENT_QUANTITIES}, kn=k, label="", N_c=n, mc_c=m)
+    rows = [dict({q: 1.0 for q in EXPONENTS}, kn=k, label="", N_c=n, mc_c=m)
             for k, n, m in zip(kn, n_c, (0.01, 0.005, 0.002, -1e-4, 1e-5, 2e-5))]
     lines = exponent_lines(rows)
     n_c_line = next(line for line in lines if line.startswith("| N_c |"))

@@ -10,7 +10,7 @@ import pytest
 from postprocess.__main__ import main
 from postprocess.runs import load_runs
 from postprocess.selection import Selection
-from test_postprocess import crashed, single_disk_trajectory, write_point
+from test_postprocess import completed, crashed, single_disk_trajectory, write_point
 
 RNG = np.random.default_rng(11)
 
@@ -52,7 +52,7 @@ def sweep(tmp_path):
         p = out / scene / name
         p.mkdir(parents=True)
         (p / "point.json").write_text(json.dumps(variables))
-        (p / "done.txt").write_text("done\n")
+        completed(p)
         return p
 
     for kn in (1e5, 4e5):
@@ -377,7 +377,7 @@ def test_summarize_keeps_a_complete_summary_rather_than_write_a_less_complete_on
     out, err = capsys.readouterr()
     unfinished, cut = (to / "collisional_flow" / f"{k}.json" for k in ("kn100000", "kn400000"))
     assert (f"kept {unfinished}: it holds a run that completed (flowing); the new one's did "
-            "not complete (no done.txt) (--replace writes the new one)") in err
+            "not complete (no done.txt and timing.json of one run) (--replace writes the new one)") in err
     assert f"kept {cut}: it was measured; the new one's: energy.txt: ends at t = " in err
     assert len(err.splitlines()) == 2
     assert f"summaries: {len(before) - 2} runs written in {to} (" in out
@@ -387,7 +387,7 @@ def test_summarize_keeps_a_complete_summary_rather_than_write_a_less_complete_on
     assert json.loads(unfinished.read_text())["ended"] == "incomplete"
     assert f"summaries: {len(before)} runs written" in capsys.readouterr().out
     # the finished run's summary replaces the unfinished one's (more complete)
-    (again / "collisional_flow" / "kn100000" / "done.txt").write_text("done\n")
+    completed(again / "collisional_flow" / "kn100000")
     assert main(["summarize", str(again), "--to", str(to)]) == 0
     assert json.loads(unfinished.read_text())["ended"] == "flowing"
     assert "kept" not in capsys.readouterr().err

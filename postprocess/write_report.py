@@ -1,29 +1,22 @@
-"""The study report: tables, fits, figures, the comparison with the references, left-out points."""
+"""The report command: the study report of a sweep (report.md: tables, fits, figures, the
+comparison with the references, left-out points; the tables as CSV)."""
 import csv
 import datetime
 
 import numpy as np
 
-from . import durations, figures, transition
+from . import durations, figures
+from .formatting import fmt, split_lines
 from .io import DataError
 from .observables import N_BLOCKS
-from .reference import accepted, evaluate, tally
-from .runs import energy_curve
+from .quantities import COLUMNS, EXPONENTS, SCENE_TABLE, TABLE, VARIANTS
+from .record import energy_curve
+from .reference import accepted, evaluate
 from .scenes import scene as scene_of
 from .selection import Selection
-from .limit import split_lines
-from .study import (CROSSOVER_SIGMAS, QUANTITIES, VARIANT_QUANTITIES, contact_series, crossover,
+from .study import (CROSSOVER_SIGMAS, contact_series, crossover,
                     fit_power, main_series, run_summary, same_series, series,
                     variant_differences)
-
-
-def fmt(value, error=None):
-    if value is None or not np.isfinite(value):
-        return "n/a"
-    text = f"{value:.4g}"
-    if error is not None and np.isfinite(error):
-        text += f" ± {error:.2g}"
-    return text
 
 
 def write_tables(scenes, out):
@@ -31,7 +24,7 @@ def write_tables(scenes, out):
         with open(out / f"observables_{scene}.csv", "w", newline="") as f:
             writer = csv.writer(f)
             header = ["kn", "tau_c", "tau_w", "span", "n_boundary"]
-            for q in QUANTITIES:
+            for q in COLUMNS:
                 header += [q, q + "_err"]
             writer.writerow(header + ["point"])
             for o in rows:
@@ -89,7 +82,6 @@ def make_figures(scenes, completed, out, selection):
 
 # the quantities whose stiffness exponents the report fits, and how many of the stiffest k_n
 # the second fit takes (where a power law bends, the stiff end's exponent differs)
-EXPONENT_QUANTITIES = ("N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w", "t_multiple", "z", "E_total")
 STIFF_END = 3
 
 
@@ -106,7 +98,7 @@ def exponent_lines(rows):
         lines += [f"Stiffness exponents ({name or 'main series'}; {len(points)} k_n, "
                   f"{kn[0]:g} to {kn[-1]:g}): a in quantity ~ k_n^a, least squares in log-log.",
                   "", f"| quantity | all k_n | stiffest {STIFF_END} |", "|---|---|---|"]
-        for q in EXPONENT_QUANTITIES:
+        for q in EXPONENTS:
             values = np.array([o[q] for o in points])
             cells = []
             for k, v in ((kn, values), (kn[-STIFF_END:], values[-STIFF_END:])):
@@ -179,10 +171,10 @@ def variant_lines(rows):
     main = main_series(rows)[0]["label"] or "-"
     lines = [f"Variants against the main series ({main}) at the same k_n: the variant's value, "
              "then (variant - main) in units of the combined error.", "",
-             "| k_n | variant | " + " | ".join(VARIANT_QUANTITIES) + " |",
-             "|---|---|" + "---|" * len(VARIANT_QUANTITIES)]
+             "| k_n | variant | " + " | ".join(VARIANTS) + " |",
+             "|---|---|" + "---|" * len(VARIANTS)]
     for o, m, diffs in pairs:
-        cells = [f"{fmt(o[q], o[q + '_err'])} ({diffs[q][1]:+.1f} σ)" for q in VARIANT_QUANTITIES]
+        cells = [f"{fmt(o[q], o[q + '_err'])} ({diffs[q][1]:+.1f} σ)" for q in VARIANTS]
         lines.append(f"| {o['kn']:g} | {o['label']} | " + " | ".join(cells) + " |")
     return lines + [""]
 
@@ -213,15 +205,6 @@ def write_runs(runs, path):
             writer.writerow([r["kn"], int(r["seed"]), r["label"], r["state"],
                              "" if r["stopped_at"] is None else r["stopped_at"], r["selected"]] +
                             [r["kept"][k] for k in resolutions] + [r["point"]])
-
-
-def comparison_line(results):
-    """The one-line tally of a comparison."""
-    counts = tally(results)
-    nothing = counts["not evaluated"] == len(results)
-    return (f"comparison: {counts['pass']} pass, {counts['differs']} differ from the paper, "
-            f"{counts['FAIL']} FAIL, {counts['not evaluated']} not evaluated"
-            f"{': nothing could be evaluated' if nothing else ''}")
 
 
 def comparison_lines(results):
@@ -270,14 +253,11 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
         if not rows:
             lines += ["No usable point (see Left out).", ""]
         lines += [
-                  "| k_n | E | N_c | N_w | t_c | t_w | t_c - N_c tau_c | t_w - N_w tau_w | "
-                  "two or more contacts | span | point |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|"] if rows else []
+                  "| k_n | " + " | ".join(TABLE[q].short for q in SCENE_TABLE) + " | span | point |",
+                  "|---|" + "---|" * len(SCENE_TABLE) + "---|---|"] if rows else []
         for o in rows:
             lines.append("| " + " | ".join(
-                [f"{o['kn']:g}"] + [fmt(o[q], o[q + "_err"]) for q in
-                                    ("E_total", "N_c", "N_w", "t_c", "t_w", "mc_c", "mc_w",
-                                     "t_multiple")] + [f"{o['span']:g}", o["label"]]) + " |")
+                [f"{o['kn']:g}"] + [fmt(o[q], o[q + "_err"]) for q in SCENE_TABLE] + [f"{o['span']:g}", o["label"]]) + " |")
         notes = [f"k_n = {o['kn']:g}{' (' + o['label'] + ')' if o['label'] else ''}: {o['notes']}"
                  for o in rows if o["notes"]]
         if scene_def.selects_steady_parts:
@@ -317,105 +297,3 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
     return out / "report.md"
 
 
-def write_transition_report(sweep_dir, runs, groups, left_out, out):
-    """transition.md with the per-angle table and figures, transition.csv (that table),
-    transition_points.csv (every k_n of every angle), transition_runs.csv (how each run
-    ended). Returns the path of transition.md."""
-    out.mkdir(parents=True, exist_ok=True)
-    table = transition.transition_table(runs, groups)
-    columns = ["scene", "sin_theta", "runs", "flowing", "stopped", "accelerating", "drifting",
-               "state",
-               "exponent_N_c", "exponent_N_c_err", "exponent_N_w", "exponent_N_w_err",
-               "kn_stiffest", "mc_fraction", "mc_fraction_err", "t_c", "t_c_err", "t_multiple",
-               "t_multiple_err", "z", "z_err", "E_total", "E_total_err", "tail_disk",
-               "tail_boundary", "contacts_disk", "contacts_boundary"]
-    with open(out / "transition.csv", "w", newline="") as f:
-        writer = csv.writer(f)
-        writer.writerow(columns + ["kn_flowing"])
-        for row in table:
-            writer.writerow([row.get(c, "") for c in columns] +
-                            [" ".join(f"{k:g}" for k in row["kn_flowing"])])
-    with open(out / "transition_points.csv", "w", newline="") as f:
-        writer = csv.writer(f)
-        header = ["scene", "sin_theta", "kn", "tau_c", "tau_w", "span", "n_boundary"]
-        writer.writerow(header + [x for q in QUANTITIES for x in (q, q + "_err")] + ["notes"])
-        for (scene, sin_theta), rows in groups.items():
-            for o in rows:
-                writer.writerow([scene, sin_theta] + [o[k] for k in header[2:]] +
-                                [o[x] for q in QUANTITIES for x in (q, q + "_err")] +
-                                [o["notes"]])
-    with open(out / "transition_runs.csv", "w", newline="") as f:
-        writer = csv.writer(f)
-        writer.writerow(["scene", "sin_theta", "kn", "seed", "state", "growth", "point"])
-        for r in runs:
-            writer.writerow([r["scene"], r["sin_theta"], r["kn"], int(r["seed"]), r["state"],
-                             r["growth"], r["point"]])
-
-    lines = [f"# Collisional-frictional transition: {sweep_dir}", "",
-             f"Written {datetime.datetime.now():%Y-%m-%d %H:%M} by `python3 -m postprocess "
-             "transition` (docs/transition.md says how to read it). A run is *stopped* if its "
-             "pile came to rest, *accelerating* if E per disk over the last fifth of its "
-             f"averaging span exceeds {transition.GROWTH_LIMIT:g} times E over the first "
-             "fifth, *drifting* if a straight line through the means of "
-             f"{transition.DRIFT_BLOCKS} blocks of E(t) changes over the span by more than E's "
-             "standard deviation about it and its slope is more than "
-             f"{transition.DRIFT_SIGMAS:g} standard errors from 0, else *flowing*; only "
-             "flowing runs "
-             "are averaged, over their whole span "
-             "after the transient. Exponents: least-squares fits of N ~ k_n^a over the k_n "
-             "with flowing runs (error: the fit's). At the stiffest of those k_n: the "
-             "multiple-contact fraction (t_c - N_c tau_c)/t_c, the fraction of time with two "
-             "or more contacts (t_multiple), the contacts per disk z (boundary included), and "
-             f"the fractions of disk (boundary) contacts longer than {durations.TAIL_CUT:g} "
-             "tau_c (tau_w). Errors: across seeds, or block errors of a single seed.", ""]
-    made = []
-    for name, caption, job in (
-            ("transition.png", "exponents and multiple contacts against sin theta",
-             lambda p: figures.transition_figure(table, p)),
-            ("durations.png", "P(tau/tau_c) for a few inclinations",
-             lambda p: figures.duration_figure(_few_densities(runs, table),
-                                               durations.DURATION_EDGES, p))):
-        if any(row.get("kn_stiffest") for row in table):
-            job(out / name)
-            made.append((caption, name))
-    for scene in sorted({row["scene"] for row in table}):
-        lines += [f"## {scene_of(scene).base} (`{scene}`)", "",
-                  "| sin theta | runs: flowing / stopped / accelerating / drifting | k_n flowing | "
-                  "N_c exponent | N_w exponent | stiffest k_n | (t_c - N_c tau_c)/t_c | "
-                  "t_multiple | z | E | disk > 2 tau_c | boundary > 2 tau_w |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|---|"]
-        for row in (r for r in table if r["scene"] == scene):
-            def cell(key):
-                return fmt(row.get(key, np.nan), row.get(key + "_err"))
-            kn = row["kn_flowing"]
-            lines.append(
-                f"| {row['sin_theta']:g} | {row['flowing']} / {row['stopped']} / "
-                f"{row['accelerating']} / {row['drifting']} ({row['state']}) | "
-                f"{f'{kn[0]:g} ... {kn[-1]:g} ({len(kn)})' if kn else '-'} | "
-                f"{cell('exponent_N_c')} | {cell('exponent_N_w')} | "
-                f"{fmt(row.get('kn_stiffest', np.nan))} | {cell('mc_fraction')} | "
-                f"{cell('t_multiple')} | {cell('z')} | {cell('E_total')} | "
-                f"{fmt(row.get('tail_disk', np.nan))} | {fmt(row.get('tail_boundary', np.nan))} |")
-        lines.append("")
-    for caption, name in made:
-        lines += [f"![{caption}]({name})", ""]
-    if left_out:
-        lines += ["## Left out", ""] + [f"- `{point}`: {reason}" for point, reason in left_out]
-        lines.append("")
-    (out / "transition.md").write_text("\n".join(lines))
-    return out / "transition.md"
-
-
-def _few_densities(runs, table, most=5):
-    """P(tau) at the stiffest flowing k_n of at most `most` inclinations per base, evenly
-    spread over those that have contact rows."""
-    densities = {}
-    for scene in sorted({row["scene"] for row in table}):
-        rows = [r for r in table if r["scene"] == scene and r.get("contacts_disk", 0) +
-                r.get("contacts_boundary", 0) > 0]
-        for row in rows[::max(1, -(-len(rows) // most))]:
-            pooled = transition.pooled_durations(runs, scene, row["sin_theta"],
-                                                 row["kn_stiffest"])
-            densities[(scene, row["sin_theta"], row["kn_stiffest"])] = {
-                kind: durations.duration_density(d) for kind, d in pooled.items()}
-    return densities

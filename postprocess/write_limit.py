@@ -1,0 +1,159 @@
+"""The limit command: the hard-sphere-limit rule (postprocess/limit.py, docs/hard_sphere_limit.md)
+on each series of the scenes it applies to, limit.md and its figures; the verdicts printed."""
+import sys
+
+import numpy as np
+
+from . import figures, limit
+from .formatting import split_lines
+from .quantities import TABLE
+from .scenes import SCENES, scene as scene_of
+from .study import label, main_series, varying_variables
+
+
+def report_lines(decisions, within, levels):
+    """Markdown: per quantity the per-k_n values, running exponents, fits and verdict; then
+    the verdicts within each energy level. decisions: [Decision]; within: {quantity: {level:
+    Decision}}; levels: {name: (low, high)} (empty: the scene's flows have no levels)."""
+    lines = []
+    for d in decisions:
+        lines += [f"### {TABLE[d.quantity].label}: **{d.verdict}**", ""]
+        if d.why:
+            lines += [d.why, ""]
+        s = d.series
+        lines += ["| k_n | runs | value | error | running exponent to the next k_n |",
+                  "|---|---|---|---|---|"]
+        running = {r[0]: r for r in d.running}
+        for k, v, e, n in zip(s.kn, s.value, s.error, s.runs):
+            r = running.get(k)
+            exponent = f"{r[2]:.3f} +- {r[3]:.3f}" if r and np.isfinite(r[2]) else ""
+            lines.append(f"| {k:.4g} | {int(n)} | {v:.4g} | {e:.2g} | {exponent} |")
+        for k, n in d.lacking:
+            lines.append(f"| {k:.4g} | {n} | (too few runs) | | |")
+        if d.fits:
+            f = d.fits
+            lines += ["", f"- pure power law: b = {f.b_power:.3f} +- {f.b_power_error:.3f}, "
+                          f"chi2 = {f.chi2_power:.2f} ({len(s.kn) - 2} dof)",
+                      f"- power law onto a floor: c = {f.floor:.4g}, b = {f.b_floor:.3f}, "
+                      f"chi2 = {f.chi2_floor:.2f} ({len(s.kn) - 3} dof); dAIC = {f.d_aic:.2f}",
+                      f"- floor's bootstrap 95 % interval: [{d.floor_interval[0]:.3g}, "
+                      f"{d.floor_interval[1]:.3g}]"]
+            if d.rule == 2 and np.isfinite(d.decay[0]):
+                lines.append(f"- log-log decay exponent (rule 2): b = {d.decay[0]:.3f} +- "
+                             f"{d.decay[1]:.3f}, one-sided {limit.NO_FALL_CONFIDENCE:.0%} upper bound "
+                             f"{d.decay[2]:.3f}; 'does not fall' below {d.decay_limit:.3f} (at "
+                             f"most {limit.NO_FALL_FRACTION:.0%} lost over the range)")
+        lines.append("")
+    if not levels:
+        return lines + ["The scene's flows have no energy levels to apply the rule within "
+                        "(postprocess/scenes.py, limit_levels).", ""]
+    lines += ["### Within one energy level", "",
+              "| quantity | " + " | ".join(f"{n} E in [{lo:g}, {hi:g})" for n, (lo, hi)
+                                           in levels.items()) + " |",
+              "|---|" + "---|" * len(levels)]
+    for quantity, by_level in within.items():
+        lines.append(f"| {TABLE[quantity].label} | " + " | ".join(
+            by_level[n].verdict for n in levels) + " |")
+    lines.append("")
+    for quantity, by_level in within.items():
+        for n, d in by_level.items():
+            if d.fits:
+                s = d.series
+                lines.append(f"- {TABLE[quantity].label}, {n} level: **{d.verdict}** ({d.why}); "
+                             + ", ".join(f"{k:.3g}: {v:.4g} ({int(r)} runs)"
+                                         for k, v, r in zip(s.kn, s.value, s.runs)))
+    return lines + [""]
+
+
+def contact_splits(runs):
+    """[(kn, {3.0: split, 10.0: split})] of the runs whose contact rows cover a window
+    (measured by durations.run_contacts, raw or from summaries)."""
+    return [(o["kn"], {float(k): v for k, v in o["contacts"]["split"].items()})
+            for o in runs if o.get("contacts") and "split" in o["contacts"]]
+
+
+def runaway_lines(records):
+    """Markdown: per series and k_n, the completed runs, those with a runaway event (limit.
+    runaway_events on E(t) over windows of one time unit) and the events' times."""
+    varying = varying_variables([r.variables for r in records])
+    table = {}
+    for r in records:
+        e = r.energy
+        t = e["t0"] + e["window"] * np.arange(len(e["E"]))
+        events = limit.runaway_events(t, e["E"])
+        row = table.setdefault((label(r.variables, varying), r.params["kn"]), [0, 0, []])
+        row[0] += 1
+        row[1] += bool(events)
+        row[2] += [f"{x:g}" for x in events]
+    lines = ["| series | k_n | completed runs | runs with a runaway | events at t = |",
+             "|---|---|---|---|---|"]
+    for (name, kn), (runs, hit, times) in sorted(table.items()):
+        lines.append(f"| {name or '-'} | {kn:.4g} | {runs} | {hit} | {', '.join(times)} |")
+    return lines + [""]
+
+
+def write_limit(sweep, scenes, out, selection, completed, rule=limit.RULE):
+    """The limit command: limit.md and a figure per series in out, for each scene the rule
+    applies to (Scene.decides_limit): its main series first, then each variant with enough
+    k_n; the verdicts on the terminal. completed: {scene: [RunRecord of each completed run]},
+    for the runaway events; rule: 1 or 2."""
+    names = [name for name in scenes if scene_of(name).decides_limit and scenes[name]]
+    if not names:
+        print(f"postprocess: {sweep}: no usable points of a scene the rule applies to ("
+              + ", ".join(n for n, s in SCENES.items() if s.decides_limit) + ")",
+              file=sys.stderr)
+        return 2
+    out.mkdir(parents=True, exist_ok=True)
+    lines = [f"# The hard-sphere-limit rule {rule} on {sweep}", "",
+             f"Selection of the steady parts (scenes that select them): {selection.describe()}.",
+             ""]
+    for name in names:
+        lines += limit_scene_lines(name, scenes[name], out, completed.get(name, []), rule)
+    (out / "limit.md").write_text("\n".join(lines))
+    print(f"limit report: {out / 'limit.md'}")
+    return 0
+
+
+def limit_scene_lines(name, rows, out, records, rule):
+    """limit.md's lines for one scene (its series, figures written to out) under rule 1 or 2;
+    the verdicts printed."""
+    scene_def = scene_of(name)
+    levels = dict(scene_def.limit_levels)
+    main = main_series(rows)
+    labels = [main[0]["label"]] + sorted({o["label"] for o in rows} - {main[0]["label"]})
+    lines = [f"# {scene_def.title}", ""]
+    for number, series_label in enumerate(labels):
+        runs = [run for o in rows if o["label"] == series_label for run in o.get("runs", [o])]
+        decisions = [limit.decide(runs, q, rule=rule) for q in scene_def.limit_quantities]
+        if number and all(d.verdict.startswith("not applied") for d in decisions):
+            continue    # a variant at too few k_n (a check of the step at one k_n)
+        within = {q: limit.decide_within_levels(runs, q, levels, rule=rule)
+                  for q in scene_def.limit_quantities}
+        title = (f"{'main series' if number == 0 else 'variant'} "
+                 f"{series_label or '(no variable varies)'}")
+        lines += [f"## {title}: {len(runs)} selected runs", ""]
+        lines += report_lines(decisions, within, levels)
+        if any(d.fits for d in decisions):
+            figure = f"limit_{name}_{number}.png"
+            figures.limit_figure([d for d in decisions if d.fits], out / figure)
+            lines += [f"![the rule's data and fits]({figure})", ""]
+        splits = contact_splits(runs)
+        if splits:
+            lines += ["### What the time with two or more contacts is made of", "",
+                      f"Per {scene_def.particle} and unit time over each run's contact-rows "
+                      "window (the span's first rows_time, less 0.5 at its end), the mean over "
+                      "the runs with rows: the part during which one of the contacts lasts more "
+                      "than 3 (or 10) binary durations, and the part made of short contacts "
+                      "only (bursts); `unseen`: the counters' time not in the rows (contacts "
+                      "longer than the rows window, lasting ones).", ""]
+            lines += split_lines(splits)
+        for d in decisions:
+            print(f"{scene_def.title}, {title}: {TABLE[d.quantity].label}: {d.verdict}" +
+                  (f" ({d.why})" if d.why else ""))
+    if records:
+        lines += ["## Runaway events", "",
+                  f"E(t), averaged over windows of one time unit, above {limit.RUNAWAY_FACTOR:g} "
+                  f"times the run's median and above {limit.RUNAWAY_ENERGY:g} after t = "
+                  f"{limit.SETTLED:g}, in every completed run (selected or not):", ""]
+        lines += runaway_lines(records)
+    return lines
