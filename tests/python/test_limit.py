@@ -115,6 +115,12 @@ def test_the_papers_claim_passes_on_a_floor_and_fails_on_a_power_law():
     assert claim_status(short).startswith("not evaluated")
 
 
+def rows_of_runs(runs):
+    """A scene's rows (one per k_n, its runs behind it) as the analysis gives the limit command."""
+    return [{"kn": k, "label": "", "runs": [r for r in runs if r["kn"] == k]}
+            for k in sorted({r["kn"] for r in runs})]
+
+
 def test_limit_command_writes_the_verdicts_and_the_figure(tmp_path, capsys):
     from postprocess.write_limit import write_limit
     from postprocess.selection import Selection
@@ -122,8 +128,7 @@ def test_limit_command_writes_the_verdicts_and_the_figure(tmp_path, capsys):
     for i, r in enumerate(runs):
         r.update(mc_w=2 * r["mc_c"], t_multiple=0.1 * (r["kn"] / 1.6e6) ** -0.3 *
                  (1 + 0.05 * np.sin(i)), E_total=(0.4, 0.65, 0.95)[i % 3])
-    rows = [{"kn": k, "label": "", "runs": [r for r in runs if r["kn"] == k]}
-            for k in sorted({r["kn"] for r in runs})]
+    rows = rows_of_runs(runs)
     assert write_limit(tmp_path, {"frictional_flow": rows}, tmp_path / "limit", Selection(),
                        {}) == 0
     text = (tmp_path / "limit" / "limit.md").read_text()
@@ -142,8 +147,7 @@ def test_limit_command_decides_the_3d_chute_without_levels(tmp_path, capsys):
     runs = synthetic_runs(power, 0.05)
     for r in runs:
         r.update(mc_w=2 * r["mc_c"], t_multiple=3 * r["mc_c"])
-    rows = [{"kn": k, "label": "", "runs": [r for r in runs if r["kn"] == k]}
-            for k in sorted({r["kn"] for r in runs})]
+    rows = rows_of_runs(runs)
     assert write_limit(tmp_path, {"chute_3d": rows}, tmp_path / "limit", Selection(), {}) == 0
     text = (tmp_path / "limit" / "limit.md").read_text()
     assert text.count("# 3D chute") == 1 and "t_c - N_c tau_c: **vanishing**" in text
@@ -162,8 +166,7 @@ def test_limit_command_decides_the_collisional_floor_alone(tmp_path, capsys):
     runs = synthetic_runs(flat, 0.10)
     for r in runs:
         r.update(mc_w=r["mc_c"], mc_c=-0.02, t_multiple=0.0)
-    rows = [{"kn": k, "label": "", "runs": [r for r in runs if r["kn"] == k]}
-            for k in sorted({r["kn"] for r in runs})]
+    rows = rows_of_runs(runs)
     assert write_limit(tmp_path, {"collisional_flow": rows}, tmp_path / "limit", Selection(),
                        {}) == 0
     text = (tmp_path / "limit" / "limit.md").read_text()
