@@ -926,6 +926,7 @@ def main(argv=None):
               f"{directory.relative_to(output)} in {elapsed:.1f} s{on}; "
               f"ETA {format_seconds(remaining)}", flush=True)
 
+    refused = []    # points whose directory became another's during the sweep: not run
     # runs start in pool threads only: the main thread takes the signals
     with concurrent.futures.ThreadPoolExecutor(max_workers=1 if args.partitions else
                                                args.jobs) as pool:
@@ -948,13 +949,21 @@ def main(argv=None):
                        for p, d, s in todo}
             for future in concurrent.futures.as_completed(futures):
                 p, d, s = futures[future]
-                report(p, d, model.predict(p, s), *future.result())
+                try:
+                    report(p, d, model.predict(p, s), *future.result())
+                except SweepError as error:    # its place taken while the sweep ran
+                    print(f"sweep: {error}", file=sys.stderr)
+                    refused.append(d)
     lock.close()
 
     if _stopped_by:
         print(f"sweep: stopped by {signal.Signals(_stopped_by[0]).name}; {len(unfinished)} "
               "points not done: the same command runs them", file=sys.stderr)
         return 128 + _stopped_by[0]
+    if refused:
+        print(f"sweep: {len(refused)} points not run, their directories not the runner's to "
+              "remove (above); the other points ran", file=sys.stderr)
+        return 2
     if failures:
         print(f"sweep: {len(failures)} points failed; see failed.txt in:", file=sys.stderr)
         for d in failures:

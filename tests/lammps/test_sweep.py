@@ -570,3 +570,28 @@ def test_a_negative_checkpoint_interval_is_refused(tmp_path):
     assert proc.returncode == 2 and "--checkpoint-interval -1 must be >= 0 (0: none)" in \
         proc.stderr, proc.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_a_point_whose_place_is_taken_during_the_sweep_is_refused_and_the_rest_run(tmp_path):
+    """A directory made at a point's place after the sweep's check (it passed before any point
+    ran) must be left alone and the point refused by name, not end the sweep in a traceback
+    with the other points' results unreported."""
+    config = single_disk_config(tmp_path, "average_start = 0.1\nrun_time = [100, 0.5]\n")
+    output = tmp_path / "out"
+    runner = start_sweep(config, output, "--jobs", "1")
+    first = output / "single_disk" / "average_start0.1_run_time100"
+    taken = output / "single_disk" / "average_start0.1_run_time0.5"
+    try:
+        deadline = time.time() + 120
+        while not (first / "running.json").exists():    # the longer point runs first
+            assert time.time() < deadline and runner.poll() is None, runner.communicate()
+            time.sleep(0.05)
+        (taken / "analysis").mkdir(parents=True)
+        (taken / "analysis" / "fit.txt").write_text("a fit\n")
+        stdout, stderr = runner.communicate(timeout=300)
+    finally:
+        kill_session(runner.pid)
+    assert runner.returncode == 2, stdout + stderr
+    assert "not the runner's to remove" in stderr and "Traceback" not in stderr, stderr
+    assert (taken / "analysis" / "fit.txt").read_text() == "a fit\n"
+    assert (first / "done.txt").exists()
