@@ -1,7 +1,7 @@
 """Numbers, verdict tallies and the contact-split table as the writers print them."""
 import numpy as np
 
-from .durations import LASTING, LASTING_ALSO
+from .durations import LASTING, LASTING_ALSO, TAIL_CUT
 from .reference import tally
 
 
@@ -47,4 +47,25 @@ def split_lines(splits):
                      f"{mean(a, 'bursts')} | {mean(b, 'lasting')} | "
                      f"{mean(b, 'bursts')} | {mean(a, 'unseen')} | "
                      f"{mean(a, 'lasting_share_of_contact_time', 3)} |")
+    return lines + [""]
+
+
+def tail_lines(runs_contacts, particle):
+    """Markdown: per k_n the weight of P(tau)'s tail, the fraction of a run's contacts lasting
+    longer than TAIL_CUT binary durations (tau_c; tau_w against the boundary), as the mean over
+    the runs with rows and, from two runs on, its standard error over them (runs_contacts:
+    [(kn, durations.run_contacts result)]; a run without contacts of a kind is left out of that
+    kind's mean)."""
+    lines = [f"| k_n | runs | {particle}-{particle} contacts | > {TAIL_CUT:g} tau_c | "
+             f"boundary contacts | > {TAIL_CUT:g} tau_w |", "|---|---|---|---|---|---|"]
+    for k in sorted({kn for kn, _ in runs_contacts}):
+        mine = [c for kn, c in runs_contacts if kn == k]
+        cells = []
+        for kind in ("disk", "boundary"):
+            weights = [c["tail"][kind] / c["contacts"][kind] for c in mine if c["contacts"][kind]]
+            text = f"{np.mean(weights):.4f}" if weights else "nan"
+            if len(weights) > 1:
+                text += f" +- {np.std(weights, ddof=1) / np.sqrt(len(weights)):.4f}"
+            cells += [str(sum(c["contacts"][kind] for c in mine)), text]
+        lines.append(f"| {k:.4g} | {len(mine)} | " + " | ".join(cells) + " |")
     return lines + [""]

@@ -4,8 +4,8 @@ import sys
 
 import numpy as np
 
-from . import figures, limit
-from .formatting import split_lines
+from . import durations, figures, limit
+from .formatting import split_lines, tail_lines
 from .quantities import TABLE
 from .scenes import SCENES, scene as scene_of
 from .study import label, main_series, varying_variables
@@ -147,6 +147,19 @@ def limit_scene_lines(name, rows, out, records, rule):
                       "only (bursts); `unseen`: the counters' time not in the rows (contacts "
                       "longer than the rows window, lasting ones).", ""]
             lines += split_lines(splits)
+        with_rows = [(o["kn"], o["contacts"]) for o in runs if o.get("contacts")]
+        if with_rows:
+            figure = f"durations_{name}_{number}.png"
+            by_kn = [(k, durations.pooled([c for kn, c in with_rows if kn == k]))
+                     for k in sorted({kn for kn, _ in with_rows})]
+            figures.duration_stiffness(name, [(series_label, by_kn)], durations.DURATION_EDGES,
+                                       out / figure)
+            lines += ["### P(tau): the weight of its tail", "",
+                      "Contacts that ended after average_start, per run with rows: the fraction "
+                      f"lasting longer than {durations.TAIL_CUT:g} binary durations, mean and "
+                      "standard error over the runs; P(tau) of all of them in the figure.", ""]
+            lines += tail_lines(with_rows, scene_def.particle)
+            lines += [f"![P(tau) per k_n]({figure})", ""]
         for d in decisions:
             print(f"{scene_def.title}, {title}: {TABLE[d.quantity].label}: {d.verdict}" +
                   (f" ({d.why})" if d.why else ""))

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from postprocess import durations, limit
-from postprocess.formatting import split_lines
+from postprocess.formatting import split_lines, tail_lines
 from postprocess.scenes import scene
 
 # The stiff preset's k_n (2^p x 10^5, p = 4, 6, ..., 14) and eight runs at each.
@@ -283,6 +283,21 @@ def test_split_table_gives_the_error_over_runs():
     lines = split_lines([(1e6, split(0.010)), (1e6, split(0.020)), (4e6, split(0.01))])
     assert "| 1e+06 | 2 | 0.0300 +- 0.0000 | 0.0300 +- 0.0000 | 0.0150 +- 0.0050 |" in lines[2]
     assert "| 4e+06 | 1 | 0.0300 | 0.0300 | 0.0100 |" in lines[3]
+
+
+def test_tail_table_is_the_mean_of_each_runs_weight_with_its_error():
+    """Three runs at one k_n with 1, 5 and 0 of 10 disk contacts in the tail: per-run weights
+    0.1, 0.5, 0 give a mean of 0.2 and a standard error of 0.153 over the runs (a table without
+    the error cannot say whether the tail shrinks with k_n). Boundary: 1 of 10 and 9 of 90 are
+    0.1 each (error 0), and the run without boundary contacts is left out of that column; had it
+    counted as a weight 0 the mean would be 0.067."""
+    def contacts(disk_tail, disk, boundary_tail, boundary):
+        return {"tail": {"disk": disk_tail, "boundary": boundary_tail},
+                "contacts": {"disk": disk, "boundary": boundary}}
+    lines = tail_lines([(1e6, contacts(1, 10, 1, 10)), (1e6, contacts(5, 10, 9, 90)),
+                        (1e6, contacts(0, 10, 0, 0)), (4e6, contacts(2, 10, 3, 10))], "disk")
+    assert lines[2] == "| 1e+06 | 3 | 30 | 0.2000 +- 0.1528 | 100 | 0.1000 +- 0.0000 |"
+    assert lines[3] == "| 4e+06 | 1 | 10 | 0.2000 | 10 | 0.3000 |"
 
 
 def test_a_kn_whose_runs_all_measure_zero_is_named_and_leaves_the_others_errors_alone():
