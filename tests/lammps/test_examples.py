@@ -1,0 +1,78 @@
+"""The decks of examples/ (LAMMPS's own examples with the law) run as a user runs them, the short
+variants the tests can afford, with one line added at their end to write the final atoms."""
+import math
+from pathlib import Path
+
+import numpy as np
+
+from granmn_run import PLUGIN, run_lammps
+from test_insertion import pile_overlaps
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+G = 1.0
+
+
+def run_example(deck, tmp_path, **variables):
+    """The deck with `variables` set before it (as -var does: its index variables keep them)
+    and its final atoms dumped to final.txt."""
+    settings = dict(plugin=PLUGIN, **variables)
+    text = ("".join(f"variable {k} index {v}\n" for k, v in settings.items())
+            + (EXAMPLES / deck).read_text()
+            + "\nwrite_dump all custom final.txt id type x y z radius vx vy vz "
+              "modify sort id\n")
+    return run_lammps(text, tmp_path, header=False)
+
+
+def impact_bound(kn, drop):
+    """The largest overlap a contact can reach on the first impacts of a pour: a particle that
+    fell `drop` hits at v = sqrt(2 g drop); undamped, a floor contact (mass m, force m kn delta)
+    stops it within v / sqrt(kn), a pair (reduced mass M, force 2M kn delta) within
+    v_rel / sqrt(2 kn) with v_rel at most 2 v. Damping and the pile's weight (a few layers:
+    n g / kn, < 0.01 here) only lower or barely add to it; a contact left out of the forces
+    (a wall that does not hold, an insertion into a neighbour) reaches the radius."""
+    v = math.sqrt(2 * G * drop)
+    return {"floor": v / math.sqrt(kn), "pair": 2 * v / math.sqrt(2 * kn)}
+
+
+def test_pour_3d_stays_in_its_box_and_above_its_floor(tmp_path):
+    """examples/pour/in.pour.mn, 6000 steps of each stage: the first batches poured (from
+    z = 10-15 onto the floor at 0: a fall of < 15 takes 5.5 time units) and then tilted. No
+    sphere below the floor or inside another by more than an impact allows; none lost."""
+    run = run_example("pour/in.pour.mn", tmp_path, steps=6000)
+    atoms = run.atoms()
+    # fix pour's schedule ("Particle insertion: 402 every 3162 steps, ..."): a batch at step 1
+    # and every 3162 steps after, each whole while the slab is empty below it; a sphere lost
+    # through the floor (boundary f below) would be missing
+    batch, every = next(map(int, line.split()[2:5:2]) for line in run.output.splitlines()
+                        if line.startswith("Particle insertion:"))
+    assert len(atoms["id"]) == batch * (1 + (6000 - 1) // every)
+    bound = impact_bound(3819.7, 15.0)
+    pair, floor, _ = pile_overlaps(atoms, 3, (20.0, 20.0))
+    print(f"{len(atoms['id'])} spheres: largest pair overlap {pair.max():.3g} (bound "
+          f"{bound['pair']:.3g}), floor {floor.max():.3g} ({bound['floor']:.3g})")
+    assert pair.max() < bound["pair"] and floor.max() < bound["floor"]
+    assert atoms["z"].min() > 0
+
+
+def test_pour_2d_settles_into_a_pile(tmp_path):
+    """examples/pour/in.pour.2d.mn as the original (25000 steps: all 1000 disks poured from
+    y = 30-34.5 into the container, which they fill to a height of ~13): the disks stay between
+    the side walls and above the floor within an impact's overlap, and the pile comes to rest,
+    with less than 1 % of the potential energy it fell through left as motion (a law that did
+    not dissipate, e = 1 or a sign error in the damping, would keep it bouncing)."""
+    run = run_example("pour/in.pour.2d.mn", tmp_path)
+    atoms = run.atoms()
+    assert len(atoms["id"]) == 1000
+    bound = impact_bound(3475, 34.5)
+    pair, floor, _ = pile_overlaps(atoms, 2, (0.0, 0.0))
+    r = atoms["radius"]
+    sides = np.maximum(r - atoms["x"], atoms["x"] + r - 100.0)
+    print(f"largest pair overlap {pair.max():.3g} (bound {bound['pair']:.3g}), floor "
+          f"{floor.max():.3g}, side walls {sides.max():.3g} ({bound['floor']:.3g})")
+    assert pair.max() < bound["pair"]
+    assert floor.max() < bound["floor"] and sides.max() < bound["floor"]
+    mass = 4 / 3 * math.pi * r ** 3     # fix pour's mass for density 1, in 2D as in 3D
+    kinetic = 0.5 * (mass * (atoms["vx"] ** 2 + atoms["vy"] ** 2)).sum()
+    fallen = (mass * G * (32.0 - atoms["y"])).sum()
+    print(f"kinetic energy {kinetic:.3g} of {fallen:.3g} fallen through")
+    assert kinetic < 0.01 * fallen
