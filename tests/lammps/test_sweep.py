@@ -482,19 +482,19 @@ def test_done_txt_of_another_run_is_not_taken(tmp_path):
 def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
     """A grid of 2000 points made of 10 materials (k_n, e, beta) asks build/plugin/mn-law 10
     times: it started mn-law once per point (44 s for the --dry-run of such a grid)."""
-    import importlib
-    import sweep as runner
-    runner = importlib.reload(runner)     # no material known yet
+    import sweep
+    from granmn_sweep import cost
+    cost.law.cache_clear()     # no material known yet
     asked = []
-    law = runner.derived
-    monkeypatch.setattr(runner, "derived",
+    law = cost.derived
+    monkeypatch.setattr(cost, "derived",
                         lambda tool, *material: asked.append(material) or law(tool, *material))
     config = tmp_path / "grid.toml"
     config.write_text('[[grid]]\nscene = "collisional_flow"\n'
                       f'kn = [{", ".join(str(5e4 * 2 ** k) for k in range(10))}]\n'
                       f'seed = [{", ".join(str(seed) for seed in range(1, 201))}]\n')
-    assert runner.main([str(config), "--output", str(tmp_path / "out"), "--build", str(BUILD),
-                        "--dry-run"]) == 0
+    assert sweep.main([str(config), "--output", str(tmp_path / "out"), "--build", str(BUILD),
+                       "--dry-run"]) == 0
     assert "2000 points" in capsys.readouterr().out
     assert sorted(asked) == sorted(set(asked)) and len(asked) == 10
 
