@@ -4,7 +4,8 @@ import functools
 import math
 
 from granmn_sweep import SweepError
-from granmn_sweep.decks import deck_defaults, scene_dimension
+from granmn_sweep.decks import deck_defaults, formula_value, scene_dimension, \
+    time_step_formula
 from mn_law import LawError, derived
 
 # Atoms each scene integrates or pairs with: the cost model's size (bumps included); where the
@@ -25,30 +26,57 @@ def scene_atoms(point):
 
 
 @functools.lru_cache(maxsize=None)
-def law(mn_law, kn, e, beta):
-    """The law's derived numbers, once per material: a grid of many points has few, and each
-    evaluation starts mn-law."""
+def law(mn_law, kn, e, beta, shape):
+    """The law's derived numbers, once per material and shape: a grid of many points has few,
+    and each evaluation starts mn-law."""
     try:
-        return derived(mn_law, kn, e, beta)
+        return derived(mn_law, kn, e, beta, shape)
     except LawError as error:
         raise SweepError(str(error))
 
 
+def positive(point, name):
+    """A variable of a point (the deck's default where the point sets none) that must be a
+    number > 0 (expand() made sure it is a number; the deck checks the rest)."""
+    value = point.get(name, deck_defaults(point["scene"]).get(name))
+    number = float(value)
+    if not (number > 0 and math.isfinite(number)):
+        raise SweepError(f"{point['scene']} point: {name} = {value!r} must be > 0")
+    return number
+
+
+def law_numbers(point, mn_law):
+    """mn-law's numbers of a point's material, as pair_style gran/mn derives them in its scene:
+    of discs in 2D, of spheres in 3D."""
+    return law(mn_law, positive(point, "kn"), positive(point, "e"), positive(point, "beta"),
+               "sphere" if scene_dimension(point["scene"]) == 3 else "disc")
+
+
+def time_step(point, mn_law):
+    """A point's time step as its deck computes it (decks.time_step_formula): a formula of the
+    point's variables and of the numbers pair_style gran/mn publishes (v_mn_tau_c: mn-law's
+    tau_c)."""
+    scene = point["scene"]
+    numbers = law_numbers(point, mn_law)
+
+    def value(name):
+        if not name.startswith("mn_"):
+            return positive(point, name)
+        if name[3:] not in numbers:
+            raise SweepError(f"inputs/{scene}.lmp: its time step reads v_{name}, which "
+                             f"mn-law does not give ({', '.join(sorted(numbers))})")
+        return numbers[name[3:]]
+    return formula_value(time_step_formula(scene), value, f"inputs/{scene}.lmp: timestep")
+
+
 def predicted_steps(point, mn_law):
-    """Steps of a point; the values it needs must be numbers > 0 (the deck checks the rest)."""
-    def get(name):
-        value = point.get(name, deck_defaults(point["scene"]).get(name))
-        number = float(value)    # expand() made sure it is one
-        if not (number > 0 and math.isfinite(number)):
-            raise SweepError(f"{point['scene']} point: {name} = {value!r} must be > 0")
-        return number
-    tau_c = law(mn_law, get("kn"), get("e"), get("beta"))["tau_c"]
-    dt = min(get("dt_fraction") * tau_c, get("dt_cap"))
-    steps = get("run_time") / dt if dt > 0 else math.inf
+    """Steps of a point: run_time over its time step."""
+    dt = time_step(point, mn_law)
+    steps = positive(point, "run_time") / dt if dt > 0 else math.inf
     if not (math.isfinite(steps) and steps < 2 ** 62):
         raise SweepError(f"{point['scene']} point: kn = {point.get('kn')!r}, run_time = "
                          f"{point.get('run_time')!r} give no finite number of steps "
-                         f"(tau_c = {tau_c:g})")
+                         f"(tau_c = {law_numbers(point, mn_law)['tau_c']:g})")
     return math.ceil(steps)
 
 

@@ -1,6 +1,7 @@
 """scripts/sweep.py: resuming a killed sweep, the multi-partition mode, bad configs, the
 runner's ownership of its lmp processes and of its output directory."""
 import json
+import math
 import os
 import re
 import signal
@@ -498,6 +499,70 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
     assert "2000 points" in capsys.readouterr().out
     assert sorted(asked) == sorted(set(asked)) and len(asked) == 10
 
+
+
+# {name: point}: where dt_fraction x tau_c is the step, where dt_cap is, and a 3D point (spheres)
+TIME_STEP_POINTS = {
+    "fraction": {"scene": "single_disk", "kn": 2e5},
+    "cap": {"scene": "single_disk", "kn": 1e4},
+    "3D": {"scene": "chute_3d", "kn": 2e5, "dt_fraction": 0.05, "spheres": 5, "length": 3,
+           "width": 3},
+}
+
+
+@pytest.mark.parametrize("name", sorted(TIME_STEP_POINTS))
+def test_the_runner_takes_the_time_step_lmp_takes(tmp_path, name):
+    """The cost model's time step of a point is the one lmp runs the deck with (params.txt's
+    dt, %.10g: 1e-9 apart at most), whichever of dt_fraction x tau_c and dt_cap is the step."""
+    from granmn_sweep.cost import time_step
+    from granmn_run import run_scene
+    point = TIME_STEP_POINTS[name]
+    run_scene(point["scene"], tmp_path, run_time=0.2, average_start=0.1,
+              **{k: v for k, v in point.items() if k != "scene"})
+    params = dict(line.split(None, 1) for line in (tmp_path / "params.txt").read_text()
+                  .splitlines() if line.strip())
+    assert time_step(point, BUILD / "plugin" / "mn-law") == \
+        pytest.approx(float(params["dt"]), rel=1e-9)
+
+
+def test_the_runner_follows_the_decks_time_step_rule(tmp_path, monkeypatch):
+    """The runner reads the time step's rule from the decks (inputs/lib/dynamics.lmp's
+    timestep): decks whose rule is dt = tau_c/50 give run_time/(tau_c/50) steps. A copy of the
+    rule in Python (min(dt_fraction x tau_c, dt_cap)) predicted the old rule's steps."""
+    import shutil
+    from granmn_sweep import decks
+    from granmn_sweep.cost import predicted_steps
+    from mn_law import derived
+    shutil.copytree(ROOT / "inputs", tmp_path / "inputs")
+    dynamics = tmp_path / "inputs" / "lib" / "dynamics.lmp"
+    text = dynamics.read_text()
+    assert "timestep ${dt_resolved}\n" in text
+    dynamics.write_text(text.replace("timestep ${dt_resolved}\n", "timestep $(v_mn_tau_c/50)\n"))
+    monkeypatch.setattr(decks, "ROOT", tmp_path)
+    monkeypatch.setattr(decks, "LIB", tmp_path / "inputs" / "lib")
+    decks.time_step_formula.cache_clear()
+    try:
+        tau_c = derived(BUILD / "plugin" / "mn-law", 2e5, 0.7, 0.7)["tau_c"]
+        point = {"scene": "collisional_flow", "kn": 2e5, "e": 0.7, "beta": 0.7, "run_time": 10}
+        assert predicted_steps(point, BUILD / "plugin" / "mn-law") == math.ceil(10 / (tau_c / 50))
+    finally:
+        decks.time_step_formula.cache_clear()
+
+
+def test_a_deck_formula_the_runner_cannot_read_is_refused_by_name():
+    """The formulas the runner reads from the decks (the time step, the atoms) take LAMMPS's
+    meaning, a comparison 1 or 0, or are refused naming the part it does not read: Python would
+    read ^ as xor, a < b < c as a chain, and dt (a thermo keyword) is no deck variable."""
+    from granmn_sweep import SweepError
+    from granmn_sweep.decks import formula_value
+    values = {"a": 2.0, "b": 3.0}.__getitem__
+    assert formula_value("(v_a < v_b)*v_a + (v_a >= v_b)*v_b", values, "x") == 2.0
+    assert formula_value("(v_b < v_a)*v_a + (v_b >= v_a)*v_b/2", values, "x") == 1.5
+    for formula, part in (("v_a^2", "v_a ^ 2"), ("v_a < v_b < 4", "v_a < v_b < 4"),
+                          ("sqrt(v_a)", "sqrt(v_a)"), ("-v_a", "-v_a"), ("v_a*dt", "dt")):
+        with pytest.raises(SweepError, match=re.escape(f"x: the runner reads no {part!r} in the "
+                                                       f"formula {formula!r}")):
+            formula_value(formula, values, "x")
 
 # --output that names a file, or a path through one: {case: (script and options, message)};
 # it gave a traceback (FileExistsError, NotADirectoryError), and --dry-run listed every point
