@@ -4,25 +4,14 @@ import functools
 import math
 
 from granmn_sweep import SweepError
-from granmn_sweep.decks import deck_defaults, formula_value, scene_dimension, \
+from granmn_sweep.decks import deck_defaults, formula_value, scene_atoms, scene_dimension, \
     time_step_formula
 from mn_law import LawError, derived
 
-# Atoms each scene integrates or pairs with: the cost model's size (bumps included); where the
-# size is a deck variable, a function of the point's variables (the deck's defaults filled in).
-SCENE_ATOMS = {"single_disk": 11, "collisional_flow": 100, "frictional_flow": 100,
-               "chute_3d": lambda v: (int(float(v["spheres"]))
-                                      + int(float(v["length"])) * int(float(v["width"])))}
 # Seconds per step by the scene's dimension: a fixed part and a part per atom; refined as points
 # finish. 3D: the dense chute's CPU seconds per atom-step, measured (docs/scenes.md): 9.9e-8 at
 # kn 2e4, 6.2e-8 at 2e5, 5.6e-8 at 2e6 (the stiff points, where a series' time goes).
 STEP_COST = {2: (4e-7, 4e-8), 3: (4e-7, 6e-8)}
-
-
-def scene_atoms(point):
-    """The cost model's size of a point: SCENE_ATOMS of its scene."""
-    atoms = SCENE_ATOMS[point["scene"]]
-    return atoms({**deck_defaults(point["scene"]), **point}) if callable(atoms) else atoms
 
 
 @functools.lru_cache(maxsize=None)
@@ -81,7 +70,8 @@ def predicted_steps(point, mn_law):
 
 
 class CostModel:
-    """Seconds of a point = steps * (c0 + c1 * atoms) * factor; factor learnt from points run."""
+    """Seconds of a point = steps * (c0 + c1 * atoms) * factor (atoms: decks.scene_atoms);
+    factor learnt from points run."""
 
     def __init__(self):
         self.factor, self.samples = 1.0, 0

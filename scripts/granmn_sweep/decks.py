@@ -1,6 +1,6 @@
 """What the runner reads from the scene decks (inputs/*.lmp and the inputs/lib/ files they
-include): the scenes, the variables a deck takes and those it uses, its dimension, its time
-step's formula; the value of such a formula."""
+include): the scenes, the variables a deck takes and those it uses, its dimension, the atoms it
+makes, its time step's formula; the value of such a formula."""
 import ast
 import functools
 import operator
@@ -97,6 +97,29 @@ def time_step_formula(scene):
     immediate = re.fullmatch(r"\$\((.+)\)", steps[0])
     return immediate.group(1) if immediate else steps[0]
 
+
+
+@functools.lru_cache(maxsize=None)
+def scene_atoms_formula(scene):
+    """The formula of the atoms a scene deck makes, its `variable scene_atoms equal`."""
+    return equal_formula(deck_commands(ROOT / "inputs" / f"{scene}.lmp"), "scene_atoms",
+                         f"inputs/{scene}.lmp")
+
+
+def scene_atoms(point):
+    """The atoms a point's scene makes (bumps and base included), of the point's variables and
+    the deck's defaults: its deck's scene_atoms, which the deck checks against the atoms it has
+    made (inputs/lib/dynamics.lmp)."""
+    where = f"inputs/{point['scene']}.lmp: scene_atoms"
+    values = {**deck_defaults(point["scene"]), **point}
+
+    def value(name):
+        try:
+            return float(values[name])
+        except (KeyError, ValueError):
+            raise SweepError(f"{where}: v_{name} is no number a point sets or the deck "
+                             "defaults")
+    return formula_value(scene_atoms_formula(point["scene"]), value, where)
 
 def formula_value(formula, value, where):
     """The value of a deck's formula as LAMMPS computes it, in doubles: numbers, the variables

@@ -501,7 +501,7 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
 
 
 
-# {name: point}: where dt_fraction x tau_c is the step, where dt_cap is, and a 3D point (spheres)
+# {name: point}: where dt_fraction x tau_c is the step, where dt_cap is, a 3D point (spheres)
 TIME_STEP_POINTS = {
     "fraction": {"scene": "single_disk", "kn": 2e5},
     "cap": {"scene": "single_disk", "kn": 1e4},
@@ -511,10 +511,12 @@ TIME_STEP_POINTS = {
 
 
 @pytest.mark.parametrize("name", sorted(TIME_STEP_POINTS))
-def test_the_runner_takes_the_time_step_lmp_takes(tmp_path, name):
+def test_the_runner_takes_the_time_step_and_atoms_lmp_takes(tmp_path, name):
     """The cost model's time step of a point is the one lmp runs the deck with (params.txt's
-    dt, %.10g: 1e-9 apart at most), whichever of dt_fraction x tau_c and dt_cap is the step."""
+    dt, %.10g: 1e-9 apart at most), whichever of dt_fraction x tau_c and dt_cap is the step; its
+    atoms are those of the run (its log's `with N atoms`), bumps and base included."""
     from granmn_sweep.cost import time_step
+    from granmn_sweep.decks import scene_atoms
     from granmn_run import run_scene
     point = TIME_STEP_POINTS[name]
     run_scene(point["scene"], tmp_path, run_time=0.2, average_start=0.1,
@@ -523,6 +525,25 @@ def test_the_runner_takes_the_time_step_lmp_takes(tmp_path, name):
                   .splitlines() if line.strip())
     assert time_step(point, BUILD / "plugin" / "mn-law") == \
         pytest.approx(float(params["dt"]), rel=1e-9)
+    made = {int(n) for n in re.findall(r" with (\d+) atoms\n",
+                                         (tmp_path / "log.lammps").read_text())}
+    assert made == {scene_atoms(point)}
+
+
+def test_a_deck_that_makes_other_atoms_than_it_declares_stops(tmp_path):
+    """A scene deck whose scene_atoms (the runner's size of its points) is not the number of
+    atoms it makes stops with an ERROR naming both, rather than the cost model going wrong."""
+    from granmn_run import INPUTS, LMP
+    deck = tmp_path / "collisional_flow.lmp"
+    text = (INPUTS / "collisional_flow.lmp").read_text()
+    assert "variable scene_atoms equal 100\n" in text
+    deck.write_text(text.replace("variable scene_atoms equal 100\n",
+                                 "variable scene_atoms equal 99\n"))
+    proc = subprocess.run([LMP, "-in", str(deck), "-log", "none", "-nocite", "-var", "plugin",
+                           PLUGIN, "-var", "lib", str(INPUTS / "lib"), "-var", "out",
+                           str(tmp_path)], capture_output=True, text=True, timeout=120)
+    assert proc.returncode != 0 and "ERROR: inputs/collisional_flow.lmp made 100 atoms, not " \
+        "the scene_atoms = 99 it declares" in proc.stdout, proc.stdout[-2000:]
 
 
 def test_the_runner_follows_the_decks_time_step_rule(tmp_path, monkeypatch):
