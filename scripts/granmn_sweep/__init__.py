@@ -1,7 +1,8 @@
-"""The sweep runner behind scripts/sweep.py (its --help: the config, the layout, the options):
-config (a config's points and their names), decks (what the runner reads from the decks),
-cost (the predicted CPU time), processes (the runner's lmp processes), points (the output
-directory and its points' directories), schedule (running the points) and cli (the command)."""
+"""The sweep runner behind scripts/sweep.py (its --help: the config, the layout, the options),
+its modules each importing only those before it: decks (what the runner reads from the decks),
+config (a config's points and their names), cost (the predicted CPU time), processes (the
+runner's lmp processes), points (the output directory and its points' directories), schedule
+(running the points) and cli (the command)."""
 
 
 class SweepError(Exception):

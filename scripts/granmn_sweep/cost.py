@@ -49,8 +49,11 @@ def time_step(point, mn_law):
     numbers = law_numbers(point, mn_law)
 
     def value(name):
-        if not name.startswith("mn_"):
+        if not name.startswith("mn_") and name in {**deck_defaults(scene), **point}:
             return positive(point, name)
+        if not name.startswith("mn_"):
+            raise SweepError(f"inputs/{scene}.lmp: its time step reads v_{name}, which is no "
+                             "variable a point sets (-var) nor a number of pair_style gran/mn")
         if name[3:] not in numbers:
             raise SweepError(f"inputs/{scene}.lmp: its time step reads v_{name}, which "
                              f"mn-law does not give ({', '.join(sorted(numbers))})")

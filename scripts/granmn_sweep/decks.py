@@ -98,7 +98,6 @@ def time_step_formula(scene):
     return immediate.group(1) if immediate else steps[0]
 
 
-
 @functools.lru_cache(maxsize=None)
 def scene_atoms_formula(scene):
     """The formula of the atoms a scene deck makes, its `variable scene_atoms equal`."""
@@ -120,6 +119,7 @@ def scene_atoms(point):
             raise SweepError(f"{where}: v_{name} is no number a point sets or the deck "
                              "defaults")
     return formula_value(scene_atoms_formula(point["scene"]), value, where)
+
 
 def formula_value(formula, value, where):
     """The value of a deck's formula as LAMMPS computes it, in doubles: numbers, the variables

@@ -61,7 +61,7 @@ def prepare(directory, point, extra):
     """A fresh directory for a point that has not completed: point.json, and runner.json with
     the variables the runner chose for it (`extra`: the checkpoint interval), which a resumed
     run takes again (its checkpoints were written with them). A directory the runner may not
-    remove (foreign) is refused (main() refuses the sweep before any point runs)."""
+    remove (foreign) is refused (cli.main() refuses the sweep before any point runs)."""
     why = foreign(directory, point)
     if why:
         raise SweepError(f"{directory} is not the runner's to remove: {why}; move it away")

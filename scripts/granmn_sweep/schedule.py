@@ -16,6 +16,7 @@ from granmn_sweep.points import cpu_seconds, error_lines, finish, resume_or_prep
     set_aside_failed_resume, wrote_done
 from mpirun_slots import slots_problem
 
+
 def point_variables(point, directory, paths, token):
     variables = {k: v for k, v in point.items() if k != "scene"}
     variables.update(plugin=paths["plugin"], lib=LIB, out=directory, run_token=token)
@@ -164,8 +165,7 @@ def run_points(plan, todo, output, paths, env, jobs, partitions, ranks, extra, m
 
     refused = []    # points whose directory became another's during the sweep: not run
     # runs start in pool threads only: the main thread takes the signals
-    with concurrent.futures.ThreadPoolExecutor(max_workers=1 if partitions else
-                                               jobs) as pool:
+    with concurrent.futures.ThreadPoolExecutor(max_workers=1 if partitions else jobs) as pool:
         if partitions:
             queue, number = list(todo), 0
             while queue and not processes.stopped_by:

@@ -501,6 +501,28 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
 
 
 
+
+# scripts/granmn_sweep's modules in the order of docs/index.md: each imports only those before it
+RUNNER_MODULES = ["decks", "config", "cost", "processes", "points", "schedule", "cli"]
+
+
+@pytest.mark.parametrize("module", RUNNER_MODULES)
+def test_a_runner_module_imports_alone_and_only_those_before_it(module):
+    """Each module of the runner imports in a fresh interpreter by itself and imports no module
+    after it (docs/index.md's order): an import back, a cycle, would work only when another
+    module happened to be imported first."""
+    import ast
+    proc = subprocess.run([sys.executable, "-c", f"import granmn_sweep.{module}"],
+                          cwd=ROOT / "scripts", capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    tree = ast.parse((ROOT / "scripts" / "granmn_sweep" / f"{module}.py").read_text())
+    froms = [node for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)]
+    imported = {node.module.split(".")[1] for node in froms
+                if (node.module or "").startswith("granmn_sweep.")}
+    imported |= {alias.name for node in froms if node.module == "granmn_sweep"
+                 for alias in node.names} - {"SweepError"}
+    assert imported <= set(RUNNER_MODULES[:RUNNER_MODULES.index(module)]), imported
+
 # {name: point}: where dt_fraction x tau_c is the step, where dt_cap is, a 3D point (spheres)
 TIME_STEP_POINTS = {
     "fraction": {"scene": "single_disk", "kn": 2e5},
