@@ -22,7 +22,8 @@ from pathlib import Path
 import numpy as np
 
 from postprocess.study import analyse, fit_power    # scripts/postprocess links the package
-from sweep import SweepError, check_output
+from granmn_sweep import SweepError
+from granmn_sweep.points import check_output
 
 ROOT = Path(__file__).resolve().parent.parent
 

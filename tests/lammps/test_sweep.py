@@ -1,6 +1,7 @@
 """scripts/sweep.py: resuming a killed sweep, the multi-partition mode, bad configs, the
 runner's ownership of its lmp processes and of its output directory."""
 import json
+import math
 import os
 import re
 import signal
@@ -482,22 +483,129 @@ def test_done_txt_of_another_run_is_not_taken(tmp_path):
 def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
     """A grid of 2000 points made of 10 materials (k_n, e, beta) asks build/plugin/mn-law 10
     times: it started mn-law once per point (44 s for the --dry-run of such a grid)."""
-    import importlib
-    import sweep as runner
-    runner = importlib.reload(runner)     # no material known yet
+    import sweep
+    from granmn_sweep import cost
+    cost.law.cache_clear()     # no material known yet
     asked = []
-    law = runner.derived
-    monkeypatch.setattr(runner, "derived",
+    law = cost.derived
+    monkeypatch.setattr(cost, "derived",
                         lambda tool, *material: asked.append(material) or law(tool, *material))
     config = tmp_path / "grid.toml"
     config.write_text('[[grid]]\nscene = "collisional_flow"\n'
                       f'kn = [{", ".join(str(5e4 * 2 ** k) for k in range(10))}]\n'
                       f'seed = [{", ".join(str(seed) for seed in range(1, 201))}]\n')
-    assert runner.main([str(config), "--output", str(tmp_path / "out"), "--build", str(BUILD),
-                        "--dry-run"]) == 0
+    assert sweep.main([str(config), "--output", str(tmp_path / "out"), "--build", str(BUILD),
+                       "--dry-run"]) == 0
     assert "2000 points" in capsys.readouterr().out
     assert sorted(asked) == sorted(set(asked)) and len(asked) == 10
 
+
+
+
+# scripts/granmn_sweep's modules in the order of docs/index.md: each imports only those before it
+RUNNER_MODULES = ["decks", "config", "cost", "processes", "points", "schedule", "cli"]
+
+
+@pytest.mark.parametrize("module", RUNNER_MODULES)
+def test_a_runner_module_imports_alone_and_only_those_before_it(module):
+    """Each module of the runner imports in a fresh interpreter by itself and imports no module
+    after it (docs/index.md's order): an import back, a cycle, would work only when another
+    module happened to be imported first."""
+    import ast
+    proc = subprocess.run([sys.executable, "-c", f"import granmn_sweep.{module}"],
+                          cwd=ROOT / "scripts", capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    tree = ast.parse((ROOT / "scripts" / "granmn_sweep" / f"{module}.py").read_text())
+    froms = [node for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)]
+    imported = {node.module.split(".")[1] for node in froms
+                if (node.module or "").startswith("granmn_sweep.")}
+    imported |= {alias.name for node in froms if node.module == "granmn_sweep"
+                 for alias in node.names} - {"SweepError"}
+    assert imported <= set(RUNNER_MODULES[:RUNNER_MODULES.index(module)]), imported
+
+# {name: point}: where dt_fraction x tau_c is the step, where dt_cap is, a 3D point (spheres)
+TIME_STEP_POINTS = {
+    "fraction": {"scene": "single_disk", "kn": 2e5},
+    "cap": {"scene": "single_disk", "kn": 1e4},
+    "3D": {"scene": "chute_3d", "kn": 2e5, "dt_fraction": 0.05, "spheres": 5, "length": 3,
+           "width": 3},
+}
+
+
+@pytest.mark.parametrize("name", sorted(TIME_STEP_POINTS))
+def test_the_runner_takes_the_time_step_and_atoms_lmp_takes(tmp_path, name):
+    """The cost model's time step of a point is the one lmp runs the deck with (params.txt's
+    dt, %.10g: 1e-9 apart at most), whichever of dt_fraction x tau_c and dt_cap is the step; its
+    atoms are those of the run (its log's `with N atoms`), bumps and base included."""
+    from granmn_sweep.cost import time_step
+    from granmn_sweep.decks import scene_atoms
+    from granmn_run import run_scene
+    point = TIME_STEP_POINTS[name]
+    run_scene(point["scene"], tmp_path, run_time=0.2, average_start=0.1,
+              **{k: v for k, v in point.items() if k != "scene"})
+    params = dict(line.split(None, 1) for line in (tmp_path / "params.txt").read_text()
+                  .splitlines() if line.strip())
+    assert time_step(point, BUILD / "plugin" / "mn-law") == \
+        pytest.approx(float(params["dt"]), rel=1e-9)
+    made = {int(n) for n in re.findall(r" with (\d+) atoms\n",
+                                         (tmp_path / "log.lammps").read_text())}
+    assert made == {scene_atoms(point)}
+
+
+def test_a_deck_that_makes_other_atoms_than_it_declares_stops(tmp_path):
+    """A scene deck whose scene_atoms (the runner's size of its points) is not the number of
+    atoms it makes stops with an ERROR naming both, rather than the cost model going wrong."""
+    from granmn_run import INPUTS, LMP
+    deck = tmp_path / "collisional_flow.lmp"
+    text = (INPUTS / "collisional_flow.lmp").read_text()
+    assert "variable scene_atoms equal 100\n" in text
+    deck.write_text(text.replace("variable scene_atoms equal 100\n",
+                                 "variable scene_atoms equal 99\n"))
+    proc = subprocess.run([LMP, "-in", str(deck), "-log", "none", "-nocite", "-var", "plugin",
+                           PLUGIN, "-var", "lib", str(INPUTS / "lib"), "-var", "out",
+                           str(tmp_path)], capture_output=True, text=True, timeout=120)
+    assert proc.returncode != 0 and "ERROR: inputs/collisional_flow.lmp made 100 atoms, not " \
+        "the scene_atoms = 99 it declares" in proc.stdout, proc.stdout[-2000:]
+
+
+def test_the_runner_follows_the_decks_time_step_rule(tmp_path, monkeypatch):
+    """The runner reads the time step's rule from the decks (inputs/lib/dynamics.lmp's
+    timestep): decks whose rule is dt = tau_c/50 give run_time/(tau_c/50) steps. A copy of the
+    rule in Python (min(dt_fraction x tau_c, dt_cap)) predicted the old rule's steps."""
+    import shutil
+    from granmn_sweep import decks
+    from granmn_sweep.cost import predicted_steps
+    from mn_law import derived
+    shutil.copytree(ROOT / "inputs", tmp_path / "inputs")
+    dynamics = tmp_path / "inputs" / "lib" / "dynamics.lmp"
+    text = dynamics.read_text()
+    assert "timestep ${dt_resolved}\n" in text
+    dynamics.write_text(text.replace("timestep ${dt_resolved}\n", "timestep $(v_mn_tau_c/50)\n"))
+    monkeypatch.setattr(decks, "ROOT", tmp_path)
+    monkeypatch.setattr(decks, "LIB", tmp_path / "inputs" / "lib")
+    decks.time_step_formula.cache_clear()
+    try:
+        tau_c = derived(BUILD / "plugin" / "mn-law", 2e5, 0.7, 0.7)["tau_c"]
+        point = {"scene": "collisional_flow", "kn": 2e5, "e": 0.7, "beta": 0.7, "run_time": 10}
+        assert predicted_steps(point, BUILD / "plugin" / "mn-law") == math.ceil(10 / (tau_c / 50))
+    finally:
+        decks.time_step_formula.cache_clear()
+
+
+def test_a_deck_formula_the_runner_cannot_read_is_refused_by_name():
+    """The formulas the runner reads from the decks (the time step, the atoms) take LAMMPS's
+    meaning, a comparison 1 or 0, or are refused naming the part it does not read: Python would
+    read ^ as xor, a < b < c as a chain, and dt (a thermo keyword) is no deck variable."""
+    from granmn_sweep import SweepError
+    from granmn_sweep.decks import formula_value
+    values = {"a": 2.0, "b": 3.0}.__getitem__
+    assert formula_value("(v_a < v_b)*v_a + (v_a >= v_b)*v_b", values, "x") == 2.0
+    assert formula_value("(v_b < v_a)*v_a + (v_b >= v_a)*v_b/2", values, "x") == 1.5
+    for formula, part in (("v_a^2", "v_a ^ 2"), ("v_a < v_b < 4", "v_a < v_b < 4"),
+                          ("sqrt(v_a)", "sqrt(v_a)"), ("-v_a", "-v_a"), ("v_a*dt", "dt")):
+        with pytest.raises(SweepError, match=re.escape(f"x: the runner reads no {part!r} in the "
+                                                       f"formula {formula!r}")):
+            formula_value(formula, values, "x")
 
 # --output that names a file, or a path through one: {case: (script and options, message)};
 # it gave a traceback (FileExistsError, NotADirectoryError), and --dry-run listed every point

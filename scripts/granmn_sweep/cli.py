@@ -1,0 +1,194 @@
+"""Runs a grid of scene points described in a TOML config, resumably, with progress and ETA.
+
+    scripts/sweep.py CONFIG [--output DIR] [--jobs N | --partitions P] [--ranks R]
+                     [--checkpoint-interval T] [--dry-run]
+
+Config (TOML):
+
+    name = "example"              # results go to results/<name> unless --output is given
+    [defaults]                    # deck variables for every point
+    run_time = 100
+    [[grid]]                      # every list is a dimension; points = the cartesian product
+    scene = "single_disk"         # single_disk, collisional_flow, frictional_flow or chute_3d
+    kn = [5e4, 2e5]
+    seed = [1, 2]
+    integrator = ["verlet", "ab2"]
+
+Any other key is passed to the deck as -var KEY VALUE (see inputs/lib/defaults.lmp); a
+variable the scene's deck takes but never uses (seed in single_disk: no random start) is
+refused. A number is one value whatever its spelling: kn 5e4, 50000 and "5e4" are one point.
+
+Layout: <output>/<scene>/<point>/ holds the deck's outputs (energy.txt, counts.txt, ...),
+point.json (the point's variables), runner.json (the runner's: the checkpoint interval of
+--checkpoint-interval), command.txt (the exact command), log.lammps, run.out (what
+lmp printed), timing.json (wall and CPU seconds), running.json while its lmp runs, failed.txt
+(the ERROR lines and the output) if it failed, and done.txt, written by the deck last.
+A point is done when done.txt and timing.json carry the token of one run (the runner gives
+each run its own and writes timing.json once that run has ended): such a point is never run
+again, so a killed sweep resumes where it stopped. Any other point resumes from its last
+checkpoint (checkpoint_interval > 0: checkpoint.txt names the last complete one; its outputs are
+cut back to that step, a half-written line or frame included; docs/sweeps.md) if its point.json
+is this point's, else it is run again from scratch. A checkpoint the resumed run fails to
+start from (cut short, of another step or point) is set aside (checkpoint.N.unreadable) and
+the older one tried, then a fresh start; the run so far is kept in
+<output>/unresumed/<scene>/<point> until the fresh start has completed.
+--checkpoint-interval T checkpoints the points that set no checkpoint_interval every T time
+units; it is not part of a point (its name, point.json), and the interval a point was begun
+with (runner.json) is the one it resumes with.
+
+The runner owns its lmp processes: they die with it (kill -9 included), SIGTERM or SIGINT
+stops them and the sweep (exit status 128 + the signal); it refuses to start while a point's
+running.json names a process still alive, or while another sweep holds <output>/sweep.lock.
+By default the points run as separate serial lmp processes, as many at once as the machine
+has cores (--jobs). --partitions P runs P points at a time in one `mpirun -np P lmp -partition
+Px1`, LAMMPS's own multi-partition mode, as on a cluster; mpirun is asked first whether it
+has P slots. A point that fails in a partition is recorded as failed; the siblings its
+LAMMPS ERROR took down (MPI_Abort) are run again.
+
+--ranks R runs each point on R MPI ranks (LAMMPS's domain decomposition): `mpirun -np R lmp`
+per point, --jobs of them at a time (jobs x R processes; --jobs defaults to cores / R), or with
+--partitions P one `mpirun -np P*R lmp -partition PxR` (P partitions of R ranks; mpirun is
+asked first for P x R slots, and without --partitions for R). R is not part of a point: its
+directory, point.json and checkpoints are the same with any R, and a point resumes with any R
+(LAMMPS reads a restart file on any number of ranks). R ranks sum the forces in another order:
+a point follows the 1-rank trajectory to rounding, and a chaotic dense flow amplifies that
+rounding until, after some time units, the run is another realization of the same flow
+(docs/sweeps.md).
+
+Exit status: 0 all done, 1 some points failed, 2 refused (a bad config or path, a busy output).
+"""
+import argparse
+import math
+import os
+import shutil
+import signal
+import sys
+from pathlib import Path
+
+from granmn_sweep import SweepError
+from granmn_sweep import processes
+from granmn_sweep.config import expand, load_config, point_name
+from granmn_sweep.cost import CostModel, format_seconds, predicted_steps
+from granmn_sweep.decks import ROOT
+from granmn_sweep.points import check_output, check_path, foreign, lock_output
+from granmn_sweep.schedule import check_slots, run_points
+from postprocess.rundir import completed     # scripts/postprocess links the package
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter,
+                                     epilog="\n".join(__doc__.splitlines()[2:]))
+    parser.add_argument("config")
+    parser.add_argument("--output", type=Path, help="results directory")
+    parser.add_argument("--jobs", type=int,
+                        help="points at a time, each one lmp process, or with --ranks R one "
+                             "mpirun of R ranks: jobs x R processes (default: cores / R, at "
+                             "least 1)")
+    parser.add_argument("--partitions", type=int, default=0,
+                        help="run P points at a time as LAMMPS partitions under one mpirun "
+                             "(P x R processes)")
+    parser.add_argument("--ranks", type=int, default=1,
+                        help="MPI ranks per point (LAMMPS's domain decomposition; default 1: "
+                             "a serial lmp, no mpirun)")
+    parser.add_argument("--checkpoint-interval", type=float, default=0.0, metavar="T",
+                        help="checkpoints every T time units (the deck's checkpoint_interval) "
+                             "for the points that do not set one: a killed point resumes from "
+                             "its last (default 0: none); not part of a point's name")
+    parser.add_argument("--dry-run", action="store_true",
+                        help="list the points and the predicted cost, run nothing")
+    parser.add_argument("--build", type=Path, default=ROOT / "build")
+    args = parser.parse_args(argv)
+    if args.ranks < 1:
+        parser.error(f"--ranks {args.ranks}: the MPI ranks per point must be >= 1")
+    if args.jobs is None:
+        args.jobs = max(1, (os.cpu_count() or 1) // args.ranks)
+    if args.jobs < 1 or args.partitions < 0:
+        parser.error("--jobs must be >= 1 and --partitions >= 0")
+    if not (args.checkpoint_interval >= 0 and math.isfinite(args.checkpoint_interval)):
+        parser.error(f"--checkpoint-interval {args.checkpoint_interval:g} must be >= 0 "
+                     "(0: none)")
+
+    paths = {"lmp": args.build / "lammps" / "lmp",
+             "plugin": args.build / "plugin" / "granmnplugin.so",
+             "mn_law": args.build / "plugin" / "mn-law",
+             "mpiexec": shutil.which("mpirun") or "mpirun"}
+    try:
+        for key in ("lmp", "plugin", "mn_law"):
+            if not paths[key].exists():
+                raise SweepError(f"{paths[key]} is missing: run ./scripts/build.sh first")
+        config = load_config(args.config)
+        points = expand(config, args.config)
+        output = args.output or ROOT / "results" / config.get("name", Path(args.config).stem)
+        for what, path in (("--output", output), ("--build", args.build), ("the checkout", ROOT)):
+            check_path(what, path)
+        check_output(output)
+        steps = [predicted_steps(p, paths["mn_law"]) for p in points]
+    except SweepError as error:
+        print(f"sweep: {error}", file=sys.stderr)
+        return 2
+
+    model = CostModel()
+    plan = [(p, output / p["scene"] / point_name(p), s) for p, s in zip(points, steps)]
+    todo = [(p, d, s) for p, d, s in plan if not completed(d)]
+    # the runner's variables of each point: the checkpoint interval, where the point sets none
+    extra = {d: ({"checkpoint_interval": args.checkpoint_interval}
+                 if args.checkpoint_interval > 0 and "checkpoint_interval" not in p else {})
+             for p, d, _ in todo}
+    # most expensive first, so that the last points to finish are short ones
+    todo.sort(key=lambda item: -model.predict(item[0], item[2]))
+    total = sum(model.predict(p, s) for p, _, s in plan)
+    # points at a time; each on `ranks` processes
+    lanes = args.partitions if args.partitions else args.jobs
+    processes_at_once = lanes * args.ranks
+    left = sum(model.predict(p, s) for p, _, s in todo)
+    print(f"sweep: {len(plan)} points, {len(plan) - len(todo)} already done, {len(todo)} to run; "
+          f"predicted {format_seconds(total)} of CPU in all "
+          f"({total / 3600:.3g} CPU-hours); output {output}", flush=True)
+    print(f"sweep: {lanes} point{'s' if lanes != 1 else ''} at a time on {args.ranks} MPI rank"
+          f"{'s' if args.ranks > 1 else ''} each"
+          + (f" ({args.partitions} partitions of one mpirun)" if args.partitions else "")
+          + f": {processes_at_once} processes (this machine has {os.cpu_count()} logical cores); "
+          f"~{format_seconds(left / processes_at_once)} of wall for the points to run if the ranks "
+          "scale ideally", flush=True)
+    if processes_at_once > (os.cpu_count() or 1):
+        print(f"sweep: note: {processes_at_once} processes on {os.cpu_count()} logical cores: they "
+              "share them (use fewer --jobs or --ranks to give each its own)", flush=True)
+    if args.dry_run:
+        for p, d, s in plan:
+            print(f"  {'done' if completed(d) else 'todo'} {d.relative_to(output)} "
+                  f"{s} steps ~{format_seconds(model.predict(p, s))}")
+        return 0
+
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    try:
+        if args.partitions and todo:
+            batch = min(args.partitions, len(todo))
+            check_slots(paths["mpiexec"], batch * args.ranks, env,
+                        f"--partitions {args.partitions}" +
+                        (f" --ranks {args.ranks}" if args.ranks > 1 else ""))
+        elif args.ranks > 1 and todo:
+            check_slots(paths["mpiexec"], args.ranks, env, f"--ranks {args.ranks}")
+        lock = lock_output(output)
+        others = [(d, why) for p, d, _ in todo for why in [foreign(d, p)] if why]
+        if others:
+            raise SweepError(
+                f"{len(others)} point directories are not the runner's to remove and run afresh "
+                "(move them away, then run the sweep again): " +
+                "; ".join(f"{d}: {why}" for d, why in others[:5]))
+        live = processes.live_runs(d for _, d, _ in todo)
+        if live:
+            raise SweepError(
+                f"{len(live)} points are still being run by processes an earlier sweep left "
+                "(stop them, e.g. `kill PID`, or let them end; then run the sweep again): " +
+                "; ".join(f"pid {pid} in {d}" for d, pid in live[:5]))
+    except SweepError as error:
+        print(f"sweep: {error}", file=sys.stderr)
+        return 2
+    signal.signal(signal.SIGTERM, processes.stop)
+    signal.signal(signal.SIGINT, processes.stop)
+
+    status = run_points(plan, todo, output, paths, env, args.jobs, args.partitions, args.ranks,
+                        extra, model, processes_at_once)
+    lock.close()
+    return status

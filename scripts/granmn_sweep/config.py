@@ -1,0 +1,125 @@
+"""A config's points: loading a TOML config, expanding its grids into points (checked against
+the scene decks), one spelling of each number, the points' names."""
+import re
+import tomllib
+from itertools import product
+from pathlib import Path
+
+from granmn_sweep import SweepError
+from granmn_sweep.decks import RESERVED, SCENES, deck_defaults, deck_uses
+
+NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+
+
+def load_config(path):
+    try:
+        config = tomllib.loads(Path(path).read_text())
+    except FileNotFoundError:
+        raise SweepError(f"{path}: no such config file")
+    except tomllib.TOMLDecodeError as error:
+        raise SweepError(f"{path}: not valid TOML: {error}")
+    unknown = set(config) - {"name", "defaults", "grid"}
+    if unknown:
+        raise SweepError(f"{path}: unknown top-level keys {sorted(unknown)} "
+                         "(expected name, defaults, grid)")
+    if not isinstance(config.get("name", ""), str) or not NAME.match(config.get("name", "x")):
+        raise SweepError(f"{path}: name = {config['name']!r} must be a word (letters, digits, _)")
+    if not isinstance(config.get("grid"), list) or not config["grid"]:
+        raise SweepError(f"{path}: needs at least one [[grid]] table")
+    if not all(isinstance(grid, dict) for grid in config["grid"]):
+        raise SweepError(f"{path}: grid must be a list of tables ([[grid]]), not "
+                         f"{config['grid']!r}")
+    if not isinstance(config.get("defaults", {}), dict):
+        raise SweepError(f"{path}: [defaults] must be a table")
+    return config
+
+
+def expand(config, path):
+    """The points of the config: dicts of deck variables, each with a scene."""
+    points = []
+    for number, grid in enumerate(config["grid"], 1):
+        merged = dict(config.get("defaults", {}))
+        merged.update(grid)
+        for key, value in merged.items():
+            if not NAME.match(key):
+                raise SweepError(f"{path}: grid {number}: '{key}' is not a deck variable name")
+            values = value if isinstance(value, list) else [value]
+            if not values:
+                raise SweepError(f"{path}: grid {number}: '{key}' is an empty list")
+            for v in values:
+                if not isinstance(v, (int, float, str)) or isinstance(v, bool):
+                    raise SweepError(f"{path}: grid {number}: '{key}' must hold numbers or "
+                                     f"strings, not {v!r}")
+        if "scene" not in merged:
+            raise SweepError(f"{path}: grid {number} has no scene")
+        reserved = sorted(set(merged) & RESERVED)
+        if reserved:
+            raise SweepError(f"{path}: grid {number}: {', '.join(reserved)} set by the sweep "
+                             "runner itself (--output, --build), not by a config")
+        keys = sorted(merged)
+        lists = [merged[k] if isinstance(merged[k], list) else [merged[k]] for k in keys]
+        for combination in product(*lists):
+            point = dict(zip(keys, combination))
+            if point["scene"] not in SCENES:
+                raise SweepError(f"{path}: grid {number}: unknown scene '{point['scene']}' "
+                                 f"(expected one of {', '.join(SCENES)})")
+            defaults = deck_defaults(point["scene"])
+            unknown = sorted(set(point) - {"scene"} - set(defaults))
+            if unknown:
+                raise SweepError(f"{path}: grid {number}: {', '.join(unknown)}: not a variable "
+                                 f"of inputs/{point['scene']}.lmp (docs/scenes.md lists them)")
+            # a deck takes a word where it expects a number without complaint (as 0)
+            for name, value in point.items():
+                if name in defaults and is_number(defaults[name]):
+                    if not is_number(value):
+                        raise SweepError(f"{point['scene']} point: {name} = {value!r} is not a "
+                                         "number")
+                    point[name] = canonical_number(value)
+            ignored = sorted(set(point) - {"scene"} - deck_uses(point["scene"]))
+            if ignored:
+                raise SweepError(f"{path}: grid {number}: {', '.join(ignored)}: "
+                                 f"inputs/{point['scene']}.lmp does not use it (every value "
+                                 "would give the same run)")
+            points.append(point)
+    seen = set()
+    for p in points:
+        if not point_name(p):
+            raise SweepError(f"{path}: a point of scene {p['scene']} with no variable but the "
+                             "scene: a point's directory is named by its variables, and this one "
+                             f"would be <output>/{p['scene']}, where the scene's points are; set "
+                             "one (e.g. seed or kn)")
+        name = f"{p['scene']}/{point_name(p)}"
+        if name in seen:
+            raise SweepError(f"{path}: the grids repeat the point {name} (equal numbers are one "
+                             "value, however spelt)")
+        seen.add(name)
+    return points
+
+
+def canonical_number(value):
+    """One value, one spelling: seed 1 and "01" are 1; kn 5e4, 50000 and "5e4" are 50000."""
+    number = float(value)
+    return int(number) if number.is_integer() and abs(number) < 2 ** 53 else number
+
+
+def format_value(value):
+    """A value as the deck and the point's name get it: %g where that is exact, else every
+    digit (1234567.8 is not 1.23457e+06); an integer and its float alike (1e6 is 1000000)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return str(value)
+    short = f"{float(value):g}"
+    if float(short) == value:
+        return short
+    return str(int(value)) if float(value).is_integer() and abs(value) < 2 ** 53 else repr(value)
+
+
+def point_name(point):
+    return "_".join(f"{k}{format_value(v)}" for k, v in sorted(point.items()) if k != "scene")
+
+
+def is_number(value):
+    try:
+        float(value)
+        return True
+    except (TypeError, ValueError):
+        return False

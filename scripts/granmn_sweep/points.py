@@ -1,0 +1,232 @@
+"""The output directory and its points' directories: the paths LAMMPS can carry, the lock, which
+directories the runner may remove, a point's fresh start or resume from its checkpoint, a
+failed resume set aside, a run's outcome (done.txt, timing.json, failed.txt)."""
+import fcntl
+import json
+import os
+import re
+import shutil
+
+import checkpoints
+from granmn_sweep import SweepError
+from granmn_sweep import processes
+
+# What LAMMPS's input syntax does not carry in a file name: a word ends at whitespace;
+# quotes, $ (a variable) and # (a comment) are syntax.
+PATH_SYNTAX = {" ": "a space", "\t": "a tab", "\n": "a newline", '"': "a quote (\")",
+               "'": "a quote (')", "$": "a $", "#": "a #"}
+
+
+def check_path(what, path):
+    """The decks write ${out}/params.txt and the like: LAMMPS would end the name at a space
+    (and write into an unrelated file) or read a quote, $ or # as syntax."""
+    for character, name in PATH_SYNTAX.items():
+        if character in str(path):
+            raise SweepError(f"{what} {str(path)!r} contains {name}: LAMMPS's input syntax "
+                             "cannot carry it in the file names the decks write; choose a path "
+                             "without it")
+
+
+def check_output(output):
+    """An --output must be a directory, or a path one can be made at (no file on it)."""
+    for path in (output, *output.parents):
+        if path.exists():
+            if not path.is_dir():
+                raise SweepError(f"--output {output}: {path} is a file, not a directory; "
+                                 "choose another --output")
+            return
+
+
+def foreign(directory, point):
+    """Why the runner may not remove a point's directory to run the point afresh, or None: it
+    removes only a directory it made for a point of this scene (point.json, the first file it
+    writes there) that holds files alone (a run writes no folder: one is someone else's)."""
+    if not directory.exists():
+        return None
+    if not directory.is_dir():
+        return "it is a file"
+    try:
+        record = json.loads((directory / "point.json").read_text())
+    except (OSError, ValueError):
+        return "it holds no point.json (the runner writes one into each point it makes)"
+    if not isinstance(record, dict) or record.get("scene") != point["scene"]:
+        return f"its point.json is not of a {point['scene']} point"
+    folders = sorted(entry.name for entry in directory.iterdir() if entry.is_dir())
+    if folders:
+        return f"it holds folders ({', '.join(folders[:3])}), which no run writes"
+    return None
+
+
+def prepare(directory, point, extra):
+    """A fresh directory for a point that has not completed: point.json, and runner.json with
+    the variables the runner chose for it (`extra`: the checkpoint interval), which a resumed
+    run takes again (its checkpoints were written with them). A directory the runner may not
+    remove (foreign) is refused (cli.main() refuses the sweep before any point runs)."""
+    why = foreign(directory, point)
+    if why:
+        raise SweepError(f"{directory} is not the runner's to remove: {why}; move it away")
+    if directory.exists():
+        shutil.rmtree(directory)
+    directory.mkdir(parents=True)
+    (directory / "point.json").write_text(json.dumps(point, indent=1, sort_keys=True) + "\n")
+    (directory / "runner.json").write_text(json.dumps(extra, sort_keys=True) + "\n")
+
+
+def kept_aside(directory):
+    """Where a point's run that could not be resumed is kept while the point starts afresh:
+    <output>/unresumed/<scene>/<point> (not a point's place: the post-processing reads
+    <output>/<scene>/<point>)."""
+    return directory.parents[1] / "unresumed" / directory.parent.name / directory.name
+
+
+def resume_or_prepare(directory, point, extra, keep=False):
+    """The variables of a point's next run beyond its own: the runner.json ones and {"resume": N,
+    "resume_step": S} for a point whose directory holds a checkpoint (checkpoint.N.restart, at
+    step S) of the same point, its outputs cut back to it; else `extra` and a fresh directory.
+    The deck itself refuses a checkpoint of another point or plugin layout, by name (fix
+    checkpoint/mn), and one of another step than S. With `keep` (its resumes failed: the
+    ERROR may be lmp's or the plugin's rather than the checkpoints'), the directory a fresh
+    start replaces is kept aside (kept_aside), not removed."""
+    try:
+        same_point = json.loads((directory / "point.json").read_text()) == point
+        found = same_point and checkpoints.candidates(directory)
+        if found:
+            step, slot = found[0]
+            kept = json.loads((directory / "runner.json").read_text()) \
+                if (directory / "runner.json").exists() else {}
+            checkpoints.cut_outputs(directory, step)
+            return {**kept, "resume": slot, "resume_step": step}
+    except (OSError, ValueError, KeyError):
+        pass
+    if keep and directory.exists() and not foreign(directory, point):
+        aside = kept_aside(directory)
+        if aside.exists() and not foreign(aside, point):   # of an earlier sweep
+            shutil.rmtree(aside)
+        aside.parent.mkdir(parents=True, exist_ok=True)
+        directory.replace(aside)
+    prepare(directory, point, extra)
+    return dict(extra)
+
+
+# In the log of a run that has passed its first LAMMPS setup (Output::setup prints it there)
+SETUP_DONE = "Per MPI rank memory allocation"
+
+
+def set_aside_failed_resume(directory, variables):
+    """After a failed run: if it resumed from a checkpoint and failed before its first setup
+    (read_restart's ERROR on a file cut short, a checkpoint of another point, step or layout),
+    the file is set aside (checkpoint.N.unreadable), so that the next run of the point resumes
+    from the older checkpoint, or starts afresh; what happened, for the progress line and
+    failed.txt. None for any other failure."""
+    if "resume" not in variables:
+        return None
+    name = f"checkpoint.{variables['resume']}.restart"
+    try:
+        log = (directory / "log.lammps").read_text(errors="replace")
+    except OSError:
+        return None
+    # the deck's line before read_restart (its command, echoed, names ${resume_file}): a run
+    # that failed before it (the plugin not loaded, say) says nothing about the checkpoint
+    if f"resuming from checkpoint {directory / name}\n" not in log or SETUP_DONE in log:
+        return None
+    (directory / name).replace(directory / f"checkpoint.{variables['resume']}.unreadable")
+    errors = error_lines(directory / "log.lammps") or ["no ERROR line"]
+    following = checkpoints.candidates(directory)
+    then = (f"resuming from checkpoint.{following[0][1]}.restart (step {following[0][0]})"
+            if following else f"starting it afresh (the run so far kept in "
+                              f"{kept_aside(directory)})")
+    return (f"the resume from {name} (step {variables['resume_step']}) failed ({errors[0]}); "
+            f"it is set aside as checkpoint.{variables['resume']}.unreadable; {then}")
+
+
+def wrote_done(directory, token):
+    try:
+        return re.search(rf"\brun {token}\b", (directory / "done.txt").read_text()) is not None
+    except OSError:
+        return False
+
+
+def error_lines(*paths):
+    """The ERROR lines (and LAMMPS's `Last command:`) of logs and outputs."""
+    lines = []
+    for path in paths:
+        try:
+            text = path.read_text(errors="replace")
+        except OSError:
+            continue
+        lines += [line for line in text.splitlines()
+                  if line.startswith(("ERROR", "Last command:"))]
+    return lines
+
+
+def finish(directory, token, status, elapsed, cpu, logs, output, variables, notes, note=""):
+    """A point's outcome: "done" (done.txt carries the run's token; timing.json is written with
+    it), "stopped" (by a signal to the sweep), else "failed" (failed.txt: the exit status, the
+    ERROR lines of logs, how the run began (afresh or from which checkpoint) and what went
+    before it (notes: failed resumes), what to do, the end of output)."""
+    aside = kept_aside(directory)
+    if wrote_done(directory, token):
+        (directory / "timing.json").write_text(
+            json.dumps({"seconds": elapsed, "cpu_seconds": cpu, "run": token}) + "\n")
+        # a fresh start that completed: the run it replaced is of no more use
+        if notes and "resume" not in variables and aside.exists() and \
+                not foreign(aside, json.loads((directory / "point.json").read_text())):
+            shutil.rmtree(aside)
+            try:    # unresumed/<scene>/ and unresumed/, if nothing else is kept there
+                os.removedirs(aside.parent)
+            except OSError:
+                pass
+        return "done"
+    if processes.stopped_by:
+        return "stopped"
+    errors = error_lines(*logs) or [f"(no ERROR line in {', '.join(str(p) for p in logs)})"]
+    began = (f"from checkpoint.{variables['resume']}.restart (step {variables['resume_step']})"
+             if "resume" in variables else "afresh")
+    history = "".join(f"before it: {line}\n" for line in notes)
+    if notes and "resume" not in variables and aside.exists():
+        history += (f"the run that could not be resumed is kept in {aside}: if the ERROR is not "
+                    "its checkpoints' (but lmp's or the plugin's, as here where the fresh start "
+                    "failed too), mend that, put it back in place of this directory, rename its "
+                    "checkpoint.N.unreadable back to checkpoint.N.restart (a resume takes the "
+                    "newest its outputs reach) and run the sweep again\n")
+    printed = output.read_text(errors="replace") if output.exists() else ""
+    (directory / "failed.txt").write_text(
+        f"exit status {status}{note}\n" + "\n".join(errors) + f"\nthis run began {began}\n" +
+        history + "what to do: mend what the ERROR names, then run the sweep again: it runs "
+        "this point from its newest checkpoint if it has one, else afresh (remove this "
+        f"directory to start it afresh)\n--- the end of {output}\n{printed[-40000:]}\n")
+    return "failed"
+
+
+def lock_output(output):
+    """Holds <output>/sweep.lock while the sweep runs (an flock: the kernel lets go when the
+    runner dies, kill -9 included); two sweeps on one output would run its points twice at
+    once."""
+    try:
+        output.mkdir(parents=True, exist_ok=True)
+        handle = open(output / "sweep.lock", "a+")
+    except OSError as error:    # made a file since check_output, or not writable
+        raise SweepError(f"--output {output}: {error.strerror}; choose another --output")
+    try:
+        fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        handle.seek(0)
+        holder = handle.read().strip() or "unknown"
+        handle.close()
+        raise SweepError(f"{output} is in use by another sweep (pid {holder}, "
+                         f"{output / 'sweep.lock'}): let it end or stop it")
+    handle.truncate(0)
+    handle.write(f"{os.getpid()}\n")
+    handle.flush()
+    return handle
+
+
+def cpu_seconds(directories):
+    """CPU seconds the completed points took, from their timing.json."""
+    total = 0.0
+    for d in directories:
+        try:
+            total += json.loads((d / "timing.json").read_text()).get("cpu_seconds", 0.0)
+        except (OSError, ValueError):
+            pass
+    return total

@@ -1,0 +1,209 @@
+"""Running the points: each as one lmp (or mpirun of R ranks), --jobs at a time, or P at a time
+as the partitions of one mpirun; a failed resume tried again at once; progress and ETA; the
+sweep's end and exit status."""
+import concurrent.futures
+import secrets
+import shlex
+import signal
+import sys
+
+from granmn_sweep import SweepError
+from granmn_sweep import processes
+from granmn_sweep.config import format_value
+from granmn_sweep.cost import format_seconds
+from granmn_sweep.decks import LIB, ROOT
+from granmn_sweep.points import cpu_seconds, error_lines, finish, resume_or_prepare, \
+    set_aside_failed_resume, wrote_done
+from mpirun_slots import slots_problem
+
+
+def point_variables(point, directory, paths, token):
+    variables = {k: v for k, v in point.items() if k != "scene"}
+    variables.update(plugin=paths["plugin"], lib=LIB, out=directory, run_token=token)
+    return variables
+
+
+def run_serial(point, directory, paths, env, ranks, extra, notes):
+    """(outcome, wall seconds, note) of a point run as one lmp process, or as `mpirun -np
+    ranks lmp` (one LAMMPS world of `ranks` ranks: the domain decomposed). A resume that fails
+    (set_aside_failed_resume) is followed at once by the next try: the older checkpoint, then
+    a fresh start; `notes[directory]` says what happened."""
+    while True:
+        if processes.stopped_by:
+            return "stopped", 0.0, ""
+        token = secrets.token_hex(8)
+        variables = resume_or_prepare(directory, point, extra, keep=directory in notes)
+        mpirun = [paths["mpiexec"], "-np", str(ranks)] if ranks > 1 else []
+        command = mpirun + [str(paths["lmp"]), "-in",
+                            str(ROOT / "inputs" / f"{point['scene']}.lmp"),
+                            "-log", str(directory / "log.lammps"), "-screen", "none", "-nocite"]
+        for name, value in {**point_variables(point, directory, paths, token),
+                            **variables}.items():
+            command += ["-var", name, format_value(value)]
+        (directory / "command.txt").write_text(shlex.join(command) + "\n")
+        proc = processes.start(command, directory / "run.out", env, [directory])
+        if proc is None:
+            return "stopped", 0.0, ""
+        status, elapsed, cpu, _ = processes.wait(proc, [directory])
+        failed_resume = not wrote_done(directory, token) and not processes.stopped_by and \
+            set_aside_failed_resume(directory, variables)
+        if failed_resume:
+            notes.setdefault(directory, []).append(failed_resume)
+            print(f"sweep: {directory}: {failed_resume}", flush=True)
+            continue
+        outcome = finish(directory, token, status, elapsed, cpu,
+                         [directory / "log.lammps", directory / "run.out"],
+                         directory / "run.out", variables, notes.get(directory, []))
+        return outcome, elapsed, ""
+
+
+def run_partitions(batch, batch_dir, paths, env, ranks, extras, notes):
+    """Points of one batch as the partitions of one lmp run, `ranks` MPI ranks each:
+    [(outcome, wall seconds, note)]. Each partition's rank 0 writes its point's log and outputs.
+    A LAMMPS ERROR in one partition aborts them all (MPI_Abort): a sibling without an ERROR of
+    its own did not fail, its outcome is "rerun"; so is a point whose resume failed
+    (set_aside_failed_resume: its next run takes the older checkpoint, or starts afresh)."""
+    batch_dir.mkdir(parents=True, exist_ok=True)
+    directories = [directory for _, directory in batch]
+    tokens = [secrets.token_hex(8) for _ in batch]
+    resumes = []
+    for (point, directory), token in zip(batch, tokens):
+        variables = resume_or_prepare(directory, point, extras[directory],
+                                      keep=directory in notes)
+        resumes.append(variables)
+        lines = [f"log {directory / 'log.lammps'}"]
+        lines += [f"variable {name} index {format_value(value)}"
+                  for name, value in {**point_variables(point, directory, paths, token),
+                                      **variables}.items()]
+        lines.append(f"include {ROOT / 'inputs' / (point['scene'] + '.lmp')}")
+        (directory / "settings.lmp").write_text("\n".join(lines) + "\n")
+    driver = batch_dir / "driver.lmp"
+    driver.write_text("variable point world " + " ".join(str(d) for d in directories) +
+                      "\ninclude ${point}/settings.lmp\n")
+    n = len(batch)
+    command = [paths["mpiexec"], "-np", str(n * ranks), str(paths["lmp"]), "-partition",
+               f"{n}x{ranks}",
+               "-in", str(driver), "-log", str(batch_dir / "log.lammps"), "-plog", "none",
+               "-pscreen", "none", "-screen", "none", "-nocite"]
+    for directory in directories:
+        (directory / "command.txt").write_text(shlex.join(command) + "\n")
+
+    def ended():    # every partition has written done.txt or an ERROR
+        return all(wrote_done(d, t) or error_lines(d / "log.lammps")
+                   for d, t in zip(directories, tokens))
+
+    proc = processes.start(command, batch_dir / "run.out", env, directories)
+    if proc is None:
+        return [("stopped", 0.0, "")] * n
+    status, elapsed, cpu, stuck = processes.wait(proc, directories, ended)
+    note = (f" (mpirun stopped by the runner {processes.GRACE:g} s after every partition had "
+            "ended: it does not return once a partition has quit)") if stuck else ""
+    culprits = [d for d in directories if error_lines(d / "log.lammps")]
+    results = []
+    for directory, token, variables in zip(directories, tokens, resumes):
+        if culprits and directory not in culprits and not wrote_done(directory, token) \
+                and not processes.stopped_by:
+            results.append(("rerun", elapsed, "its batch ended with the ERROR of " +
+                            ", ".join(d.name for d in culprits)))
+            continue
+        failed_resume = not wrote_done(directory, token) and not processes.stopped_by and \
+            set_aside_failed_resume(directory, variables)
+        if failed_resume:
+            notes.setdefault(directory, []).append(failed_resume)
+            results.append(("rerun", elapsed, failed_resume))
+            continue
+        # one process for the batch: its time is shared out equally
+        outcome = finish(directory, token, status, elapsed, cpu / n,
+                         [directory / "log.lammps", batch_dir / "log.lammps",
+                          batch_dir / "run.out"], batch_dir / "run.out", variables,
+                         notes.get(directory, []), note)
+        results.append((outcome, elapsed, ""))
+    return results
+
+
+def check_slots(mpiexec, slots, env, asked):
+    """mpirun's slots (mpirun_slots), asked before any point runs, for the processes one
+    mpirun of the sweep starts (`asked`: the options that make them, for the message)."""
+    problem = slots_problem([mpiexec, "-np", str(slots)], env)
+    if problem:
+        raise SweepError(f"{asked}: {problem}: use fewer partitions or ranks, or run under an "
+                         "allocation or a hostfile with that many slots")
+
+
+def run_points(plan, todo, output, paths, env, jobs, partitions, ranks, extra, model,
+               processes_at_once):
+    """Runs the points to do (todo: [(point, directory, predicted steps)] of the sweep's plan)
+    as serial runs, `jobs` at a time, or `partitions` at a time as one mpirun's partitions,
+    `ranks` ranks each, with a line per point that ends (the ETA: what the cost model predicts
+    for the points left, over processes_at_once); the exit status (cli's docstring), with the
+    sweep's last lines."""
+    unfinished = {d: (p, s) for p, d, s in todo}
+    failures = []
+    resume_notes = {}      # {directory: [what each failed resume of it did]}
+
+    def report(point, directory, predicted, outcome, elapsed, note):
+        if outcome == "stopped":
+            return
+        if outcome == "rerun":
+            print(f"[{len(todo) - len(unfinished)}/{len(todo)}] rerun "
+                  f"{directory.relative_to(output)}: {note}", flush=True)
+            return
+        del unfinished[directory]
+        stopped = directory / "stopped.txt"
+        if outcome == "failed":
+            failures.append(directory)
+        elif not stopped.exists():      # a run that ended early says nothing about the cost
+            # the model predicts the seconds of one core: the point took elapsed x ranks
+            model.learn(predicted, elapsed * ranks)
+        how = "FAILED" if outcome == "failed" else "done" if not stopped.exists() else \
+            f"done (pile stopped: {stopped.read_text().strip()})"
+        remaining = sum(model.predict(p, s) for p, s in unfinished.values()) / processes_at_once
+        on = f" on {ranks} ranks" if ranks > 1 else ""
+        print(f"[{len(todo) - len(unfinished)}/{len(todo)}] {how} "
+              f"{directory.relative_to(output)} in {elapsed:.1f} s{on}; "
+              f"ETA {format_seconds(remaining)}", flush=True)
+
+    refused = []    # points whose directory became another's during the sweep: not run
+    # runs start in pool threads only: the main thread takes the signals
+    with concurrent.futures.ThreadPoolExecutor(max_workers=1 if partitions else jobs) as pool:
+        if partitions:
+            queue, number = list(todo), 0
+            while queue and not processes.stopped_by:
+                batch, queue = queue[:partitions], queue[partitions:]
+                results = pool.submit(run_partitions, [(p, d) for p, d, _ in batch],
+                                      output / "batches" / f"batch{number}", paths, env,
+                                      ranks, extra, resume_notes).result()
+                number += 1
+                for (p, d, s), (outcome, elapsed, note) in zip(batch, results):
+                    if outcome == "rerun":
+                        queue.append((p, d, s))
+                    # each point of the batch ran for the batch's wall time
+                    report(p, d, model.predict(p, s), outcome, elapsed, note)
+        else:
+            futures = {pool.submit(run_serial, p, d, paths, env, ranks, extra[d],
+                                   resume_notes): (p, d, s)
+                       for p, d, s in todo}
+            for future in concurrent.futures.as_completed(futures):
+                p, d, s = futures[future]
+                try:
+                    report(p, d, model.predict(p, s), *future.result())
+                except SweepError as error:    # its place taken while the sweep ran
+                    print(f"sweep: {error}", file=sys.stderr)
+                    refused.append(d)
+
+    if processes.stopped_by:
+        print(f"sweep: stopped by {signal.Signals(processes.stopped_by[0]).name}; "
+              f"{len(unfinished)} points not done: the same command runs them", file=sys.stderr)
+        return 128 + processes.stopped_by[0]
+    if refused:
+        print(f"sweep: {len(refused)} points not run, their directories not the runner's to "
+              "remove (above); the other points ran", file=sys.stderr)
+        return 2
+    if failures:
+        print(f"sweep: {len(failures)} points failed; see failed.txt in:", file=sys.stderr)
+        for d in failures:
+            print(f"  {d}", file=sys.stderr)
+        return 1
+    print(f"sweep: all {len(plan)} points done in {output}; they took "
+          f"{cpu_seconds(d for _, d, _ in plan) / 3600:.3g} CPU-hours")
+    return 0
