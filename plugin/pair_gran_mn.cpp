@@ -658,54 +658,34 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
     for (int m = 0; m < single_extra; m++) svector[m] = 0.0;
     return 0.0;
   }
-  if (domain->dimension == 3) return single_3d(i, j, rsq, fforce);
-  double **x = atom->x;
-  double **v = atom->v;
-  double **omega = atom->omega;
-  const double r = sqrt(rsq);
-  const mn::Kinematics kin = mn::kinematics(
-      x[i][0] - x[j][0], x[i][1] - x[j][1], r, radsum, v[i][0] - v[j][0], v[i][1] - v[j][1],
-      atom->radius[i] * omega[i][2] + atom->radius[j] * omega[j][2]);
-
-  double ut = 0.0;
-  if (layout.ut >= 0) {
-    const int jnum = list->numneigh[i];
-    const int *jlist = list->firstneigh[i];
-    for (int jj = 0; jj < jnum; jj++)
-      if ((jlist[jj] & NEIGHMASK) == j) {
-        ut = fix_history->firstvalue[i][layout.size * jj + layout.ut];
-        break;
-      }
-  }
-  double ut_copy = ut;    // single() must not alter the stored history
-  const mn::Force fc =
-      mn::contact_force(law,
-                        contact_mass_scale(is_wall_type[atom->type[i]], is_wall_type[atom->type[j]],
-                                           atom->rmass[i], atom->rmass[j]) *
-                            force_per_mass_acceleration,
-                        kin, law.material.mu > 0.0 ? &ut_copy : nullptr, 0.0);
-  fforce = fc.fn / r;
-  svector[0] = fc.ft;
-  svector[1] = kin.delta;
-  svector[2] = kin.vn;
-  svector[3] = kin.vt;
-  svector[4] = ut;
-  return 0.0;
+  return domain->dimension == 3 ? single_contact<3>(i, j, rsq, fforce)
+                                : single_contact<2>(i, j, rsq, fforce);
 }
 
-// single() in 3D, for a pair in contact.
-double PairGranMN::single_3d(int i, int j, double rsq, double &fforce)
+// A 2D component as it is, a 3D vector's magnitude: what single() reports.
+static inline double reported(double value)
+{
+  return value;
+}
+
+static inline double reported(const double (&vector)[3])
+{
+  return sqrt(vector[0] * vector[0] + vector[1] * vector[1] + vector[2] * vector[2]);
+}
+
+// single() in dimension DIM for a pair in contact, as compute_loop evaluates it.
+template <int DIM> double PairGranMN::single_contact(int i, int j, double rsq, double &fforce)
 {
   double **x = atom->x;
   double **v = atom->v;
   double **omega = atom->omega;
   const double ri = atom->radius[i], rj = atom->radius[j];
   const double r = sqrt(rsq);
-  const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+  const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], DIM == 3 ? x[i][2] - x[j][2] : 0.0};
   const double dv[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
   const double lever[3] = {ri * omega[i][0] + rj * omega[j][0], ri * omega[i][1] + rj * omega[j][1],
                            ri * omega[i][2] + rj * omega[j][2]};
-  const mn::Kinematics3 kin = mn::kinematics3(d, r, ri + rj, dv, lever);
+  const auto kin = mn::kinematics(mn::Dim<DIM>(), d, r, ri + rj, dv, lever);
 
   double ut[3] = {0.0, 0.0, 0.0};    // a copy: single() must not alter the stored history
   if (layout.ut >= 0) {
@@ -713,23 +693,24 @@ double PairGranMN::single_3d(int i, int j, double rsq, double &fforce)
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < jnum; jj++)
       if ((jlist[jj] & NEIGHMASK) == j) {
-        for (int c = 0; c < 3; c++) ut[c] = fix_history->firstvalue[i][layout.size * jj + layout.ut + c];
+        for (int c = 0; c < layout.ut_width; c++)
+          ut[c] = fix_history->firstvalue[i][layout.size * jj + layout.ut + c];
         break;
       }
   }
-  const double ut_magnitude = sqrt(ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2]);
-  const mn::Force3 fc =
-      mn::contact_force3(law,
-                         contact_mass_scale(is_wall_type[atom->type[i]], is_wall_type[atom->type[j]],
-                                            atom->rmass[i], atom->rmass[j]) *
-                             force_per_mass_acceleration,
-                         kin, law.material.mu > 0.0 ? ut : nullptr, 0.0);
+  const double ut_reported = DIM == 3 ? reported(ut) : ut[0];
+  const auto fc = mn::contact_force(law,
+                                    contact_mass_scale(is_wall_type[atom->type[i]],
+                                                       is_wall_type[atom->type[j]],
+                                                       atom->rmass[i], atom->rmass[j]) *
+                                        force_per_mass_acceleration,
+                                    kin, law.material.mu > 0.0 ? ut : nullptr, 0.0);
   fforce = fc.fn / r;
-  svector[0] = sqrt(fc.ft[0] * fc.ft[0] + fc.ft[1] * fc.ft[1] + fc.ft[2] * fc.ft[2]);
+  svector[0] = reported(fc.ft);
   svector[1] = kin.delta;
   svector[2] = kin.vn;
-  svector[3] = sqrt(kin.vt[0] * kin.vt[0] + kin.vt[1] * kin.vt[1] + kin.vt[2] * kin.vt[2]);
-  svector[4] = ut_magnitude;
+  svector[3] = reported(kin.vt);
+  svector[4] = ut_reported;
   return 0.0;
 }
 

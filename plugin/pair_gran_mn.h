@@ -69,7 +69,7 @@ class PairGranMN : public Pair {
   template <int DIM> void report_end(int, int, const double *, double, const double *,
                                      const tagint *);
   template <int DIM> void compute_loop();
-  double single_3d(int, int, double, double &);
+  template <int DIM> double single_contact(int, int, double, double &);
 };
 
 }    // namespace LAMMPS_NS
