@@ -13,7 +13,6 @@
 #include "fix_contacts_mn.h"
 #include "fix_nve_disc_mn.h"
 #include "fix_dummy.h"
-#include "fix_per_atom_state.h"
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "granmn_compat.h"
@@ -502,16 +501,11 @@ void PairGranMN::init_style()
 
   granmn::request_size_list(neighbor, this, instance_me, history);
 
-  // the history is keyed by atom IDs: say when they have changed under it
+  // the history is keyed by atom IDs: fix GRANMN/ATOM_IDS says at each init when they have
+  // changed under it
   if (history) {
     const std::string ids = "GRANMN_ATOM_IDS" + std::to_string(instance_me);
-    Fix *atom_ids = granmn::fix_by_id(modify, ids);
-    if (!atom_ids) atom_ids = modify->add_fix(ids + " all GRANMN/ATOM_IDS");
-    const bigint changed = static_cast<FixAtomIDs *>(atom_ids)->renumbered();
-    if (changed && comm->me == 0)
-      error->warning(FLERR, "pair_style gran/mn: {} atoms have other IDs than in the last run "
-                            "(delete_atoms compress yes?): their contacts lost their history "
-                            "(u_t, counters); use delete_atoms ... compress no", changed);
+    if (!granmn::fix_by_id(modify, ids)) modify->add_fix(ids + " all GRANMN/ATOM_IDS");
   }
 
   if (history && !fix_history) {
