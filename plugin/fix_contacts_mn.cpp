@@ -7,10 +7,8 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
-#include "fix_wall_gran_mn.h"
 #include "force.h"
 #include "granmn_compat.h"
-#include "granmn_glue.h"
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
@@ -96,7 +94,11 @@ void FixContactsMN::init()
 {
   if (granmn::fixes_by_style(modify, "^contacts/mn").size() > 1)
     error->all(FLERR, "Only one fix contacts/mn may be defined");
-  if (!force->pair_match("gran/mn", 1) && !granmn::first_fix(modify, "^wall/gran/mn"))
+  holders.clear();
+  for (Fix *fix : granmn::all_fixes(modify))
+    if (const auto *holder = dynamic_cast<const granmn::HeldContacts *>(fix))
+      holders.push_back(holder);
+  if (!force->pair_match("gran/mn", 1) && holders.empty())
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");
   fold_ghosts = comm->nprocs == 1 && atom->map_style != Atom::MAP_NONE;
@@ -204,6 +206,49 @@ void FixContactsMN::copy_arrays(int i, int j, int delflag)
   if (delflag && fold_ghosts) atoms_deleted = true;
 }
 
+void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary,
+                                  double *record, bool began, double delta, double vn,
+                                  bool tally_j)
+{
+  update_record(record, began, delta, vn);
+  if (!fold_ghosts) {
+    tally(i, j_is_boundary, began);
+    if (tally_j) tally(j, i_is_boundary, began);
+    return;
+  }
+  if (began) {
+    const int *mask = atom->mask;
+    change(i, !j_is_boundary, j_is_boundary);
+    if (mask[i] & groupbit) state[i][j_is_boundary ? BEGUN_BOUNDARY : BEGUN_PARTICLE] += 1.0;
+    if (tally_j) {
+      const int k = home(j);
+      change(k, !i_is_boundary, i_is_boundary);
+      if (mask[k] & groupbit) state[k][i_is_boundary ? BEGUN_BOUNDARY : BEGUN_PARTICLE] += 1.0;
+    }
+  }
+  if (recounting) {
+    tally(i, j_is_boundary, false);
+    if (tally_j) tally(home(j), i_is_boundary, false);
+  }
+}
+
+void FixContactsMN::boundary_touching(int i, double *record, bool began, double delta, double vn)
+{
+  update_record(record, began, delta, vn);
+  // owned atom: counted directly, so that the order of fix setups does not matter
+  if (began) {
+    if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
+    if (fold_ghosts) change(i, 0.0, 1.0);
+  }
+  if (!fold_ghosts) tally(i, true, false);
+}
+
+void FixContactsMN::boundary_ended(int i, const double *record, double vn)
+{
+  if (fold_ghosts) change(i, 0.0, -1.0);
+  if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, ROW_BOUNDARY, vn);
+}
+
 void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary,
                                const double *record, double vn, bool write_row, bool tally_j)
 {
@@ -226,9 +271,10 @@ void FixContactsMN::ended(const double *record, double tag_i, double tag_j, doub
                           double vn_end)
 {
   if (!rows_every) return;
-  const double row[ROW_COLS] = {tag_i, tag_j, kind, record[RECORD_START],
-                                now - record[RECORD_START], record[RECORD_VN_START], vn_end,
-                                record[RECORD_PEAK]};
+  const double row[ROW_COLS] = {tag_i, tag_j, kind, record[granmn::RECORD_START],
+                                now - record[granmn::RECORD_START],
+                                record[granmn::RECORD_VN_START], vn_end,
+                                record[granmn::RECORD_PEAK]};
   rows.insert(rows.end(), row, row + ROW_COLS);
 }
 
@@ -253,18 +299,15 @@ void FixContactsMN::collect()
 }
 
 // One process, at a run's setup or after a deletion: each atom's contacts are those the pair
-// style tallied and the wall sides it touches (as the wall fixes keep them, whether they have
-// evaluated this step yet or not: each change of theirs is reported). An atom that differs
-// (one whose partner was deleted) takes the count from here on.
+// style tallied and those the wall fixes hold (as they keep them, whether they have evaluated
+// this step yet or not: each change of theirs is reported). An atom that differs (one whose
+// partner was deleted) takes the count from here on.
 void FixContactsMN::recount()
 {
   recounting = false;
-  std::vector<FixWallGranMN *> walls;
-  for (Fix *fix : granmn::fixes_by_style(modify, "^wall/gran/mn"))
-    walls.push_back(static_cast<FixWallGranMN *>(fix));
   for (int i = 0; i < atom->nlocal; i++) {
     double boundary = step_boundary[i];
-    for (FixWallGranMN *wall : walls) boundary += wall->sides_in_contact(i);
+    for (const granmn::HeldContacts *holder : holders) boundary += holder->contacts_held(i);
     const double particle_change = step_particle[i] - state[i][CONTACTS_PARTICLE];
     const double boundary_change = boundary - state[i][CONTACTS_BOUNDARY];
     if (particle_change != 0.0 || boundary_change != 0.0)

@@ -1,7 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    fix contacts/mn: per-contact counters for the gran/mn styles.
-   pair_style gran/mn and fix wall/gran/mn report contacts to it; a run without
-   this fix pays nothing for it.
+   pair_style gran/mn and fix wall/gran/mn report contacts to it as events
+   (mn_contact_events.h); a run without this fix pays nothing for it.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_CONTACTS_MN_H
@@ -11,19 +11,18 @@
 #include "fix_per_atom_state.h"
 #include "update.h"
 
+#include "mn_contact_events.h"
+
 #include <vector>
 
 namespace LAMMPS_NS {
 
-class FixContactsMN : public FixPerAtomState {
+class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
  public:
   // Columns of the per-atom array (the output; the state has more, see below), then the
   // global vector's two more: the window's length and the group's size.
   enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, NCOLS };
   enum { WINDOW = NCOLS, GROUP_SIZE, VECTOR_SIZE };
-  // What this fix keeps of a contact, its record: RECORD_SIZE values that the style keeping
-  // the contact stores where its layout says (granmn::ContactLayout).
-  enum { RECORD_START, RECORD_VN_START, RECORD_PEAK, RECORD_SIZE };
   // The kind column of a contact's row: between two disks, of a disk with the boundary.
   enum { ROW_DISKS = 1, ROW_BOUNDARY = 2 };
 
@@ -48,21 +47,15 @@ class FixContactsMN : public FixPerAtomState {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // The contact events, one path for pairs and walls: the style that keeps a contact's record
-  // reports it at every force evaluation while in contact and at the first one after it
-  // ends (its row, if asked).
-  // pair_style gran/mn: a pair in contact; `tally_j`: j's share is counted here (owned, or
-  // newton on).
+  // The contact events (mn_contact_events.h), one path for pairs and walls: the style that
+  // keeps a contact's record reports it at every force evaluation while in contact and at the
+  // first one after it ends (its row, if asked).
   void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, double *record,
-                     bool began, double delta, double vn, bool tally_j);
-  // pair_style gran/mn: a pair stopped touching; `write_row`: this process writes its row
-  // (a pair stored on two processes has one row); `tally_j` as for pair_touching.
+                     bool began, double delta, double vn, bool tally_j) override;
   void pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary, const double *record,
-                  double vn, bool write_row, bool tally_j);
-  // fix wall/gran/mn, for every atom of its group and wall side: the record and the flag
-  // (1 while in contact) it keeps for that atom and side.
-  void wall_state(int i, double *record, double &touching, bool in_contact, double delta,
-                  double vn);
+                  double vn, bool write_row, bool tally_j) override;
+  void boundary_touching(int i, double *record, bool began, double delta, double vn) override;
+  void boundary_ended(int i, const double *record, double vn) override;
 
  private:
   // The state per atom: the NCOLS output columns, then what the times are made of. The times
@@ -102,6 +95,8 @@ class FixContactsMN : public FixPerAtomState {
   bigint base_step;
   double window_start;         // time at which accumulation (re)started
   bool convert_layout;         // restart file of the output-columns-only state: convert it
+  // The publishers that remember their contacts (wall fixes), asked at a recount
+  std::vector<const granmn::HeldContacts *> holders;
   int rows_every;              // local rows: contacts completed in the last N steps (0: none)
   std::vector<double> rows;    // 8 values per completed contact, not yet dumped
   double **row_array;
@@ -128,15 +123,15 @@ class FixContactsMN : public FixPerAtomState {
   void publish_rows();
 };
 
-// Inline: called for every contact (and every atom near a wall) at every step.
+// Inline: called for every contact at every step.
 inline void FixContactsMN::update_record(double *record, bool began, double delta, double vn)
 {
   if (began) {
-    record[RECORD_START] = now;
-    record[RECORD_VN_START] = vn;
-    record[RECORD_PEAK] = delta;
-  } else if (delta > record[RECORD_PEAK]) {
-    record[RECORD_PEAK] = delta;
+    record[granmn::RECORD_START] = now;
+    record[granmn::RECORD_VN_START] = vn;
+    record[granmn::RECORD_PEAK] = delta;
+  } else if (delta > record[granmn::RECORD_PEAK]) {
+    record[granmn::RECORD_PEAK] = delta;
   }
 }
 
@@ -165,52 +160,6 @@ inline void FixContactsMN::change(int i, double particle, double boundary)
   s[CONTACTS_PARTICLE] += particle;
   s[CONTACTS_BOUNDARY] += boundary;
   s[SINCE] = change_time;
-}
-
-inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary,
-                                         double *record, bool began, double delta, double vn,
-                                         bool tally_j)
-{
-  update_record(record, began, delta, vn);
-  if (!fold_ghosts) {
-    tally(i, j_is_boundary, began);
-    if (tally_j) tally(j, i_is_boundary, began);
-    return;
-  }
-  if (began) {
-    const int *mask = atom->mask;
-    change(i, !j_is_boundary, j_is_boundary);
-    if (mask[i] & groupbit) state[i][j_is_boundary ? BEGUN_BOUNDARY : BEGUN_PARTICLE] += 1.0;
-    if (tally_j) {
-      const int k = home(j);
-      change(k, !i_is_boundary, i_is_boundary);
-      if (mask[k] & groupbit) state[k][i_is_boundary ? BEGUN_BOUNDARY : BEGUN_PARTICLE] += 1.0;
-    }
-  }
-  if (recounting) {
-    tally(i, j_is_boundary, false);
-    if (tally_j) tally(home(j), i_is_boundary, false);
-  }
-}
-
-inline void FixContactsMN::wall_state(int i, double *record, double &touching, bool in_contact,
-                                      double delta, double vn)
-{
-  if (in_contact) {
-    const bool began = touching == 0.0;
-    update_record(record, began, delta, vn);
-    touching = 1.0;
-    // owned atom: counted directly, so that the order of fix setups does not matter
-    if (began) {
-      if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
-      if (fold_ghosts) change(i, 0.0, 1.0);
-    }
-    if (!fold_ghosts) tally(i, true, false);
-  } else if (touching != 0.0) {
-    touching = 0.0;
-    if (fold_ghosts) change(i, 0.0, -1.0);
-    if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, ROW_BOUNDARY, vn);
-  }
 }
 
 }    // namespace LAMMPS_NS

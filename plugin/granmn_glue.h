@@ -7,7 +7,6 @@
 
 #include "domain.h"
 #include "error.h"
-#include "fix_contacts_mn.h"
 #include "fix_nve_disc_mn.h"
 #include "fix_nve_sphere.h"
 #include "granmn_compat.h"
@@ -16,19 +15,13 @@
 #include "update.h"
 #include "utils.h"
 
+#include "mn_contact_events.h"
 #include "mn_integration.h"
 
 #include <cstring>
 #include <string>
 
 namespace granmn {
-
-// The first fix whose style matches a regex (utils::strmatch), or nullptr.
-inline LAMMPS_NS::Fix *first_fix(LAMMPS_NS::Modify *modify, const char *style)
-{
-  const std::vector<LAMMPS_NS::Fix *> matches = fixes_by_style(modify, style);
-  return matches.empty() ? nullptr : matches.front();
-}
 
 // The time over which a force evaluation advances u_t: none for the forces LAMMPS re-evaluates
 // in a run's setup (u_t must not advance twice for one step).
@@ -136,13 +129,14 @@ inline void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *who, double dt, c
 // Where a contact's values sit in the storage of the style that keeps it (-1: not kept),
 // handed out at init: in the pair style's neighbour history (pair_history_layout), in the
 // wall fix's per-atom state for each wall side (wall_state_layout). The styles hand the
-// record and the flag to fix contacts/mn, which knows what a record holds, not where it is.
+// record to the contact observer (mn_contact_events.h), which knows what a record holds, not
+// where it is.
 struct ContactLayout {
   int ut_width = 1;        // u_t's components: one in 2D, three in 3D (granmn::ut_width)
   int ut = -1;             // u_t, ut_width values (mu > 0)
   int vt_previous = -1;    // v_t at the previous force evaluation, ut_width values: Adams-
                            // Bashforth 2's rule for u_t (mu > 0)
-  int record = -1;         // fix contacts/mn's record (FixContactsMN::RECORD_SIZE values)
+  int record = -1;         // the observer's record (RECORD_SIZE values)
   int touching = -1;       // 1 while in contact (a wall side; a pair has its neighbour flag)
   int size = 0;            // values the storage holds: per contact (pair), per atom (wall)
 };
@@ -161,7 +155,7 @@ inline ContactLayout pair_history_layout(bool friction, bool adams_bashforth, bo
   };
   layout.ut = take(friction, layout.ut_width);
   layout.vt_previous = take(friction && adams_bashforth, layout.ut_width);
-  layout.record = take(counters, LAMMPS_NS::FixContactsMN::RECORD_SIZE);
+  layout.record = take(counters, RECORD_SIZE);
   return layout;
 }
 
@@ -180,7 +174,7 @@ inline void wall_state_layout(ContactLayout side[2], int ut_width = 1)
   }
   for (int s : {0, 1}) {
     side[s].record = next;
-    next += LAMMPS_NS::FixContactsMN::RECORD_SIZE;
+    next += RECORD_SIZE;
     side[s].touching = next++;
   }
   for (int s : {0, 1}) {
@@ -189,6 +183,10 @@ inline void wall_state_layout(ContactLayout side[2], int ut_width = 1)
   }
   side[0].size = side[1].size = next;
 }
+
+// The name under which pair_style gran/mn hands out its law through Pair::extract (a
+// const mn::Law *, dim 0; read only): fix wall/gran/mn takes what its line does not give.
+constexpr const char *LAW_EXTRACT_NAME = "granmn_law";
 
 // The law's keywords on a style's line: a number of the material, or an option (a flag).
 struct LawKeyword {

@@ -10,9 +10,8 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
-#include "fix_contacts_mn.h"
-#include "fix_nve_disc_mn.h"
 #include "fix_dummy.h"
+#include "fix_nve_disc_mn.h"
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "granmn_compat.h"
@@ -33,7 +32,7 @@ using namespace LAMMPS_NS;
 
 PairGranMN::PairGranMN(LAMMPS *lmp) :
     Pair(lmp), restart_history_size(-1),
-    counters(nullptr),
+    observer(nullptr),
     law_reported(false), force_per_mass_acceleration(1.0), max_radius(nullptr),
     fix_history(nullptr)
 {
@@ -89,7 +88,7 @@ template <int DIM> static inline double dot(const double *d, const double *e)
   return DIM == 3 ? d[0] * e[0] + d[1] * e[1] + d[2] * e[2] : d[0] * e[0] + d[1] * e[1];
 }
 
-// A contact just ended: its atoms have one contact less; its row goes to the counters, once even
+// A contact just ended: its atoms have one contact less; its row goes to the observer, once even
 // if both processes hold the pair. d = x_i - x_j.
 template <int DIM>
 void PairGranMN::report_end(int i, int j, const double *d, double rsq, const double *state,
@@ -100,7 +99,7 @@ void PairGranMN::report_end(int i, int j, const double *d, double rsq, const dou
   const double vn = dot<DIM>(d, dv) / sqrt(rsq);
   const bool tally_j = force->newton_pair || j < atom->nlocal;
   const bool record = tally_j || tag[i] < tag[j];
-  counters->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
+  observer->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
                        record, tally_j);
 }
 
@@ -229,7 +228,7 @@ template <int DIM> void PairGranMN::compute_loop()
   const mn::Law contact = law;
   const char *is_wall = is_wall_type.data();
   const double to_force = force_per_mass_acceleration;
-  FixContactsMN *const tally = counters;
+  granmn::ContactObserver *const events = observer;
   const int stride = layout.size, ut_slot = layout.ut, record_slot = layout.record;
   const int vt_previous_slot = layout.vt_previous;
   const mn::Integrator scheme = integrator;
@@ -255,7 +254,7 @@ template <int DIM> void PairGranMN::compute_loop()
         // a pair that is not touching already has zero history (FixNeighHistory hands new
         // pairs zeros): only a contact that just ended has any to clear
         if (history && touch[jj]) {
-          if (tally) report_end<DIM>(i, j, d, rsq, slots + record_slot, tag);
+          if (events) report_end<DIM>(i, j, d, rsq, slots + record_slot, tag);
           touch[jj] = 0;
           for (int k = 0; k < stride; k++) slots[k] = 0.0;
         }
@@ -272,9 +271,9 @@ template <int DIM> void PairGranMN::compute_loop()
       const auto kin = mn::kinematics(mn::Dim<DIM>(), d, r, radsum, dv, lever);
       const bool j_wall = is_wall[type[j]];
       const bool tally_j = newton_pair || j < nlocal;
-      if (tally)
-        tally->pair_touching(i, j, j_wall, i_wall, slots + record_slot, !touch[jj], kin.delta,
-                             kin.vn, tally_j);
+      if (events)
+        events->pair_touching(i, j, j_wall, i_wall, slots + record_slot, !touch[jj], kin.delta,
+                              kin.vn, tally_j);
       if (history) touch[jj] = 1;
       double *ut = ut_slot >= 0 ? slots + ut_slot : nullptr;
       // the law gives mass x acceleration; LAMMPS turns force back into it with ftm2v
@@ -472,10 +471,11 @@ void PairGranMN::init_style()
   granmn::check_timestep(lmp, "pair_style gran/mn", update->dt, law, integrator);
 
   // The per-contact history: u_t when there is friction (and under Adams-Bashforth 2 the
-  // previous v_t its rule for u_t needs), then the counters' record if asked.
-  counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
+  // previous v_t its rule for u_t needs), then the contact observer's record if there is one
+  // (fix contacts/mn).
+  observer = granmn::find_observer(granmn::all_fixes(modify));
   const granmn::ContactLayout needed = granmn::pair_history_layout(
-      law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, counters,
+      law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, observer,
       granmn::ut_width(lmp));
   if (fix_history && needed.size != layout.size)
     error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
@@ -497,7 +497,7 @@ void PairGranMN::init_style()
   // the step's move would lose its record before the counters see it end (found by the
   // cross-check with pair_style tracker). The counters keep every pair's flags; the force
   // evaluation clears them when a contact ends, so forces do not change.
-  beyond_contact = counters ? 1 : 0;
+  beyond_contact = observer ? 1 : 0;
 
   granmn::request_size_list(neighbor, this, instance_me, history);
 
@@ -706,6 +706,13 @@ template <int DIM> double PairGranMN::single_contact(int i, int j, double rsq, d
   svector[3] = reported(kin.vt);
   svector[4] = ut_reported;
   return 0.0;
+}
+
+void *PairGranMN::extract(const char *name, int &dim)
+{
+  if (strcmp(name, granmn::LAW_EXTRACT_NAME) != 0) return nullptr;
+  dim = 0;
+  return &law;
 }
 
 #ifdef GRANMN_PAIR_HAS_ATOM2CUT
