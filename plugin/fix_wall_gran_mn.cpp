@@ -11,7 +11,7 @@
 #include "error.h"
 #include "force.h"
 #include "granmn_compat.h"
-#include "granmn_glue.h"
+#include "granmn_run_checks.h"
 #include "modify.h"
 #include "pair.h"
 #include "update.h"

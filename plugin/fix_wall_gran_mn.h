@@ -7,7 +7,8 @@
 #define LMP_FIX_WALL_GRAN_MN_H
 
 #include "fix_per_atom_state.h"
-#include "granmn_glue.h"
+#include "granmn_contact_storage.h"
+#include "granmn_law_arguments.h"
 
 #include "mn_contact_events.h"
 #include "mn_integration.h"

@@ -11,11 +11,11 @@
 #include "domain.h"
 #include "error.h"
 #include "fix_dummy.h"
-#include "fix_nve_disc_mn.h"
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "granmn_compat.h"
-#include "granmn_glue.h"
+#include "granmn_law_arguments.h"
+#include "granmn_run_checks.h"
 #include "input.h"
 #include "memory.h"
 #include "modify.h"
@@ -445,10 +445,8 @@ void PairGranMN::init_style()
   check_bumps();
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
-  bool builds_checked = false;    // fix nve/disc/mn neigh_check yes asks for the builds
-  for (Fix *fix : granmn::fixes_by_style(modify, "^nve/disc/mn$"))
-    if (static_cast<FixNVEDiscMN *>(fix)->checks_neighbor_builds()) builds_checked = true;
-  if (neighbor->build_once && !builds_checked && comm->me == 0)
+  // fix nve/disc/mn neigh_check yes asks for the builds
+  if (neighbor->build_once && !granmn::neighbor_builds_checked(modify) && comm->me == 0)
     error->warning(FLERR, "pair_style gran/mn: neigh_modify once yes builds the neighbor list "
                           "only at the start of a run: disks that come into contact later are "
                           "never seen (no force, no contact); leave out 'once yes'");

@@ -9,7 +9,7 @@
 #define LMP_PAIR_GRAN_MN_H
 
 #include "granmn_compat.h"
-#include "granmn_glue.h"
+#include "granmn_contact_storage.h"
 #include "pair.h"
 
 #include "mn_contact.h"
