@@ -86,10 +86,11 @@ int FixWallGranMN::setmask()
 // Material from the fix line where given, else from pair_style gran/mn.
 void FixWallGranMN::resolve_law()
 {
+  // asked of gran/mn alone: some styles' extract() fails on a name they do not know
+  Pair *pair = force->pair_match("gran/mn", 1);
   int dim = 0;
-  const auto *pair_law = force->pair ? static_cast<const mn::Law *>(force->pair->extract(
-                                           granmn::LAW_EXTRACT_NAME, dim))
-                                     : nullptr;
+  const auto *pair_law =
+      pair ? static_cast<const mn::Law *>(pair->extract(granmn::LAW_EXTRACT_NAME, dim)) : nullptr;
   if (!pair_law && !parsed.all_numbers_given())
     error->all(FLERR, "Fix wall/gran/mn takes its kn, e, beta, mu from pair_style gran/mn: "
                       "define that pair style first or give all four on the fix line");

@@ -18,6 +18,7 @@
 
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace granmn {
 
@@ -27,11 +28,20 @@ namespace granmn {
 constexpr const char *INTEGRATOR_EXTRACT_NAME = "granmn_integrator";
 constexpr const char *NEIGH_CHECK_EXTRACT_NAME = "granmn_neigh_check";
 
+// The fixes that answer those names: asked alone, as some styles' extract() fails on a name
+// they do not know (fix langevin/drude's).
+inline std::vector<LAMMPS_NS::Fix *> disc_integrators(LAMMPS_NS::Modify *modify)
+{
+  std::vector<LAMMPS_NS::Fix *> fixes = fixes_by_style(modify, "^nve/disc/mn$");
+  for (LAMMPS_NS::Fix *fix : fixes_by_style(modify, "^nve/ab2$")) fixes.push_back(fix);
+  return fixes;
+}
+
 // The paper's integrator if a deck uses it (fix nve/ab2, fix nve/disc/mn scheme ab2), else
 // velocity Verlet (LAMMPS's fix nve/sphere, fix nve/disc/mn's default).
 inline mn::Integrator integrator_in_use(LAMMPS_NS::Modify *modify)
 {
-  for (LAMMPS_NS::Fix *fix : all_fixes(modify)) {
+  for (LAMMPS_NS::Fix *fix : disc_integrators(modify)) {
     int dim = 0;
     const auto *scheme = static_cast<const mn::Integrator *>(
         fix->extract(INTEGRATOR_EXTRACT_NAME, dim));
@@ -44,7 +54,7 @@ inline mn::Integrator integrator_in_use(LAMMPS_NS::Modify *modify)
 // Whether a fix decides when the neighbour lists are built (fix nve/disc/mn neigh_check yes).
 inline bool neighbor_builds_checked(LAMMPS_NS::Modify *modify)
 {
-  for (LAMMPS_NS::Fix *fix : all_fixes(modify)) {
+  for (LAMMPS_NS::Fix *fix : disc_integrators(modify)) {
     int dim = 0;
     const auto *checks = static_cast<const bool *>(fix->extract(NEIGH_CHECK_EXTRACT_NAME, dim));
     if (checks && *checks) return true;
