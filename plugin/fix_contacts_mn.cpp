@@ -28,7 +28,6 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
     step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
     fold_ghosts(false), recounting(false), atoms_deleted(false), every(1),
     now(0.0), change_time(0.0), clock_step(0), base_time(0.0), base_step(0), window_start(0.0),
-    convert_layout(false),
     rows_every(0), row_array(nullptr), nmax_rows(0), rows_handed(0), handed_step(-1),
     vector_step(-1)
 {
@@ -166,19 +165,6 @@ void FixContactsMN::setup_pre_force(int)
   clock_step = base_step = update->ntimestep;
   base_time = now;
   advance_clock();
-  if (convert_layout) {
-    // a file of the layout that kept the output columns only: its times are complete up to
-    // now; the contacts are counted anew at this setup
-    for (int i = 0; i < atom->nlocal; i++) {
-      double *s = state[i];
-      s[ACCUMULATED_PARTICLE] = s[TIME_PARTICLE];
-      s[ACCUMULATED_BOUNDARY] = s[TIME_BOUNDARY];
-      s[ACCUMULATED_MULTIPLE] = s[TIME_MULTIPLE];
-      s[SINCE] = now;
-      s[CONTACTS_PARTICLE] = s[CONTACTS_BOUNDARY] = 0.0;
-    }
-    convert_layout = false;
-  }
   zero_step_arrays();
   recounting = fold_ghosts;
   atoms_deleted = false;
@@ -463,13 +449,13 @@ void FixContactsMN::grow_arrays(int nmax)
   array_atom = state;
 }
 
-// The first value marks the layout: earlier versions wrote one value, a step (>= 0), and kept
-// contact start steps rather than times in the pair history; then the clock alone (-2); then
-// (-3) the rows not yet dumped after the clock, gathered from all processes: a run continued
-// from the file dumps them at its next multiple of N. Both kept only the output columns per
-// atom; now (-4, the same record) the per-atom state holds what the times are made of.
-static constexpr double CLOCK_LAYOUT = -2.0, CLOCK_AND_ROWS_LAYOUT = -3.0,
-                        STATE_LAYOUT = -4.0;
+// The first value marks the layout, STATE_LAYOUT: the clock, then the rows not yet dumped,
+// gathered from all processes (a run continued from the file dumps them at its next multiple
+// of N); the per-atom state holds what the times are made of. Versions of the plugin before
+// 1 Dec 2026 (commit b76d7a4) wrote other layouts (a step >= 0, kept contact start steps;
+// -2, the clock alone; -3, clock and rows; the per-atom state of the output columns only):
+// refused, with the date, rather than converted.
+static constexpr double STATE_LAYOUT = -4.0;
 static constexpr int CLOCK_VALUES = 4;
 
 void FixContactsMN::write_restart(FILE *fp)
@@ -503,20 +489,22 @@ void FixContactsMN::restart(char *buf)
 {
   double layout;
   memcpy(&layout, buf, sizeof(double));
-  if (layout != CLOCK_LAYOUT && layout != CLOCK_AND_ROWS_LAYOUT && layout != STATE_LAYOUT)
-    error->all(FLERR, "Fix contacts/mn: the restart file was written by an earlier version that "
-                      "kept steps, not times; write a new one");
+  if (layout != STATE_LAYOUT)
+    error->all(FLERR, "Fix contacts/mn: the restart file was written by a version of the "
+                      "gran/mn plugin before 1 Dec 2026 (its counters record begins with {:g}, "
+                      "this version's with {:g}), whose counters this version does not read: "
+                      "continue the run with the version that wrote it, or start it afresh",
+               layout, STATE_LAYOUT);
   double clock[CLOCK_VALUES + 1];
-  memcpy(clock, buf, sizeof(double) * (layout == CLOCK_LAYOUT ? CLOCK_VALUES : CLOCK_VALUES + 1));
+  memcpy(clock, buf, sizeof(clock));
   now = clock[1];
   clock_step = (bigint) clock[2];
   window_start = clock[3];
-  convert_layout = layout != STATE_LAYOUT;
   // the pending rows go to the first process (dump local gathers them all); kept only if
   // this run asks for rows
   rows.clear();
   rows_handed = 0;
-  if (layout != CLOCK_LAYOUT && comm->me == 0 && rows_every) {
+  if (comm->me == 0 && rows_every) {
     rows.resize((size_t) clock[CLOCK_VALUES] * ROW_COLS);
     memcpy(rows.data(), buf + sizeof(clock), rows.size() * sizeof(double));
   }

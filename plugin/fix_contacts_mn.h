@@ -94,7 +94,6 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   double base_time;
   bigint base_step;
   double window_start;         // time at which accumulation (re)started
-  bool convert_layout;         // restart file of the output-columns-only state: convert it
   // The publishers that remember their contacts (wall fixes), asked at a recount
   std::vector<const granmn::HeldContacts *> holders;
   int rows_every;              // local rows: contacts completed in the last N steps (0: none)
