@@ -8,9 +8,9 @@
    modify->init()), and the pair style must know then whether its neighbour history keeps a
    record per contact. With no observer a publisher keeps no record and makes no call: a
    scene without fix contacts/mn pays nothing. With one, the publisher keeps RECORD_SIZE
-   values per contact (zero for a new contact; the observer alone writes them) and reports
-   each contact at every force evaluation while it touches, and once at the first one after
-   it ended.
+   values per contact (the record: the observer writes it, starting it anew when a contact
+   begins; the publisher keeps it, and may clear it once the contact has ended) and reports each contact at every force evaluation while it touches, and
+   once at the first one after it ended.
 
    A publisher that remembers between force evaluations which contacts it has (a wall fix's
    flag per atom and side) also implements HeldContacts: the observer finds it among the
