@@ -24,10 +24,9 @@ static constexpr int ROW_COLS = 8;          // tag_i tag_j kind start duration v
 
 // fix ID group contacts/mn [local N] [every M]
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
-    FixPerAtomState(lmp, narg, arg), step_particle(nullptr),
-    step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
+    FixPerAtomState(lmp, narg, arg), nmax_step(0),
     fold_ghosts(false), recounting(false), atoms_deleted(false), every(1),
-    now(0.0), change_time(0.0), clock_step(0), base_time(0.0), base_step(0), window_start(0.0),
+    change_time(0.0), clock_step(0), base_time(0.0), base_step(0), window_start(0.0),
     rows_every(0), row_array(nullptr), nmax_rows(0), rows_handed(0), handed_step(-1),
     vector_step(-1)
 {
@@ -76,10 +75,10 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
 
 FixContactsMN::~FixContactsMN()
 {
-  memory->destroy(step_particle);
-  memory->destroy(step_boundary);
-  memory->destroy(begun_particle);
-  memory->destroy(begun_boundary);
+  memory->destroy(step.particle);
+  memory->destroy(step.boundary);
+  memory->destroy(step.begun_particle);
+  memory->destroy(step.begun_boundary);
   memory->destroy(row_array);
   delete[] extlist;
 }
@@ -101,6 +100,7 @@ void FixContactsMN::init()
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");
   fold_ghosts = comm->nprocs == 1 && atom->map_style != Atom::MAP_NONE;
+  set_recounting(recounting);
   // during a run, the per-atom output is current every `every` steps (between runs always)
   peratom_freq = every;
 }
@@ -139,14 +139,14 @@ void FixContactsMN::grow_step_arrays()
 {
   if (atom->nmax <= nmax_step) return;
   nmax_step = atom->nmax;
-  memory->destroy(step_particle);
-  memory->destroy(step_boundary);
-  memory->destroy(begun_particle);
-  memory->destroy(begun_boundary);
-  memory->create(step_particle, nmax_step, "contacts/mn:step_particle");
-  memory->create(step_boundary, nmax_step, "contacts/mn:step_boundary");
-  memory->create(begun_particle, nmax_step, "contacts/mn:begun_particle");
-  memory->create(begun_boundary, nmax_step, "contacts/mn:begun_boundary");
+  memory->destroy(step.particle);
+  memory->destroy(step.boundary);
+  memory->destroy(step.begun_particle);
+  memory->destroy(step.begun_boundary);
+  memory->create(step.particle, nmax_step, "contacts/mn:step_particle");
+  memory->create(step.boundary, nmax_step, "contacts/mn:step_boundary");
+  memory->create(step.begun_particle, nmax_step, "contacts/mn:begun_particle");
+  memory->create(step.begun_boundary, nmax_step, "contacts/mn:begun_boundary");
 }
 
 void FixContactsMN::zero_step_arrays()
@@ -154,7 +154,7 @@ void FixContactsMN::zero_step_arrays()
   grow_step_arrays();
   const int n = atom->nlocal + atom->nghost;
   for (int i = 0; i < n; i++)
-    step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
+    step.particle[i] = step.boundary[i] = step.begun_particle[i] = step.begun_boundary[i] = 0.0;
 }
 
 // No time passes between runs: the step a run starts at is the clock's, also after
@@ -166,7 +166,7 @@ void FixContactsMN::setup_pre_force(int)
   base_time = now;
   advance_clock();
   zero_step_arrays();
-  recounting = fold_ghosts;
+  set_recounting(fold_ghosts);
   atoms_deleted = false;
   drop_handed_rows();
 }
@@ -178,7 +178,7 @@ void FixContactsMN::pre_force(int)
 {
   advance_clock();
   if (!fold_ghosts || atoms_deleted) zero_step_arrays();
-  recounting = atoms_deleted;
+  set_recounting(atoms_deleted);
   atoms_deleted = false;
   drop_handed_rows();
 }
@@ -192,14 +192,21 @@ void FixContactsMN::copy_arrays(int i, int j, int delflag)
   if (delflag && fold_ghosts) atoms_deleted = true;
 }
 
-void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary,
-                                  double *record, bool began, double delta, double vn,
-                                  bool tally_j)
+// On one process only a contact begun has work here, unless the step's contacts are recounted
+// (reports_every_contact()).
+void FixContactsMN::set_recounting(bool on)
 {
-  update_record(record, began, delta, vn);
+  recounting = on;
+  every_contact = !fold_ghosts || recounting;
+  tallies_every_pair = !fold_ghosts;
+}
+
+void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary,
+                                  bool began, bool tally_j)
+{
   if (!fold_ghosts) {
-    tally(i, j_is_boundary, began);
-    if (tally_j) tally(j, i_is_boundary, began);
+    step.add(i, j_is_boundary, began);
+    if (tally_j) step.add(j, i_is_boundary, began);
     return;
   }
   if (began) {
@@ -213,20 +220,19 @@ void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_bo
     }
   }
   if (recounting) {
-    tally(i, j_is_boundary, false);
-    if (tally_j) tally(home(j), i_is_boundary, false);
+    step.add(i, j_is_boundary, false);
+    if (tally_j) step.add(home(j), i_is_boundary, false);
   }
 }
 
-void FixContactsMN::boundary_touching(int i, double *record, bool began, double delta, double vn)
+void FixContactsMN::boundary_touching(int i, bool began)
 {
-  update_record(record, began, delta, vn);
   // owned atom: counted directly, so that the order of fix setups does not matter
   if (began) {
     if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
     if (fold_ghosts) change(i, 0.0, 1.0);
   }
-  if (!fold_ghosts) tally(i, true, false);
+  if (!fold_ghosts) step.add(i, true, false);
 }
 
 void FixContactsMN::boundary_ended(int i, const double *record, double vn)
@@ -275,11 +281,11 @@ void FixContactsMN::collect()
   for (int i = 0; i < atom->nlocal; i++) {
     double *s = state[i];
     if (mask[i] & groupbit) {
-      s[BEGUN_PARTICLE] += begun_particle[i];
-      s[BEGUN_BOUNDARY] += begun_boundary[i];
+      s[BEGUN_PARTICLE] += step.begun_particle[i];
+      s[BEGUN_BOUNDARY] += step.begun_boundary[i];
     }
-    const double particle = step_particle[i] - s[CONTACTS_PARTICLE];
-    const double boundary = step_boundary[i] - s[CONTACTS_BOUNDARY];
+    const double particle = step.particle[i] - s[CONTACTS_PARTICLE];
+    const double boundary = step.boundary[i] - s[CONTACTS_BOUNDARY];
     if (particle != 0.0 || boundary != 0.0) change(i, particle, boundary);
   }
 }
@@ -290,11 +296,11 @@ void FixContactsMN::collect()
 // partner was deleted) takes the count from here on.
 void FixContactsMN::recount()
 {
-  recounting = false;
+  set_recounting(false);
   for (int i = 0; i < atom->nlocal; i++) {
-    double boundary = step_boundary[i];
+    double boundary = step.boundary[i];
     for (const granmn::HeldContacts *holder : holders) boundary += holder->contacts_held(i);
-    const double particle_change = step_particle[i] - state[i][CONTACTS_PARTICLE];
+    const double particle_change = step.particle[i] - state[i][CONTACTS_PARTICLE];
     const double boundary_change = boundary - state[i][CONTACTS_BOUNDARY];
     if (particle_change != 0.0 || boundary_change != 0.0)
       change(i, particle_change, boundary_change);
@@ -369,10 +375,10 @@ int FixContactsMN::pack_reverse_comm(int n, int first, double *buf)
 {
   int m = 0;
   for (int i = first; i < first + n; i++) {
-    buf[m++] = step_particle[i];
-    buf[m++] = step_boundary[i];
-    buf[m++] = begun_particle[i];
-    buf[m++] = begun_boundary[i];
+    buf[m++] = step.particle[i];
+    buf[m++] = step.boundary[i];
+    buf[m++] = step.begun_particle[i];
+    buf[m++] = step.begun_boundary[i];
   }
   return m;
 }
@@ -382,10 +388,10 @@ void FixContactsMN::unpack_reverse_comm(int n, int *list, double *buf)
   int m = 0;
   for (int k = 0; k < n; k++) {
     const int j = list[k];
-    step_particle[j] += buf[m++];
-    step_boundary[j] += buf[m++];
-    begun_particle[j] += buf[m++];
-    begun_boundary[j] += buf[m++];
+    step.particle[j] += buf[m++];
+    step.boundary[j] += buf[m++];
+    step.begun_particle[j] += buf[m++];
+    step.begun_boundary[j] += buf[m++];
   }
 }
 

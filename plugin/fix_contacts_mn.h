@@ -50,11 +50,11 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   // The contact events (mn_contact_events.h), one path for pairs and walls: the style that
   // keeps a contact's record reports it at every force evaluation while in contact and at the
   // first one after it ends (its row, if asked).
-  void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, double *record,
-                     bool began, double delta, double vn, bool tally_j) override;
+  void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, bool began,
+                     bool tally_j) override;
   void pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary, const double *record,
                   double vn, bool write_row, bool tally_j) override;
-  void boundary_touching(int i, double *record, bool began, double delta, double vn) override;
+  void boundary_touching(int i, bool began) override;
   void boundary_ended(int i, const double *record, double vn) override;
 
  private:
@@ -68,9 +68,8 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
          CONTACTS_PARTICLE, CONTACTS_BOUNDARY, STATE_COLS };
   // Tallies of this step's contacts (owned + ghost), where contacts are counted anew at a
   // step: at every step on more than one process (brought home by reverse communication,
-  // then compared with each atom's contacts), at a run's setup on one.
-  double *step_particle, *step_boundary;    // contacts at this step, owned + ghost
-  double *begun_particle, *begun_boundary;  // contacts begun at this step, owned + ghost
+  // then compared with each atom's contacts), at a run's setup on one. They are `step`, a
+  // member of ContactObserver: the pair style adds to them inline.
   int nmax_step;
   // One process: a ghost's contacts are its image's (atom->map), each begin and end of a
   // contact changes its atoms' contacts at once, and a step costs nothing per contact beyond
@@ -86,8 +85,8 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   // The fix's own clock: the time of the current step, the sum of the time steps actually
   // taken (a timestep changed between runs counts from then on; LAMMPS's time restarts at
   // zero after read_restart in this version, this clock does not): base_time at base_step
-  // (the last run's start or change of time step), plus the steps since times dt.
-  double now;
+  // (the last run's start or change of time step), plus the steps since times dt: `now`, a
+  // member of ContactObserver (the publishers' update_record reads it).
   double change_time;          // when a change found at this step happened: the last step's
                                // time (a contact found at step n was there for step n's dt)
   bigint clock_step;           // the step `now` belongs to
@@ -107,10 +106,9 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   double vector_sums[VECTOR_SIZE];
   bigint vector_step;
 
+  void set_recounting(bool);
   void advance_clock();
   void drop_handed_rows();
-  void update_record(double *record, bool began, double delta, double vn);
-  void tally(int i, bool boundary, bool began);
   int home(int j) const { return j < atom->nlocal ? j : atom->map(atom->tag[j]); }
   void change(int i, double particle, double boundary);
   void ended(const double *record, double tag_i, double tag_j, double kind, double vn_end);
@@ -123,24 +121,6 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
 };
 
 // Inline: called for every contact at every step.
-inline void FixContactsMN::update_record(double *record, bool began, double delta, double vn)
-{
-  if (began) {
-    record[granmn::RECORD_START] = now;
-    record[granmn::RECORD_VN_START] = vn;
-    record[granmn::RECORD_PEAK] = delta;
-  } else if (delta > record[granmn::RECORD_PEAK]) {
-    record[granmn::RECORD_PEAK] = delta;
-  }
-}
-
-// One contact of atom i at this step (with a boundary or not; begun at this step or not).
-inline void FixContactsMN::tally(int i, bool boundary, bool began)
-{
-  (boundary ? step_boundary : step_particle)[i] += 1.0;
-  if (began) (boundary ? begun_boundary : begun_particle)[i] += 1.0;
-}
-
 // Atom i's contacts change by `particle` and `boundary` at change_time: the time since its
 // last change goes to its times as its contacts were, then the output columns are current.
 inline void FixContactsMN::change(int i, double particle, double boundary)

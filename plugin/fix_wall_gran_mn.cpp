@@ -201,9 +201,11 @@ template <int DIM> void FixWallGranMN::post_force_loop()
       if (events) {
         double &touching = row[layout.touching];
         if (in_contact) {
-          events->boundary_touching(i, row + layout.record, touching == 0.0, radius[i] - dist,
-                                    normal * v[i][axis]);
+          const bool began = touching == 0.0;
+          events->update_record(row + layout.record, began, radius[i] - dist,
+                                normal * v[i][axis]);
           touching = 1.0;
+          if (began || events->reports_every_contact()) events->boundary_touching(i, began);
         } else if (touching != 0.0) {
           touching = 0.0;
           events->boundary_ended(i, row + layout.record, normal * v[i][axis]);

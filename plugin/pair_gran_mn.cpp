@@ -271,9 +271,16 @@ template <int DIM> void PairGranMN::compute_loop()
       const auto kin = mn::kinematics(mn::Dim<DIM>(), d, r, radsum, dv, lever);
       const bool j_wall = is_wall[type[j]];
       const bool tally_j = newton_pair || j < nlocal;
-      if (events)
-        events->pair_touching(i, j, j_wall, i_wall, slots + record_slot, !touch[jj], kin.delta,
-                              kin.vn, tally_j);
+      if (events) {
+        const bool began = !touch[jj];
+        events->update_record(slots + record_slot, began, kin.delta, kin.vn);
+        if (const granmn::ContactTallies *step = events->pair_tallies()) {
+          step->add(i, j_wall, began);
+          if (tally_j) step->add(j, i_wall, began);
+        } else if (began || events->reports_every_contact()) {
+          events->pair_touching(i, j, j_wall, i_wall, began, tally_j);
+        }
+      }
       if (history) touch[jj] = 1;
       double *ut = ut_slot >= 0 ? slots + ut_slot : nullptr;
       // the law gives mass x acceleration; LAMMPS turns force back into it with ftm2v
