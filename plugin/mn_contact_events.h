@@ -13,8 +13,8 @@
    ended). At every force evaluation a contact touches, the publisher calls update_record
    (inline), then pair_touching or boundary_touching if the contact began at it or the
    observer reports_every_contact() (on one process only the contacts begun need the call;
-   on more, a pair style adds each pair to pair_tallies() inline instead); at the first
-   evaluation after it ended, pair_ended or boundary_ended.
+   where every step's contacts are tallied, a pair style adds each pair to pair_tallies()
+   inline instead); at the first evaluation after it ended, pair_ended or boundary_ended.
 
    A publisher that remembers between force evaluations which contacts it has (a wall fix's
    flag per atom and side) also implements HeldContacts: the observer finds it among the
@@ -38,8 +38,8 @@ namespace granmn {
 enum ContactRecord { RECORD_START, RECORD_VN_START, RECORD_PEAK, RECORD_SIZE };
 
 // An evaluation's contacts per atom (owned and ghost atoms), where the observer counts each
-// evaluation's contacts anew (on more than one process): contacts, and of them those begun,
-// with particles and with the boundary.
+// evaluation's contacts anew (fix contacts/mn: on more than one process, or without an atom
+// map): contacts, and of them those begun, with particles and with the boundary.
 struct ContactTallies {
   double *particle = nullptr, *boundary = nullptr;
   double *begun_particle = nullptr, *begun_boundary = nullptr;
