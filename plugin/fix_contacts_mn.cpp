@@ -7,10 +7,8 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
-#include "fix_wall_gran_mn.h"
 #include "force.h"
 #include "granmn_compat.h"
-#include "granmn_glue.h"
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
@@ -26,11 +24,9 @@ static constexpr int ROW_COLS = 8;          // tag_i tag_j kind start duration v
 
 // fix ID group contacts/mn [local N] [every M]
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
-    FixPerAtomState(lmp, narg, arg), step_particle(nullptr),
-    step_boundary(nullptr), begun_particle(nullptr), begun_boundary(nullptr), nmax_step(0),
+    FixPerAtomState(lmp, narg, arg), nmax_step(0),
     fold_ghosts(false), recounting(false), atoms_deleted(false), every(1),
-    now(0.0), change_time(0.0), clock_step(0), base_time(0.0), base_step(0), window_start(0.0),
-    convert_layout(false),
+    change_time(0.0), clock_step(0), base_time(0.0), base_step(0), window_start(0.0),
     rows_every(0), row_array(nullptr), nmax_rows(0), rows_handed(0), handed_step(-1),
     vector_step(-1)
 {
@@ -79,10 +75,10 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
 
 FixContactsMN::~FixContactsMN()
 {
-  memory->destroy(step_particle);
-  memory->destroy(step_boundary);
-  memory->destroy(begun_particle);
-  memory->destroy(begun_boundary);
+  memory->destroy(step.particle);
+  memory->destroy(step.boundary);
+  memory->destroy(step.begun_particle);
+  memory->destroy(step.begun_boundary);
   memory->destroy(row_array);
   delete[] extlist;
 }
@@ -96,10 +92,15 @@ void FixContactsMN::init()
 {
   if (granmn::fixes_by_style(modify, "^contacts/mn").size() > 1)
     error->all(FLERR, "Only one fix contacts/mn may be defined");
-  if (!force->pair_match("gran/mn", 1) && !granmn::first_fix(modify, "^wall/gran/mn"))
+  holders.clear();
+  for (Fix *fix : granmn::all_fixes(modify))
+    if (const auto *holder = dynamic_cast<const granmn::HeldContacts *>(fix))
+      holders.push_back(holder);
+  if (!force->pair_match("gran/mn", 1) && holders.empty())
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");
   fold_ghosts = comm->nprocs == 1 && atom->map_style != Atom::MAP_NONE;
+  set_recounting(recounting);
   // during a run, the per-atom output is current every `every` steps (between runs always)
   peratom_freq = every;
 }
@@ -138,14 +139,14 @@ void FixContactsMN::grow_step_arrays()
 {
   if (atom->nmax <= nmax_step) return;
   nmax_step = atom->nmax;
-  memory->destroy(step_particle);
-  memory->destroy(step_boundary);
-  memory->destroy(begun_particle);
-  memory->destroy(begun_boundary);
-  memory->create(step_particle, nmax_step, "contacts/mn:step_particle");
-  memory->create(step_boundary, nmax_step, "contacts/mn:step_boundary");
-  memory->create(begun_particle, nmax_step, "contacts/mn:begun_particle");
-  memory->create(begun_boundary, nmax_step, "contacts/mn:begun_boundary");
+  memory->destroy(step.particle);
+  memory->destroy(step.boundary);
+  memory->destroy(step.begun_particle);
+  memory->destroy(step.begun_boundary);
+  memory->create(step.particle, nmax_step, "contacts/mn:step_particle");
+  memory->create(step.boundary, nmax_step, "contacts/mn:step_boundary");
+  memory->create(step.begun_particle, nmax_step, "contacts/mn:begun_particle");
+  memory->create(step.begun_boundary, nmax_step, "contacts/mn:begun_boundary");
 }
 
 void FixContactsMN::zero_step_arrays()
@@ -153,7 +154,7 @@ void FixContactsMN::zero_step_arrays()
   grow_step_arrays();
   const int n = atom->nlocal + atom->nghost;
   for (int i = 0; i < n; i++)
-    step_particle[i] = step_boundary[i] = begun_particle[i] = begun_boundary[i] = 0.0;
+    step.particle[i] = step.boundary[i] = step.begun_particle[i] = step.begun_boundary[i] = 0.0;
 }
 
 // No time passes between runs: the step a run starts at is the clock's, also after
@@ -164,21 +165,8 @@ void FixContactsMN::setup_pre_force(int)
   clock_step = base_step = update->ntimestep;
   base_time = now;
   advance_clock();
-  if (convert_layout) {
-    // a file of the layout that kept the output columns only: its times are complete up to
-    // now; the contacts are counted anew at this setup
-    for (int i = 0; i < atom->nlocal; i++) {
-      double *s = state[i];
-      s[ACCUMULATED_PARTICLE] = s[TIME_PARTICLE];
-      s[ACCUMULATED_BOUNDARY] = s[TIME_BOUNDARY];
-      s[ACCUMULATED_MULTIPLE] = s[TIME_MULTIPLE];
-      s[SINCE] = now;
-      s[CONTACTS_PARTICLE] = s[CONTACTS_BOUNDARY] = 0.0;
-    }
-    convert_layout = false;
-  }
   zero_step_arrays();
-  recounting = fold_ghosts;
+  set_recounting(fold_ghosts);
   atoms_deleted = false;
   drop_handed_rows();
 }
@@ -190,7 +178,7 @@ void FixContactsMN::pre_force(int)
 {
   advance_clock();
   if (!fold_ghosts || atoms_deleted) zero_step_arrays();
-  recounting = atoms_deleted;
+  set_recounting(atoms_deleted);
   atoms_deleted = false;
   drop_handed_rows();
 }
@@ -202,6 +190,55 @@ void FixContactsMN::copy_arrays(int i, int j, int delflag)
 {
   FixPerAtomState::copy_arrays(i, j, delflag);
   if (delflag && fold_ghosts) atoms_deleted = true;
+}
+
+// On one process only a contact begun has work here, unless the step's contacts are recounted
+// (reports_every_contact()).
+void FixContactsMN::set_recounting(bool on)
+{
+  recounting = on;
+  every_contact = !fold_ghosts || recounting;
+  tallies_every_pair = !fold_ghosts;
+}
+
+void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary,
+                                  bool began, bool tally_j)
+{
+  if (!fold_ghosts) {
+    step.add(i, j_is_boundary, began);
+    if (tally_j) step.add(j, i_is_boundary, began);
+    return;
+  }
+  if (began) {
+    const int *mask = atom->mask;
+    change(i, !j_is_boundary, j_is_boundary);
+    if (mask[i] & groupbit) state[i][j_is_boundary ? BEGUN_BOUNDARY : BEGUN_PARTICLE] += 1.0;
+    if (tally_j) {
+      const int k = home(j);
+      change(k, !i_is_boundary, i_is_boundary);
+      if (mask[k] & groupbit) state[k][i_is_boundary ? BEGUN_BOUNDARY : BEGUN_PARTICLE] += 1.0;
+    }
+  }
+  if (recounting) {
+    step.add(i, j_is_boundary, false);
+    if (tally_j) step.add(home(j), i_is_boundary, false);
+  }
+}
+
+void FixContactsMN::boundary_touching(int i, bool began)
+{
+  // owned atom: counted directly, so that the order of fix setups does not matter
+  if (began) {
+    if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
+    if (fold_ghosts) change(i, 0.0, 1.0);
+  }
+  if (!fold_ghosts) step.add(i, true, false);
+}
+
+void FixContactsMN::boundary_ended(int i, const double *record, double vn)
+{
+  if (fold_ghosts) change(i, 0.0, -1.0);
+  if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, ROW_BOUNDARY, vn);
 }
 
 void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary,
@@ -226,9 +263,10 @@ void FixContactsMN::ended(const double *record, double tag_i, double tag_j, doub
                           double vn_end)
 {
   if (!rows_every) return;
-  const double row[ROW_COLS] = {tag_i, tag_j, kind, record[RECORD_START],
-                                now - record[RECORD_START], record[RECORD_VN_START], vn_end,
-                                record[RECORD_PEAK]};
+  const double row[ROW_COLS] = {tag_i, tag_j, kind, record[granmn::RECORD_START],
+                                now - record[granmn::RECORD_START],
+                                record[granmn::RECORD_VN_START], vn_end,
+                                record[granmn::RECORD_PEAK]};
   rows.insert(rows.end(), row, row + ROW_COLS);
 }
 
@@ -243,29 +281,26 @@ void FixContactsMN::collect()
   for (int i = 0; i < atom->nlocal; i++) {
     double *s = state[i];
     if (mask[i] & groupbit) {
-      s[BEGUN_PARTICLE] += begun_particle[i];
-      s[BEGUN_BOUNDARY] += begun_boundary[i];
+      s[BEGUN_PARTICLE] += step.begun_particle[i];
+      s[BEGUN_BOUNDARY] += step.begun_boundary[i];
     }
-    const double particle = step_particle[i] - s[CONTACTS_PARTICLE];
-    const double boundary = step_boundary[i] - s[CONTACTS_BOUNDARY];
+    const double particle = step.particle[i] - s[CONTACTS_PARTICLE];
+    const double boundary = step.boundary[i] - s[CONTACTS_BOUNDARY];
     if (particle != 0.0 || boundary != 0.0) change(i, particle, boundary);
   }
 }
 
 // One process, at a run's setup or after a deletion: each atom's contacts are those the pair
-// style tallied and the wall sides it touches (as the wall fixes keep them, whether they have
-// evaluated this step yet or not: each change of theirs is reported). An atom that differs
-// (one whose partner was deleted) takes the count from here on.
+// style tallied and those the wall fixes hold (as they keep them, whether they have evaluated
+// this step yet or not: each change of theirs is reported). An atom that differs (one whose
+// partner was deleted) takes the count from here on.
 void FixContactsMN::recount()
 {
-  recounting = false;
-  std::vector<FixWallGranMN *> walls;
-  for (Fix *fix : granmn::fixes_by_style(modify, "^wall/gran/mn"))
-    walls.push_back(static_cast<FixWallGranMN *>(fix));
+  set_recounting(false);
   for (int i = 0; i < atom->nlocal; i++) {
-    double boundary = step_boundary[i];
-    for (FixWallGranMN *wall : walls) boundary += wall->sides_in_contact(i);
-    const double particle_change = step_particle[i] - state[i][CONTACTS_PARTICLE];
+    double boundary = step.boundary[i];
+    for (const granmn::HeldContacts *holder : holders) boundary += holder->contacts_held(i);
+    const double particle_change = step.particle[i] - state[i][CONTACTS_PARTICLE];
     const double boundary_change = boundary - state[i][CONTACTS_BOUNDARY];
     if (particle_change != 0.0 || boundary_change != 0.0)
       change(i, particle_change, boundary_change);
@@ -340,10 +375,10 @@ int FixContactsMN::pack_reverse_comm(int n, int first, double *buf)
 {
   int m = 0;
   for (int i = first; i < first + n; i++) {
-    buf[m++] = step_particle[i];
-    buf[m++] = step_boundary[i];
-    buf[m++] = begun_particle[i];
-    buf[m++] = begun_boundary[i];
+    buf[m++] = step.particle[i];
+    buf[m++] = step.boundary[i];
+    buf[m++] = step.begun_particle[i];
+    buf[m++] = step.begun_boundary[i];
   }
   return m;
 }
@@ -353,10 +388,10 @@ void FixContactsMN::unpack_reverse_comm(int n, int *list, double *buf)
   int m = 0;
   for (int k = 0; k < n; k++) {
     const int j = list[k];
-    step_particle[j] += buf[m++];
-    step_boundary[j] += buf[m++];
-    begun_particle[j] += buf[m++];
-    begun_boundary[j] += buf[m++];
+    step.particle[j] += buf[m++];
+    step.boundary[j] += buf[m++];
+    step.begun_particle[j] += buf[m++];
+    step.begun_boundary[j] += buf[m++];
   }
 }
 
@@ -420,13 +455,13 @@ void FixContactsMN::grow_arrays(int nmax)
   array_atom = state;
 }
 
-// The first value marks the layout: earlier versions wrote one value, a step (>= 0), and kept
-// contact start steps rather than times in the pair history; then the clock alone (-2); then
-// (-3) the rows not yet dumped after the clock, gathered from all processes: a run continued
-// from the file dumps them at its next multiple of N. Both kept only the output columns per
-// atom; now (-4, the same record) the per-atom state holds what the times are made of.
-static constexpr double CLOCK_LAYOUT = -2.0, CLOCK_AND_ROWS_LAYOUT = -3.0,
-                        STATE_LAYOUT = -4.0;
+// The first value marks the layout, STATE_LAYOUT: the clock, then the rows not yet dumped,
+// gathered from all processes (a run continued from the file dumps them at its next multiple
+// of N); the per-atom state holds what the times are made of. Versions of the plugin before
+// 1 Dec 2026 (commit b76d7a4) wrote other layouts (a step >= 0, kept contact start steps;
+// -2, the clock alone; -3, clock and rows; the per-atom state of the output columns only):
+// refused, with the date, rather than converted.
+static constexpr double STATE_LAYOUT = -4.0;
 static constexpr int CLOCK_VALUES = 4;
 
 void FixContactsMN::write_restart(FILE *fp)
@@ -460,20 +495,22 @@ void FixContactsMN::restart(char *buf)
 {
   double layout;
   memcpy(&layout, buf, sizeof(double));
-  if (layout != CLOCK_LAYOUT && layout != CLOCK_AND_ROWS_LAYOUT && layout != STATE_LAYOUT)
-    error->all(FLERR, "Fix contacts/mn: the restart file was written by an earlier version that "
-                      "kept steps, not times; write a new one");
+  if (layout != STATE_LAYOUT)
+    error->all(FLERR, "Fix contacts/mn: the restart file was written by a version of the "
+                      "gran/mn plugin before 1 Dec 2026 (its counters record begins with {:g}, "
+                      "this version's with {:g}), whose counters this version does not read: "
+                      "continue the run with the version that wrote it, or start it afresh",
+               layout, STATE_LAYOUT);
   double clock[CLOCK_VALUES + 1];
-  memcpy(clock, buf, sizeof(double) * (layout == CLOCK_LAYOUT ? CLOCK_VALUES : CLOCK_VALUES + 1));
+  memcpy(clock, buf, sizeof(clock));
   now = clock[1];
   clock_step = (bigint) clock[2];
   window_start = clock[3];
-  convert_layout = layout != STATE_LAYOUT;
   // the pending rows go to the first process (dump local gathers them all); kept only if
   // this run asks for rows
   rows.clear();
   rows_handed = 0;
-  if (layout != CLOCK_LAYOUT && comm->me == 0 && rows_every) {
+  if (comm->me == 0 && rows_every) {
     rows.resize((size_t) clock[CLOCK_VALUES] * ROW_COLS);
     memcpy(rows.data(), buf + sizeof(clock), rows.size() * sizeof(double));
   }

@@ -1,7 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    fix contacts/mn: per-contact counters for the gran/mn styles.
-   pair_style gran/mn and fix wall/gran/mn report contacts to it; a run without
-   this fix pays nothing for it.
+   pair_style gran/mn and fix wall/gran/mn report contacts to it as events
+   (mn_contact_events.h); a run without this fix pays nothing for it.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_CONTACTS_MN_H
@@ -11,19 +11,18 @@
 #include "fix_per_atom_state.h"
 #include "update.h"
 
+#include "mn_contact_events.h"
+
 #include <vector>
 
 namespace LAMMPS_NS {
 
-class FixContactsMN : public FixPerAtomState {
+class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
  public:
   // Columns of the per-atom array (the output; the state has more, see below), then the
   // global vector's two more: the window's length and the group's size.
   enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, NCOLS };
   enum { WINDOW = NCOLS, GROUP_SIZE, VECTOR_SIZE };
-  // What this fix keeps of a contact, its record: RECORD_SIZE values that the style keeping
-  // the contact stores where its layout says (granmn::ContactLayout).
-  enum { RECORD_START, RECORD_VN_START, RECORD_PEAK, RECORD_SIZE };
   // The kind column of a contact's row: between two disks, of a disk with the boundary.
   enum { ROW_DISKS = 1, ROW_BOUNDARY = 2 };
 
@@ -48,21 +47,15 @@ class FixContactsMN : public FixPerAtomState {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // The contact events, one path for pairs and walls: the style that keeps a contact's record
-  // reports it at every force evaluation while in contact and at the first one after it
-  // ends (its row, if asked).
-  // pair_style gran/mn: a pair in contact; `tally_j`: j's share is counted here (owned, or
-  // newton on).
-  void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, double *record,
-                     bool began, double delta, double vn, bool tally_j);
-  // pair_style gran/mn: a pair stopped touching; `write_row`: this process writes its row
-  // (a pair stored on two processes has one row); `tally_j` as for pair_touching.
+  // The contact events (mn_contact_events.h), one path for pairs and walls: the style that
+  // keeps a contact's record reports it at every force evaluation while in contact and at the
+  // first one after it ends (its row, if asked).
+  void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, bool began,
+                     bool tally_j) override;
   void pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary, const double *record,
-                  double vn, bool write_row, bool tally_j);
-  // fix wall/gran/mn, for every atom of its group and wall side: the record and the flag
-  // (1 while in contact) it keeps for that atom and side.
-  void wall_state(int i, double *record, double &touching, bool in_contact, double delta,
-                  double vn);
+                  double vn, bool write_row, bool tally_j) override;
+  void boundary_touching(int i, bool began) override;
+  void boundary_ended(int i, const double *record, double vn) override;
 
  private:
   // The state per atom: the NCOLS output columns, then what the times are made of. The times
@@ -75,9 +68,8 @@ class FixContactsMN : public FixPerAtomState {
          CONTACTS_PARTICLE, CONTACTS_BOUNDARY, STATE_COLS };
   // Tallies of this step's contacts (owned + ghost), where contacts are counted anew at a
   // step: at every step on more than one process (brought home by reverse communication,
-  // then compared with each atom's contacts), at a run's setup on one.
-  double *step_particle, *step_boundary;    // contacts at this step, owned + ghost
-  double *begun_particle, *begun_boundary;  // contacts begun at this step, owned + ghost
+  // then compared with each atom's contacts), at a run's setup on one. They are `step`, a
+  // member of ContactObserver: the pair style adds to them inline.
   int nmax_step;
   // One process: a ghost's contacts are its image's (atom->map), each begin and end of a
   // contact changes its atoms' contacts at once, and a step costs nothing per contact beyond
@@ -93,15 +85,16 @@ class FixContactsMN : public FixPerAtomState {
   // The fix's own clock: the time of the current step, the sum of the time steps actually
   // taken (a timestep changed between runs counts from then on; LAMMPS's time restarts at
   // zero after read_restart in this version, this clock does not): base_time at base_step
-  // (the last run's start or change of time step), plus the steps since times dt.
-  double now;
+  // (the last run's start or change of time step), plus the steps since times dt: `now`, a
+  // member of ContactObserver (the publishers' update_record reads it).
   double change_time;          // when a change found at this step happened: the last step's
                                // time (a contact found at step n was there for step n's dt)
   bigint clock_step;           // the step `now` belongs to
   double base_time;
   bigint base_step;
   double window_start;         // time at which accumulation (re)started
-  bool convert_layout;         // restart file of the output-columns-only state: convert it
+  // The publishers that remember their contacts (wall fixes), asked at a recount
+  std::vector<const granmn::HeldContacts *> holders;
   int rows_every;              // local rows: contacts completed in the last N steps (0: none)
   std::vector<double> rows;    // 8 values per completed contact, not yet dumped
   double **row_array;
@@ -113,10 +106,9 @@ class FixContactsMN : public FixPerAtomState {
   double vector_sums[VECTOR_SIZE];
   bigint vector_step;
 
+  void set_recounting(bool);
   void advance_clock();
   void drop_handed_rows();
-  void update_record(double *record, bool began, double delta, double vn);
-  void tally(int i, bool boundary, bool began);
   int home(int j) const { return j < atom->nlocal ? j : atom->map(atom->tag[j]); }
   void change(int i, double particle, double boundary);
   void ended(const double *record, double tag_i, double tag_j, double kind, double vn_end);
@@ -128,25 +120,7 @@ class FixContactsMN : public FixPerAtomState {
   void publish_rows();
 };
 
-// Inline: called for every contact (and every atom near a wall) at every step.
-inline void FixContactsMN::update_record(double *record, bool began, double delta, double vn)
-{
-  if (began) {
-    record[RECORD_START] = now;
-    record[RECORD_VN_START] = vn;
-    record[RECORD_PEAK] = delta;
-  } else if (delta > record[RECORD_PEAK]) {
-    record[RECORD_PEAK] = delta;
-  }
-}
-
-// One contact of atom i at this step (with a boundary or not; begun at this step or not).
-inline void FixContactsMN::tally(int i, bool boundary, bool began)
-{
-  (boundary ? step_boundary : step_particle)[i] += 1.0;
-  if (began) (boundary ? begun_boundary : begun_particle)[i] += 1.0;
-}
-
+// Inline: called for every contact at every step.
 // Atom i's contacts change by `particle` and `boundary` at change_time: the time since its
 // last change goes to its times as its contacts were, then the output columns are current.
 inline void FixContactsMN::change(int i, double particle, double boundary)
@@ -165,52 +139,6 @@ inline void FixContactsMN::change(int i, double particle, double boundary)
   s[CONTACTS_PARTICLE] += particle;
   s[CONTACTS_BOUNDARY] += boundary;
   s[SINCE] = change_time;
-}
-
-inline void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary,
-                                         double *record, bool began, double delta, double vn,
-                                         bool tally_j)
-{
-  update_record(record, began, delta, vn);
-  if (!fold_ghosts) {
-    tally(i, j_is_boundary, began);
-    if (tally_j) tally(j, i_is_boundary, began);
-    return;
-  }
-  if (began) {
-    const int *mask = atom->mask;
-    change(i, !j_is_boundary, j_is_boundary);
-    if (mask[i] & groupbit) state[i][j_is_boundary ? BEGUN_BOUNDARY : BEGUN_PARTICLE] += 1.0;
-    if (tally_j) {
-      const int k = home(j);
-      change(k, !i_is_boundary, i_is_boundary);
-      if (mask[k] & groupbit) state[k][i_is_boundary ? BEGUN_BOUNDARY : BEGUN_PARTICLE] += 1.0;
-    }
-  }
-  if (recounting) {
-    tally(i, j_is_boundary, false);
-    if (tally_j) tally(home(j), i_is_boundary, false);
-  }
-}
-
-inline void FixContactsMN::wall_state(int i, double *record, double &touching, bool in_contact,
-                                      double delta, double vn)
-{
-  if (in_contact) {
-    const bool began = touching == 0.0;
-    update_record(record, began, delta, vn);
-    touching = 1.0;
-    // owned atom: counted directly, so that the order of fix setups does not matter
-    if (began) {
-      if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
-      if (fold_ghosts) change(i, 0.0, 1.0);
-    }
-    if (!fold_ghosts) tally(i, true, false);
-  } else if (touching != 0.0) {
-    touching = 0.0;
-    if (fold_ghosts) change(i, 0.0, -1.0);
-    if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, ROW_BOUNDARY, vn);
-  }
 }
 
 }    // namespace LAMMPS_NS

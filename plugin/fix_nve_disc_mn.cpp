@@ -17,6 +17,7 @@
 #include "error.h"
 #include "force.h"
 #include "granmn_compat.h"
+#include "granmn_run_checks.h"
 #include "neighbor.h"
 #include "update.h"
 
@@ -86,6 +87,15 @@ FixNVEDiscMN::FixNVEDiscMN(LAMMPS *lmp, int narg, char **arg) :
     next_reneighbor = -1;
   }
   if (integrator == mn::Integrator::AdamsBashforth2) register_state(NSTATE);
+}
+
+void *FixNVEDiscMN::extract(const char *name, int &dim)
+{
+  dim = 0;
+  if (strcmp(name, granmn::INTEGRATOR_EXTRACT_NAME) == 0) return &integrator;
+  // neigh_check yes: this fix decides when the neighbour lists are built
+  if (strcmp(name, granmn::NEIGH_CHECK_EXTRACT_NAME) == 0) return &neigh_check;
+  return nullptr;
 }
 
 // Adams-Bashforth 2 moves the disks in one pass at the start of a step; with gravity a second

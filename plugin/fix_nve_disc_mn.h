@@ -28,9 +28,8 @@ class FixNVEDiscMN : public FixPerAtomState {
   void reset_dt() override;
   double memory_usage() override;
 
-  mn::Integrator scheme() const { return integrator; }
-  // neigh_check yes: this fix decides when the neighbour lists are built
-  bool checks_neighbor_builds() const { return neigh_check; }
+  // Its scheme and neigh_check, for the styles' run checks (granmn_run_checks.h names them).
+  void *extract(const char *, int &) override;
 
   // one atom's factors (the member factors below says what they are)
   struct Factors {

@@ -44,18 +44,6 @@ class FixPerAtomState : public Fix {
   bool has_callbacks = false;
 };
 
-// Internal to pair_style gran/mn: each atom's ID as it was, carried with the atom. LAMMPS keys
-// per-contact history by atom IDs, so an ID that changed (delete_atoms compress yes) loses it;
-// this tells the pair style that it happened.
-class FixAtomIDs : public FixPerAtomState {
- public:
-  FixAtomIDs(class LAMMPS *, int, char **);
-  int setmask() override { return 0; }
-  void set_arrays(int) override;
-  // Atoms (over all processes) whose ID changed since the last call; records the IDs anew.
-  bigint renumbered();
-};
-
 }    // namespace LAMMPS_NS
 
 #endif

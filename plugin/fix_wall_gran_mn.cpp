@@ -9,11 +9,11 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
-#include "fix_contacts_mn.h"
 #include "force.h"
-#include "granmn_glue.h"
+#include "granmn_compat.h"
+#include "granmn_run_checks.h"
 #include "modify.h"
-#include "pair_gran_mn.h"
+#include "pair.h"
 #include "update.h"
 
 #include <cmath>
@@ -27,7 +27,7 @@ using namespace FixConst;
 // (zplane in dimension 3 only)
 FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), own_law(false), use_history(false),
-    integrator(mn::Integrator::VelocityVerlet), counters(nullptr),
+    integrator(mn::Integrator::VelocityVerlet), observer(nullptr),
     force_per_mass_acceleration(1.0), force_reduced(false)
 {
   const bool three_d = domain->dimension == 3;
@@ -86,11 +86,14 @@ int FixWallGranMN::setmask()
 // Material from the fix line where given, else from pair_style gran/mn.
 void FixWallGranMN::resolve_law()
 {
-  PairGranMN *pair = dynamic_cast<PairGranMN *>(force->pair_match("gran/mn", 1));
-  if (!pair && !parsed.all_numbers_given())
+  // asked of gran/mn alone: some styles' extract() fails on a name they do not know
+  Pair *pair = force->pair_match("gran/mn", 1);
+  int dim = 0;
+  const auto *pair_law =
+      pair ? static_cast<const mn::Law *>(pair->extract(granmn::LAW_EXTRACT_NAME, dim)) : nullptr;
+  if (!pair_law && !parsed.all_numbers_given())
     error->all(FLERR, "Fix wall/gran/mn takes its kn, e, beta, mu from pair_style gran/mn: "
                       "define that pair style first or give all four on the fix line");
-  const mn::Law *pair_law = pair ? &pair->contact_law() : nullptr;
   law = granmn::law_from_arguments(lmp, "fix wall/gran/mn", parsed, pair_law);
   own_law = !pair_law;
   for (const granmn::LawKeyword &keyword : granmn::LAW_KEYWORDS)
@@ -111,23 +114,23 @@ void FixWallGranMN::init()
   granmn::check_disc_integration(lmp, "fix wall/gran/mn");
   // the law gives mass x acceleration; LAMMPS turns force back into acceleration with ftm2v
   force_per_mass_acceleration = 1.0 / force->ftm2v;
-  counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
+  observer = granmn::find_observer(granmn::all_fixes(modify));
   integrator = granmn::integrator_in_use(modify);
-  // The state keeps u_t (mu > 0), the counters' record and flag of each side (each wall fix
-  // its own, with fix contacts/mn), and the previous v_t of Adams-Bashforth 2's rule for u_t,
-  // which is kept from then on (current under either integrator).
+  // The state keeps u_t (mu > 0), the contact observer's record and a touching flag of each
+  // side (each wall fix its own, with fix contacts/mn), and the previous v_t of Adams-Bashforth
+  // 2's rule for u_t, which is kept from then on (current under either integrator).
   granmn::ContactLayout all[2];
   granmn::wall_state_layout(all, granmn::ut_width(lmp));
   const granmn::ContactLayout &last = all[1];
   if (use_history) widen_state(last.ut + last.ut_width);
-  if (counters) widen_state(last.touching + 1);
+  if (observer) widen_state(last.touching + 1);
   if (use_history && integrator == mn::Integrator::AdamsBashforth2)
     widen_state(last.vt_previous + last.ut_width);
   for (int side : {0, 1}) {
     granmn::ContactLayout &kept = side_layout[side];
     kept = all[side];
     if (!use_history) kept.ut = -1;
-    if (!counters) kept.record = kept.touching = -1;
+    if (!observer) kept.record = kept.touching = -1;
     if (!use_history || ncols < last.vt_previous + last.ut_width) kept.vt_previous = -1;
     kept.size = ncols;
   }
@@ -140,9 +143,9 @@ void FixWallGranMN::init()
                            granmn::integrator_in_use(modify));
 }
 
-int FixWallGranMN::sides_in_contact(int i) const
+int FixWallGranMN::contacts_held(int i) const
 {
-  if (!counters || !(atom->mask[i] & groupbit)) return 0;
+  if (!observer || !(atom->mask[i] & groupbit)) return 0;
   int sides = 0;
   for (const granmn::ContactLayout &side : side_layout)
     if (state[i][side.touching] != 0.0) sides++;
@@ -178,7 +181,7 @@ template <int DIM> void FixWallGranMN::post_force_loop()
   const int nlocal = atom->nlocal;
   // locals, not members: the force stores below could alias them
   const mn::Law contact = law;
-  FixContactsMN *const tally = counters;
+  granmn::ContactObserver *const events = observer;
   double **history = state;
   const double to_force = force_per_mass_acceleration;
   const int first_side = has_lo ? 0 : 1, last_side = has_hi ? 1 : 0;
@@ -195,9 +198,19 @@ template <int DIM> void FixWallGranMN::post_force_loop()
       const bool in_contact = dist < radius[i];
       const granmn::ContactLayout &layout = layouts[side];
       double *row = history[i];
-      if (tally)
-        tally->wall_state(i, row + layout.record, row[layout.touching], in_contact,
-                          radius[i] - dist, normal * v[i][axis]);
+      if (events) {
+        double &touching = row[layout.touching];
+        if (in_contact) {
+          const bool began = touching == 0.0;
+          events->update_record(row + layout.record, began, radius[i] - dist,
+                                normal * v[i][axis]);
+          touching = 1.0;
+          if (began || events->reports_every_contact()) events->boundary_touching(i, began);
+        } else if (touching != 0.0) {
+          touching = 0.0;
+          events->boundary_ended(i, row + layout.record, normal * v[i][axis]);
+        }
+      }
       double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
       double *vt_previous = layout.vt_previous >= 0 ? row + layout.vt_previous : nullptr;
       if (!in_contact) {

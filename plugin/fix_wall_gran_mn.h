@@ -7,12 +7,15 @@
 #define LMP_FIX_WALL_GRAN_MN_H
 
 #include "fix_per_atom_state.h"
+#include "granmn_contact_storage.h"
+#include "granmn_law_arguments.h"
 
-#include "granmn_glue.h"
+#include "mn_contact_events.h"
+#include "mn_integration.h"
 
 namespace LAMMPS_NS {
 
-class FixWallGranMN : public FixPerAtomState {
+class FixWallGranMN : public FixPerAtomState, public granmn::HeldContacts {
  public:
   FixWallGranMN(class LAMMPS *, int, char **);
   int setmask() override;
@@ -20,8 +23,9 @@ class FixWallGranMN : public FixPerAtomState {
   void setup(int) override;
   void post_force(int) override;
   double compute_vector(int) override;
-  // With fix contacts/mn: the wall sides atom i touches (as of this fix's last evaluation).
-  int sides_in_contact(int i) const;
+  // With a contact observer (fix contacts/mn): the wall sides atom i touches (as of this fix's
+  // last evaluation).
+  int contacts_held(int i) const override;
 
  private:
   int axis;                   // 0: xplane, 1: yplane, 2: zplane (dimension 3)
@@ -35,7 +39,7 @@ class FixWallGranMN : public FixPerAtomState {
   mn::Integrator integrator;    // the run's, found at init
   // Where each side's values sit in an atom's row of the state: side 0 lower, 1 upper
   granmn::ContactLayout side_layout[2];
-  class FixContactsMN *counters;    // nullptr unless fix contacts/mn is defined
+  granmn::ContactObserver *observer;    // nullptr unless fix contacts/mn is defined
   double wall_force[3], wall_force_all[3];    // x, y (and z in dimension 3)
   double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units
   bool force_reduced;

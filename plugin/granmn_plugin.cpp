@@ -6,11 +6,11 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "fix_atom_ids.h"
 #include "fix_ave_window_mn.h"
 #include "fix_checkpoint_mn.h"
 #include "fix_contacts_mn.h"
 #include "fix_nve_disc_mn.h"
-#include "fix_per_atom_state.h"
 #include "fix_wall_gran_mn.h"
 #include "pair_gran_mn.h"
 

@@ -352,6 +352,13 @@ inline Kinematics3 kinematics(Dim<3>, const double d[3], double dist, double con
   return kinematics3(d, dist, contact_distance, dv, lever);
 }
 
+// contact_force of the 3D kinematics: contact_force3.
+inline Force3 contact_force(const Law &law, double force_scale, const Kinematics3 &k, double *ut,
+                            double dt_history)
+{
+  return contact_force3(law, force_scale, k, ut, dt_history);
+}
+
 // The contact's force on i into force (Cartesian; 0 along z in 2D), and its torque added to
 // torque_i (lever arm radius_i) and, where torque_j is given, to torque_j (radius_j).
 inline void force_and_torques(const Law &law, double force_scale, const Kinematics &k, double *ut,

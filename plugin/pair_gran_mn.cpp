@@ -10,14 +10,12 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
-#include "fix_contacts_mn.h"
-#include "fix_nve_disc_mn.h"
 #include "fix_dummy.h"
-#include "fix_per_atom_state.h"
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "granmn_compat.h"
-#include "granmn_glue.h"
+#include "granmn_law_arguments.h"
+#include "granmn_run_checks.h"
 #include "input.h"
 #include "memory.h"
 #include "modify.h"
@@ -34,7 +32,7 @@ using namespace LAMMPS_NS;
 
 PairGranMN::PairGranMN(LAMMPS *lmp) :
     Pair(lmp), restart_history_size(-1),
-    counters(nullptr),
+    observer(nullptr),
     law_reported(false), force_per_mass_acceleration(1.0), max_radius(nullptr),
     fix_history(nullptr)
 {
@@ -90,7 +88,7 @@ template <int DIM> static inline double dot(const double *d, const double *e)
   return DIM == 3 ? d[0] * e[0] + d[1] * e[1] + d[2] * e[2] : d[0] * e[0] + d[1] * e[1];
 }
 
-// A contact just ended: its atoms have one contact less; its row goes to the counters, once even
+// A contact just ended: its atoms have one contact less; its row goes to the observer, once even
 // if both processes hold the pair. d = x_i - x_j.
 template <int DIM>
 void PairGranMN::report_end(int i, int j, const double *d, double rsq, const double *state,
@@ -101,7 +99,7 @@ void PairGranMN::report_end(int i, int j, const double *d, double rsq, const dou
   const double vn = dot<DIM>(d, dv) / sqrt(rsq);
   const bool tally_j = force->newton_pair || j < atom->nlocal;
   const bool record = tally_j || tag[i] < tag[j];
-  counters->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
+  observer->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
                        record, tally_j);
 }
 
@@ -230,7 +228,7 @@ template <int DIM> void PairGranMN::compute_loop()
   const mn::Law contact = law;
   const char *is_wall = is_wall_type.data();
   const double to_force = force_per_mass_acceleration;
-  FixContactsMN *const tally = counters;
+  granmn::ContactObserver *const events = observer;
   const int stride = layout.size, ut_slot = layout.ut, record_slot = layout.record;
   const int vt_previous_slot = layout.vt_previous;
   const mn::Integrator scheme = integrator;
@@ -256,7 +254,7 @@ template <int DIM> void PairGranMN::compute_loop()
         // a pair that is not touching already has zero history (FixNeighHistory hands new
         // pairs zeros): only a contact that just ended has any to clear
         if (history && touch[jj]) {
-          if (tally) report_end<DIM>(i, j, d, rsq, slots + record_slot, tag);
+          if (events) report_end<DIM>(i, j, d, rsq, slots + record_slot, tag);
           touch[jj] = 0;
           for (int k = 0; k < stride; k++) slots[k] = 0.0;
         }
@@ -273,9 +271,16 @@ template <int DIM> void PairGranMN::compute_loop()
       const auto kin = mn::kinematics(mn::Dim<DIM>(), d, r, radsum, dv, lever);
       const bool j_wall = is_wall[type[j]];
       const bool tally_j = newton_pair || j < nlocal;
-      if (tally)
-        tally->pair_touching(i, j, j_wall, i_wall, slots + record_slot, !touch[jj], kin.delta,
-                             kin.vn, tally_j);
+      if (events) {
+        const bool began = !touch[jj];
+        events->update_record(slots + record_slot, began, kin.delta, kin.vn);
+        if (const granmn::ContactTallies *step = events->pair_tallies()) {
+          step->add(i, j_wall, began);
+          if (tally_j) step->add(j, i_wall, began);
+        } else if (began || events->reports_every_contact()) {
+          events->pair_touching(i, j, j_wall, i_wall, began, tally_j);
+        }
+      }
       if (history) touch[jj] = 1;
       double *ut = ut_slot >= 0 ? slots + ut_slot : nullptr;
       // the law gives mass x acceleration; LAMMPS turns force back into it with ftm2v
@@ -447,10 +452,8 @@ void PairGranMN::init_style()
   check_bumps();
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
-  bool builds_checked = false;    // fix nve/disc/mn neigh_check yes asks for the builds
-  for (Fix *fix : granmn::fixes_by_style(modify, "^nve/disc/mn$"))
-    if (static_cast<FixNVEDiscMN *>(fix)->checks_neighbor_builds()) builds_checked = true;
-  if (neighbor->build_once && !builds_checked && comm->me == 0)
+  // fix nve/disc/mn neigh_check yes asks for the builds
+  if (neighbor->build_once && !granmn::neighbor_builds_checked(modify) && comm->me == 0)
     error->warning(FLERR, "pair_style gran/mn: neigh_modify once yes builds the neighbor list "
                           "only at the start of a run: disks that come into contact later are "
                           "never seen (no force, no contact); leave out 'once yes'");
@@ -473,10 +476,11 @@ void PairGranMN::init_style()
   granmn::check_timestep(lmp, "pair_style gran/mn", update->dt, law, integrator);
 
   // The per-contact history: u_t when there is friction (and under Adams-Bashforth 2 the
-  // previous v_t its rule for u_t needs), then the counters' record if asked.
-  counters = static_cast<FixContactsMN *>(granmn::first_fix(modify, "^contacts/mn"));
+  // previous v_t its rule for u_t needs), then the contact observer's record if there is one
+  // (fix contacts/mn).
+  observer = granmn::find_observer(granmn::all_fixes(modify));
   const granmn::ContactLayout needed = granmn::pair_history_layout(
-      law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, counters,
+      law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, observer,
       granmn::ut_width(lmp));
   if (fix_history && needed.size != layout.size)
     error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
@@ -498,20 +502,15 @@ void PairGranMN::init_style()
   // the step's move would lose its record before the counters see it end (found by the
   // cross-check with pair_style tracker). The counters keep every pair's flags; the force
   // evaluation clears them when a contact ends, so forces do not change.
-  beyond_contact = counters ? 1 : 0;
+  beyond_contact = observer ? 1 : 0;
 
   granmn::request_size_list(neighbor, this, instance_me, history);
 
-  // the history is keyed by atom IDs: say when they have changed under it
+  // the history is keyed by atom IDs: fix GRANMN/ATOM_IDS says at each init when they have
+  // changed under it
   if (history) {
     const std::string ids = "GRANMN_ATOM_IDS" + std::to_string(instance_me);
-    Fix *atom_ids = granmn::fix_by_id(modify, ids);
-    if (!atom_ids) atom_ids = modify->add_fix(ids + " all GRANMN/ATOM_IDS");
-    const bigint changed = static_cast<FixAtomIDs *>(atom_ids)->renumbered();
-    if (changed && comm->me == 0)
-      error->warning(FLERR, "pair_style gran/mn: {} atoms have other IDs than in the last run "
-                            "(delete_atoms compress yes?): their contacts lost their history "
-                            "(u_t, counters); use delete_atoms ... compress no", changed);
+    if (!granmn::fix_by_id(modify, ids)) modify->add_fix(ids + " all GRANMN/ATOM_IDS");
   }
 
   if (history && !fix_history) {
@@ -658,54 +657,34 @@ double PairGranMN::single(int i, int j, int, int, double rsq, double, double, do
     for (int m = 0; m < single_extra; m++) svector[m] = 0.0;
     return 0.0;
   }
-  if (domain->dimension == 3) return single_3d(i, j, rsq, fforce);
-  double **x = atom->x;
-  double **v = atom->v;
-  double **omega = atom->omega;
-  const double r = sqrt(rsq);
-  const mn::Kinematics kin = mn::kinematics(
-      x[i][0] - x[j][0], x[i][1] - x[j][1], r, radsum, v[i][0] - v[j][0], v[i][1] - v[j][1],
-      atom->radius[i] * omega[i][2] + atom->radius[j] * omega[j][2]);
-
-  double ut = 0.0;
-  if (layout.ut >= 0) {
-    const int jnum = list->numneigh[i];
-    const int *jlist = list->firstneigh[i];
-    for (int jj = 0; jj < jnum; jj++)
-      if ((jlist[jj] & NEIGHMASK) == j) {
-        ut = fix_history->firstvalue[i][layout.size * jj + layout.ut];
-        break;
-      }
-  }
-  double ut_copy = ut;    // single() must not alter the stored history
-  const mn::Force fc =
-      mn::contact_force(law,
-                        contact_mass_scale(is_wall_type[atom->type[i]], is_wall_type[atom->type[j]],
-                                           atom->rmass[i], atom->rmass[j]) *
-                            force_per_mass_acceleration,
-                        kin, law.material.mu > 0.0 ? &ut_copy : nullptr, 0.0);
-  fforce = fc.fn / r;
-  svector[0] = fc.ft;
-  svector[1] = kin.delta;
-  svector[2] = kin.vn;
-  svector[3] = kin.vt;
-  svector[4] = ut;
-  return 0.0;
+  return domain->dimension == 3 ? single_contact<3>(i, j, rsq, fforce)
+                                : single_contact<2>(i, j, rsq, fforce);
 }
 
-// single() in 3D, for a pair in contact.
-double PairGranMN::single_3d(int i, int j, double rsq, double &fforce)
+// A 2D component as it is, a 3D vector's magnitude: what single() reports.
+static inline double reported(double value)
+{
+  return value;
+}
+
+static inline double reported(const double (&vector)[3])
+{
+  return sqrt(vector[0] * vector[0] + vector[1] * vector[1] + vector[2] * vector[2]);
+}
+
+// single() in dimension DIM for a pair in contact, as compute_loop evaluates it.
+template <int DIM> double PairGranMN::single_contact(int i, int j, double rsq, double &fforce)
 {
   double **x = atom->x;
   double **v = atom->v;
   double **omega = atom->omega;
   const double ri = atom->radius[i], rj = atom->radius[j];
   const double r = sqrt(rsq);
-  const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+  const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], DIM == 3 ? x[i][2] - x[j][2] : 0.0};
   const double dv[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
   const double lever[3] = {ri * omega[i][0] + rj * omega[j][0], ri * omega[i][1] + rj * omega[j][1],
                            ri * omega[i][2] + rj * omega[j][2]};
-  const mn::Kinematics3 kin = mn::kinematics3(d, r, ri + rj, dv, lever);
+  const auto kin = mn::kinematics(mn::Dim<DIM>(), d, r, ri + rj, dv, lever);
 
   double ut[3] = {0.0, 0.0, 0.0};    // a copy: single() must not alter the stored history
   if (layout.ut >= 0) {
@@ -713,24 +692,32 @@ double PairGranMN::single_3d(int i, int j, double rsq, double &fforce)
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < jnum; jj++)
       if ((jlist[jj] & NEIGHMASK) == j) {
-        for (int c = 0; c < 3; c++) ut[c] = fix_history->firstvalue[i][layout.size * jj + layout.ut + c];
+        for (int c = 0; c < layout.ut_width; c++)
+          ut[c] = fix_history->firstvalue[i][layout.size * jj + layout.ut + c];
         break;
       }
   }
-  const double ut_magnitude = sqrt(ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2]);
-  const mn::Force3 fc =
-      mn::contact_force3(law,
-                         contact_mass_scale(is_wall_type[atom->type[i]], is_wall_type[atom->type[j]],
-                                            atom->rmass[i], atom->rmass[j]) *
-                             force_per_mass_acceleration,
-                         kin, law.material.mu > 0.0 ? ut : nullptr, 0.0);
+  const double ut_reported = DIM == 3 ? reported(ut) : ut[0];
+  const auto fc = mn::contact_force(law,
+                                    contact_mass_scale(is_wall_type[atom->type[i]],
+                                                       is_wall_type[atom->type[j]],
+                                                       atom->rmass[i], atom->rmass[j]) *
+                                        force_per_mass_acceleration,
+                                    kin, law.material.mu > 0.0 ? ut : nullptr, 0.0);
   fforce = fc.fn / r;
-  svector[0] = sqrt(fc.ft[0] * fc.ft[0] + fc.ft[1] * fc.ft[1] + fc.ft[2] * fc.ft[2]);
+  svector[0] = reported(fc.ft);
   svector[1] = kin.delta;
   svector[2] = kin.vn;
-  svector[3] = sqrt(kin.vt[0] * kin.vt[0] + kin.vt[1] * kin.vt[1] + kin.vt[2] * kin.vt[2]);
-  svector[4] = ut_magnitude;
+  svector[3] = reported(kin.vt);
+  svector[4] = ut_reported;
   return 0.0;
+}
+
+void *PairGranMN::extract(const char *name, int &dim)
+{
+  if (strcmp(name, granmn::LAW_EXTRACT_NAME) != 0) return nullptr;
+  dim = 0;
+  return &law;
 }
 
 #ifdef GRANMN_PAIR_HAS_ATOM2CUT

@@ -9,10 +9,11 @@
 #define LMP_PAIR_GRAN_MN_H
 
 #include "granmn_compat.h"
-#include "granmn_glue.h"
+#include "granmn_contact_storage.h"
 #include "pair.h"
 
 #include "mn_contact.h"
+#include "mn_contact_events.h"
 
 #include <utility>
 #include <vector>
@@ -33,14 +34,14 @@ class PairGranMN : public Pair {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   double single(int, int, int, int, double, double, double, double &) override;
+  // The law as derived for the current settings (granmn::LAW_EXTRACT_NAME): the wall fix takes
+  // it from here.
+  void *extract(const char *, int &) override;
   void GRANMN_TRANSFER_HISTORY(, ) override;
 #ifdef GRANMN_PAIR_HAS_ATOM2CUT
   double atom2cut(int) override;
   double radii2cut(double, double) override;
 #endif
-
-  // The law as derived for the current settings; the wall fix takes it from here.
-  const mn::Law &contact_law() const { return law; }
 
  private:
   mn::Law law;
@@ -49,7 +50,7 @@ class PairGranMN : public Pair {
   granmn::ContactLayout layout;      // of a contact's neighbor history (none: size 0)
   mn::Integrator integrator = mn::Integrator::VelocityVerlet;    // the run's, found at init_style
   int restart_history_size;          // per-pair history size in the restart read, -1 if none
-  class FixContactsMN *counters;     // nullptr unless fix contacts/mn is defined
+  granmn::ContactObserver *observer;    // nullptr unless fix contacts/mn is defined
   std::vector<std::pair<int, int>> excluded_types;    // type pairs this style excluded
   bool law_reported;
   double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units
@@ -69,7 +70,7 @@ class PairGranMN : public Pair {
   template <int DIM> void report_end(int, int, const double *, double, const double *,
                                      const tagint *);
   template <int DIM> void compute_loop();
-  double single_3d(int, int, double, double &);
+  template <int DIM> double single_contact(int, int, double, double &);
 };
 
 }    // namespace LAMMPS_NS

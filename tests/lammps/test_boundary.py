@@ -143,3 +143,56 @@ def test_an_option_not_given_on_the_wall_fix_is_the_pair_styles(tmp_path, pair_o
     bound = restitution_error_bound(expected, dt_over_tau)
     assert abs(limit_damping_restitution(kn, e) - law(kn, e, 0.7)["e_w"]) > 4 * bound
     assert abs(rebound - expected) <= bound
+
+
+def test_compute_pair_local_reports_the_2d_contact_signed(tmp_path):
+    """compute pair/local (the pair style's single()) in 2D. A disk (mass 1, radius 1/2) held
+    against a bump with overlap 0.05, spinning in place at w for N steps: v_n = 0, v_t = -r w,
+    u_t = v_t N dt, and the force loop's F_t = -m (k_t u_t + eta_t v_t) (mu large: no cap),
+    seen in the disk's force along t = (0, 1). single() must report those as the signed 2D
+    components (p1 F_t, p2 delta, p3 v_n, p4 v_t, p5 u_t), not 3D's magnitudes, and must not
+    advance the stored u_t (a second evaluation reports the same). Rules out a 2D single()
+    that reads u_t from the wrong slot of the history or loses its sign."""
+    kn, e, beta, dt, steps, w, gap = 2e5, 0.7, 0.7, 1e-5, 40, 3.0, 0.95
+    deck = f"""
+region box block -3 3 -3 3 -0.5 0.5
+create_box 2 box
+create_atoms 2 single 0 0 0
+create_atoms 1 single {gap!r} 0 0
+set type * diameter 1.0
+set type * density/disc 1.2732395447351628
+set type 1 omega 0 0 {w!r}
+pair_style gran/mn kn {kn!r} e {e!r} beta {beta!r} mu 1000 wall_types 2
+pair_coeff * *
+timestep {dt!r}
+neigh_modify every 1 delay 0 check no
+thermo 0
+run {steps}
+compute pair all pair/local p1 p2 p3 p4 p5
+dump p all local 1 pair.txt c_pair[1] c_pair[2] c_pair[3] c_pair[4] c_pair[5]
+dump_modify p format float %.17g
+variable fy equal fy[2]
+run 0
+print "RESULT fy ${{fy}}"
+undump p
+dump again all local 1 again.txt c_pair[1] c_pair[2] c_pair[3] c_pair[4] c_pair[5]
+dump_modify again format float %.17g
+run 0
+"""
+    run = run_lammps(deck, tmp_path)
+    rows = []
+    for name in ("pair.txt", "again.txt"):
+        lines = [l.split() for l in (tmp_path / name).read_text().splitlines()]
+        rows += [[float(v) for v in l] for l in lines if len(l) == 5 and not l[0].startswith("I")]
+    assert len(rows) == 2 and rows[0] == rows[1]
+    ft, delta, vn, vt, ut = rows[0]
+    coefficients = law(kn, e, beta)
+    vt_expected = -0.5 * w
+    ut_expected = vt_expected * steps * dt
+    ft_expected = -(coefficients["kt"] * ut_expected + coefficients["eta_t"] * vt_expected)
+    print(f"single(): F_t {ft!r} (expected {ft_expected!r}), u_t {ut!r} ({ut_expected!r})")
+    assert delta == pytest.approx(1.0 - gap, rel=1e-12)
+    assert abs(vn) <= 1e-15 and vt == pytest.approx(vt_expected, rel=1e-12)
+    assert ut == pytest.approx(ut_expected, rel=1e-12)
+    assert ft == pytest.approx(ft_expected, rel=1e-9)
+    assert run.result("fy")[0] == pytest.approx(ft, rel=1e-12)

@@ -418,32 +418,40 @@ def test_rows_pending_at_a_restart_are_dumped_by_the_run_that_continues(
     assert_same_counts((continued_table, sorted(before + continued_rows)), (table, all_rows))
 
 
-def clock_only_layout(restart, target):
-    """The restart file as an earlier version wrote it: fix contacts/mn's global record holds
-    the clock alone (layout -2: 4 values), not the clock, a row count and the rows (layouts -3
-    and now -4). Only for a file with no rows pending (the count 0). Its per-atom records stay
-    this version's: the fix takes the times of the output columns, as from a file of layout -2
-    or -3, and counts the contacts anew."""
+def earlier_layout(restart, target, layout):
+    """The restart file as a version before 1 Dec 2026 wrote it: fix contacts/mn's global
+    record holds the clock alone (layout -2: 4 values), or the clock, a row count and the rows
+    as now but marked -3 (its per-atom state held the output columns only); this version writes
+    -4. For -2 only a file with no rows pending (the count 0)."""
     data = restart.read_bytes()
     now_layout = struct.pack("=id", 5 * 8, -4.0)
     start = data.index(now_layout)
-    clock = data[start + 12:start + 36]
-    assert struct.unpack("=d", data[start + 36:start + 44])[0] == 0.0
-    target.write_bytes(data[:start] + struct.pack("=id", 4 * 8, -2.0) + clock + data[start + 44:])
+    if layout == -3:
+        earlier = struct.pack("=id", 5 * 8, -3.0) + data[start + 12:]
+    else:
+        clock = data[start + 12:start + 36]
+        assert struct.unpack("=d", data[start + 36:start + 44])[0] == 0.0
+        earlier = struct.pack("=id", 4 * 8, -2.0) + clock + data[start + 44:]
+    target.write_bytes(data[:start] + earlier)
     return target
 
 
-def test_restart_file_of_the_clock_only_layout_is_still_read(counted_reference, tmp_path):
-    """A restart file written before the rows went into it (its counters record holds the
-    clock alone) continues the counts as a current one does."""
-    restart = clock_only_layout(counted_reference.workdir / "mid.restart",
-                                tmp_path / "clock_only.restart")
+@pytest.mark.parametrize("layout", [-2, -3])
+def test_restart_file_of_an_earlier_layout_is_refused_with_its_date(counted_reference, tmp_path,
+                                                                    layout):
+    """A restart file whose counters record is of a layout before 1 Dec 2026 is refused by
+    name, not read: the converter that read them (taking the per-atom times from the output
+    columns) is gone, and a continued run would otherwise count from a state it misreads.
+    Rules out reading such a file silently."""
+    restart = earlier_layout(counted_reference.workdir / "mid.restart",
+                             tmp_path / f"layout{-layout}.restart", layout)
     deck = (f"read_restart {restart}\nneighbor 0.1 bin\ncomm_modify vel yes\n" +
-            FIXES.format(tilt=0.3, integrator="nve/sphere disc") + COUNTERS + f"run {HALF}\n" +
-            FINAL_COUNTS)
-    restarted = run_lammps(deck, tmp_path / "restarted")
-    assert_same_counts(counts_and_rows(counted_reference, after_step=HALF),
-                       counts_and_rows(restarted))
+            FIXES.format(tilt=0.3, integrator="nve/sphere disc") + COUNTERS + f"run {HALF}\n")
+    run = run_lammps(deck, tmp_path / "restarted", check=False)
+    assert run.returncode != 0
+    assert (f"ERROR: Fix contacts/mn: the restart file was written by a version of the gran/mn "
+            f"plugin before 1 Dec 2026 (its counters record begins with {layout}, this "
+            f"version's with -4)") in run.output, run.output[-1500:]
 
 
 # The times against a direct per-step sum: the pile without its bumps (so that every contact

@@ -1,0 +1,120 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Contacts as events, free of LAMMPS and of the styles' classes: what a style that computes
+   contacts (a publisher: pair_style gran/mn, fix wall/gran/mn) tells a style that follows
+   them (the observer: fix contacts/mn). Neither includes the other's header.
+
+   A publisher, at its init, looks for the observer among the fixes (find_observer): LAMMPS
+   initialises the pair style before any fix (LAMMPS::init: force->init() before
+   modify->init()), and the pair style must know then whether its neighbour history keeps a
+   record per contact. With no observer a publisher keeps no record and makes no call: a
+   scene without fix contacts/mn pays nothing. With one, the publisher keeps RECORD_SIZE
+   values per contact (the record: the observer's update_record writes it, starting it anew
+   when a contact begins; the publisher keeps it, and may clear it once the contact has
+   ended). At every force evaluation a contact touches, the publisher calls update_record
+   (inline), then pair_touching or boundary_touching if the contact began at it or the
+   observer reports_every_contact() (on one process only the contacts begun need the call;
+   where every step's contacts are tallied, a pair style adds each pair to pair_tallies()
+   inline instead); at the first evaluation after it ended, pair_ended or boundary_ended.
+
+   A publisher that remembers between force evaluations which contacts it has (a wall fix's
+   flag per atom and side) also implements HeldContacts: the observer finds it among the
+   fixes at its init and asks it when it counts contacts anew (a run's setup, a step after
+   atoms were deleted), so that the count does not depend on the order of the fixes' setups.
+
+   A new wall fix (a cylinder or region wall, say) plugs in as fix wall/gran/mn does: derive
+   from HeldContacts, find the observer at init, keep a record and a touching flag per atom
+   and wall element in its per-atom state (granmn_contact_storage.h), and report each contact
+   as above with update_record, boundary_touching and boundary_ended (fix_wall_gran_mn.cpp's
+   post_force_loop). Fix contacts/mn needs no change.
+------------------------------------------------------------------------- */
+
+#ifndef GRANMN_CONTACT_EVENTS_H
+#define GRANMN_CONTACT_EVENTS_H
+
+namespace granmn {
+
+// What the observer keeps of a contact, its record: RECORD_SIZE values that the publisher
+// stores with the contact where its layout says (granmn::ContactLayout).
+enum ContactRecord { RECORD_START, RECORD_VN_START, RECORD_PEAK, RECORD_SIZE };
+
+// An evaluation's contacts per atom (owned and ghost atoms), where the observer counts each
+// evaluation's contacts anew (fix contacts/mn: on more than one process, or without an atom
+// map): contacts, and of them those begun, with particles and with the boundary.
+struct ContactTallies {
+  double *particle = nullptr, *boundary = nullptr;
+  double *begun_particle = nullptr, *begun_boundary = nullptr;
+
+  // One contact of atom i (with a boundary element or not; begun at this evaluation or not).
+  void add(int i, bool with_boundary, bool began) const
+  {
+    (with_boundary ? boundary : particle)[i] += 1.0;
+    if (began) (with_boundary ? begun_boundary : begun_particle)[i] += 1.0;
+  }
+};
+
+class ContactObserver {
+ public:
+  // The one piece of work the observer needs of every contact at every force evaluation while
+  // it touches: its record brought up to date (inline: no call per contact). `began`: at this
+  // evaluation; `delta`: the overlap; `vn`: the normal velocity.
+  void update_record(double *record, bool began, double delta, double vn) const
+  {
+    if (began) {
+      record[RECORD_START] = now;
+      record[RECORD_VN_START] = vn;
+      record[RECORD_PEAK] = delta;
+    } else if (delta > record[RECORD_PEAK]) {
+      record[RECORD_PEAK] = delta;
+    }
+  }
+  // Whether pair_touching / boundary_touching want every contact touching at this evaluation
+  // (else only those that began at it).
+  bool reports_every_contact() const { return every_contact; }
+  // Where the observer counts every evaluation's contacts anew, the tallies a publisher may add
+  // a touching pair's shares to (inline), which is all pair_touching would do; else nullptr.
+  const ContactTallies *pair_tallies() const { return tallies_every_pair ? &step : nullptr; }
+
+  // Two atoms i, j (local; j may be a ghost) touch, after update_record; `*_is_boundary`: the
+  // atom is an immobile bump; `tally_j`: j's share is counted here (owned, or newton on).
+  virtual void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, bool began,
+                             bool tally_j) = 0;
+  // The pair stopped touching (found at the first evaluation after); `write_row`: this
+  // process writes the contact's row (a pair stored on two processes has one row).
+  virtual void pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary,
+                          const double *record, double vn, bool write_row, bool tally_j) = 0;
+  // Local atom i touches a boundary element a fix holds (a wall side), as pair_touching.
+  virtual void boundary_touching(int i, bool began) = 0;
+  // ... and stopped touching it.
+  virtual void boundary_ended(int i, const double *record, double vn) = 0;
+
+ protected:
+  ~ContactObserver() = default;
+  double now = 0.0;             // the observer's clock at this evaluation: a record's start
+  bool every_contact = true;    // reports_every_contact()
+  ContactTallies step;          // this evaluation's contacts, where they are tallied
+  bool tallies_every_pair = false;    // pair_tallies()
+};
+
+// A publisher that remembers its contacts between force evaluations.
+class HeldContacts {
+ public:
+  // The contacts local atom i has with this publisher's boundary elements, as of its last
+  // evaluation (0 without an observer: none are kept).
+  virtual int contacts_held(int i) const = 0;
+
+ protected:
+  ~HeldContacts() = default;
+};
+
+// The first of `fixes` (pointers to polymorphic objects, e.g. LAMMPS's Fix *) that is an
+// observer, or nullptr.
+template <class Fixes> ContactObserver *find_observer(const Fixes &fixes)
+{
+  for (auto *fix : fixes)
+    if (auto *observer = dynamic_cast<ContactObserver *>(fix)) return observer;
+  return nullptr;
+}
+
+}    // namespace granmn
+
+#endif
