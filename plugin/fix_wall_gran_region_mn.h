@@ -1,0 +1,61 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   fix wall/gran/region/mn: the surface of any LAMMPS region as a wall with the boundary rule
+   of the gran/mn law (2D and 3D; moving and rotating regions; several faces at once).
+------------------------------------------------------------------------- */
+
+#ifndef LMP_FIX_WALL_GRAN_REGION_MN_H
+#define LMP_FIX_WALL_GRAN_REGION_MN_H
+
+#include "fix_per_atom_state.h"
+
+#include "granmn_glue.h"
+
+#include <string>
+
+namespace LAMMPS_NS {
+
+class FixWallGranRegionMN : public FixPerAtomState {
+ public:
+  FixWallGranRegionMN(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void post_force(int) override;
+  double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+ private:
+  std::string region_id;
+  class Region *region;
+  int max_contacts;           // the region's tmax: faces one atom can touch at once
+  granmn::LawArguments parsed;
+  mn::Law law;
+  bool own_law;
+  bool use_history;           // mu > 0: u_t per atom and face in contact
+  mn::Integrator integrator;
+  int ut_width;
+  // An atom's row: [0] the number of faces it touches, then per slot k < max_contacts the
+  // face's number (Region::Contact::iwall, 1 + k), u_t (ut_block + k ut_width) and, under
+  // Adams-Bashforth 2, the previous v_t (vt_block + k ut_width): each block whole, so that the
+  // v_t block added at a later init moves no other (restart files hold the rows so).
+  int ut_block, vt_block;     // -1: not kept
+  // the region's velocity at the last step evaluated (track_motion)
+  struct Motion {
+    static constexpr int SIZE = 10;    // step, v, omega, rpoint
+    bigint step = -1;
+    double v[3] = {0.0, 0.0, 0.0}, omega[3] = {0.0, 0.0, 0.0}, rpoint[3] = {0.0, 0.0, 0.0};
+  } motion;
+  double wall_force[3], wall_force_all[3];
+  double force_per_mass_acceleration;
+  bool force_reduced;
+
+  void find_region();
+  void resolve_law();
+  void track_motion();
+  template <int DIM> void post_force_loop();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
