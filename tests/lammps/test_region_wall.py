@@ -2,7 +2,8 @@
 Its flat face is the plane wall of fix wall/gran/mn (whose e_w, tau_w test_boundary.py and
 test_three_d.py check); a curved face (the inside of a cylinder) lets a sphere roll at
 5/7 g sin(theta); a corner holds a sphere on three faces at once; a moving region's velocity
-enters the contact; MPI ranks and a restart continue the same pile."""
+(a belt) and a rotating one's (a turntable) enter the contact; MPI ranks and a restart continue
+the same pile."""
 import numpy as np
 import pytest
 
@@ -301,3 +302,45 @@ comm_modify vel yes
     difference = np.abs(drum_state(through) - drum_state(resumed)).max()
     print(f"resumed: largest difference {difference:.1e}")
     assert difference < 1e-12
+
+
+def test_a_ball_on_a_turntable_orbits_at_two_sevenths_of_its_rate(tmp_path):
+    """A rotating region (region ... rotate): a solid sphere set at rest on a turntable (a
+    floor turning at Omega about z) at distance rho from the axis is dragged until it rolls,
+    and then, rolling without slipping, its centre obeys dv/dt = (q/(1+q)) Omega x v (q = 2/5):
+    it orbits at 2 Omega/7 at constant speed, here around the axis at rho (its speed at
+    sticking is 2/7 Omega rho along the table's motion). Measured over a third of an orbit
+    after it sticks: the angular rate within 1 % of 2 Omega/7, the distance within 1 % of rho.
+    A wall that took the region's translation only, or no wall velocity, would leave it at
+    rest; one that rolled it with the table's own rate would orbit at Omega."""
+    rate, rho = 0.1, 5.0
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    deck = HEADER_3D.replace("boundary p p p\n", "") + f"""
+boundary p p f
+region box block -10 10 -10 10 -2 5
+create_box 1 box
+create_atoms 1 single {rho!r} 0 {0.5 - 1.0 / KN!r}
+set atom 1 diameter 1.0 density {SPHERE_DENSITY!r}
+pair_style gran/mn kn {KN} e {E} beta {BETA} mu 0.5 coulomb_cutback
+pair_coeff * *
+fix integrate all nve/sphere
+fix down all gravity 1.0 vector 0 0 -1
+variable angle equal {rate!r}*time
+region table block -50 50 -50 50 -1 0 side out rotate v_angle 0 0 0 0 0 1 units box
+fix w all wall/gran/region/mn table
+timestep {dt!r}
+thermo 0
+variable t equal step*dt
+fix trace all print {int(round(0.5 / dt))} "$(v_t:%.15g) $(x[1]:%.15g) $(y[1]:%.15g)" file trace.txt screen no
+run {int(round(40 / dt))}
+"""
+    trace = run_lammps(deck, tmp_path, header=False).table("trace.txt")
+    t, x, y = trace[:, 0], trace[:, 1], trace[:, 2]
+    late = t > 2.0
+    angle = np.unwrap(np.arctan2(y[late], x[late]))
+    orbit = np.polyfit(t[late], angle, 1)[0]
+    distance = np.hypot(x[late], y[late])
+    print(f"orbit rate {orbit:.6f} (2 Omega/7 = {2 * rate / 7:.6f}), distance "
+          f"{distance.min():.4f}-{distance.max():.4f} (rho {rho})")
+    assert abs(orbit - 2 * rate / 7) < 0.01 * 2 * rate / 7
+    assert np.abs(distance - rho).max() < 0.01 * rho
