@@ -94,12 +94,19 @@ void FixWallGranRegionMN::resolve_law()
 
 void FixWallGranRegionMN::init()
 {
+  // A deck may delete the region and define it again between runs (LAMMPS's
+  // examples/granregion turns its box so): the contacts carry on by face number, and the
+  // region's motion is the new one's unless the region is the one the fix last saw (its
+  // displacement and angle of the last step as the fix left them: also after a restart).
   const Region *before = region;
   find_region();
-  if (region != before || region->tmax != max_contacts)
-    error->all(FLERR, "Fix wall/gran/region/mn: region {} was defined again since the fix "
-                      "(it can touch {} faces at once, the fix keeps {}): define the fix again",
-               region_id, region->tmax, max_contacts);
+  if (region->tmax > max_contacts)
+    error->all(FLERR, "Fix wall/gran/region/mn: region {} was defined again with {} faces an "
+                      "atom can touch at once, more than the {} the fix keeps: define the fix "
+                      "again", region_id, region->tmax, max_contacts);
+  bool same_motion = region == before;
+  for (int k = 0; k < 4; k++) same_motion = same_motion && region->prev[k] == motion.prev[k];
+  if (!same_motion) motion = Motion();
   resolve_law();
   if (law.material.mu > 0.0 && !use_history)
     error->all(FLERR, "Fix wall/gran/region/mn was defined with mu = 0 and keeps no tangential "
@@ -262,6 +269,7 @@ void FixWallGranRegionMN::track_motion()
     motion.omega[c] = region->omega[c];
     motion.rpoint[c] = region->rpoint[c];
   }
+  for (int k = 0; k < 4; k++) motion.prev[k] = region->prev[k];
 }
 
 void FixWallGranRegionMN::write_restart(FILE *fp)
@@ -270,7 +278,8 @@ void FixWallGranRegionMN::write_restart(FILE *fp)
   const double values[Motion::SIZE] = {
       static_cast<double>(motion.step), motion.v[0],      motion.v[1],      motion.v[2],
       motion.omega[0],                  motion.omega[1],  motion.omega[2],  motion.rpoint[0],
-      motion.rpoint[1],                 motion.rpoint[2]};
+      motion.rpoint[1],                 motion.rpoint[2], motion.prev[0],   motion.prev[1],
+      motion.prev[2],                   motion.prev[3]};
   const int size = Motion::SIZE * sizeof(double);
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(values, sizeof(double), Motion::SIZE, fp);
@@ -286,6 +295,8 @@ void FixWallGranRegionMN::restart(char *buf)
     motion.omega[c] = values[4 + c];
     motion.rpoint[c] = values[7 + c];
   }
+  // the region of the restart is taken for the one the fix saw (init compares these)
+  for (int k = 0; k < 4; k++) region->prev[k] = motion.prev[k] = values[10 + k];
 }
 
 double FixWallGranRegionMN::compute_vector(int n)

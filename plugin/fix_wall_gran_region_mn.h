@@ -42,9 +42,10 @@ class FixWallGranRegionMN : public FixPerAtomState {
   int ut_block, vt_block;     // -1: not kept
   // the region's velocity at the last step evaluated (track_motion)
   struct Motion {
-    static constexpr int SIZE = 10;    // step, v, omega, rpoint
+    static constexpr int SIZE = 14;    // step, v, omega, rpoint, prev (displacement, angle)
     bigint step = -1;
     double v[3] = {0.0, 0.0, 0.0}, omega[3] = {0.0, 0.0, 0.0}, rpoint[3] = {0.0, 0.0, 0.0};
+    double prev[4] = {0.0, 0.0, 0.0, 0.0};
   } motion;
   double wall_force[3], wall_force_all[3];
   double force_per_mass_acceleration;
