@@ -11,6 +11,7 @@
 #define GRANMN_COMPAT_H
 
 #include "comm.h"
+#include "domain.h"
 #include "fix.h"
 #include "modify.h"
 #include "neigh_request.h"
@@ -88,6 +89,25 @@ inline std::vector<LAMMPS_NS::Fix *> all_fixes(LAMMPS_NS::Modify *modify)
 #else
   return std::vector<LAMMPS_NS::Fix *>(modify->fix, modify->fix + modify->nfix);
 #endif
+}
+
+// The region of an ID, nullptr if none: Domain::get_region_by_id where LAMMPS has it (it came
+// with the regions' refactor of 2022, which took away find_region and the regions[] array),
+// else find_region. Chosen by what Domain declares, not by a version number: the release that
+// changed it is not among the tested ones.
+template <typename D>
+auto region_lookup(D *domain, const std::string &id, int) -> decltype(domain->get_region_by_id(id))
+{
+  return domain->get_region_by_id(id);
+}
+template <typename D> LAMMPS_NS::Region *region_lookup(D *domain, const std::string &id, long)
+{
+  const int index = domain->find_region(id);
+  return index < 0 ? nullptr : domain->regions[index];
+}
+inline LAMMPS_NS::Region *region_by_id(LAMMPS_NS::Domain *domain, const std::string &id)
+{
+  return region_lookup(domain, id, 0);
 }
 
 }    // namespace granmn

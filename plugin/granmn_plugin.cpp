@@ -12,6 +12,7 @@
 #include "fix_contacts_mn.h"
 #include "fix_nve_disc_mn.h"
 #include "fix_wall_gran_mn.h"
+#include "fix_wall_gran_region_mn.h"
 #include "pair_gran_mn.h"
 
 using namespace LAMMPS_NS;
@@ -47,6 +48,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   } fixes[] = {
       {"wall/gran/mn", "Flat walls (2D, 3D) with the Mitarai-Nakanishi boundary contact law",
        (lammpsplugin_factory2 *) &fix_creator<FixWallGranMN>},
+      {"wall/gran/region/mn",
+       "A region's surface as a wall (2D, 3D; moving, rotating) with the Mitarai-Nakanishi "
+       "boundary contact law",
+       (lammpsplugin_factory2 *) &fix_creator<FixWallGranRegionMN>},
       {"contacts/mn", "Per-contact counters for the gran/mn styles",
        (lammpsplugin_factory2 *) &fix_creator<FixContactsMN>},
       {"nve/ab2", "Adams-Bashforth 2 / trapezoidal integrator for disks (Mitarai-Nakanishi)",

@@ -1,4 +1,4 @@
-"""Every bad argument of pair_style gran/mn and fix wall/gran/mn stops lmp with an error that
+"""Every bad argument of pair_style gran/mn, fix wall/gran/mn and fix wall/gran/region/mn stops lmp with an error that
 names the problem (or, for a merely coarse time step, warns)."""
 import re
 
@@ -7,6 +7,8 @@ import pytest
 from granmn_run import HEADER, PLUGIN, run_lammps
 
 GOOD_PAIR = "pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5"
+# a box region around the two disks of deck(), its floor 0.5 below their centres
+REGION = "region inside block -2.5 2.5 0 2.5 -0.5 0.5 units box"
 
 
 def deck(pair=GOOD_PAIR, coeff="pair_coeff * *", fix="", timestep="timestep 5e-5",
@@ -155,6 +157,21 @@ ERRORS = {
         deck(pair="pair_style gran/mn kn 2e5 e 0.7 beta 1e-40 mu 0.5", dimension="dimension 3",
              z="-3 3", timestep="timestep $(v_mn_tau_c/100)"),
         "the tangential (sticking) mode of two spheres: use a timestep below 4.49"),
+    "region wall without its region": (
+        deck(fix="fix cup all wall/gran/region/mn nowhere"),
+        "Fix wall/gran/region/mn: region nowhere does not exist"),
+    "region wall unknown keyword": (
+        deck(fix=f"{REGION}\nfix cup all wall/gran/region/mn inside shear 1"),
+        "Illegal fix wall/gran/region/mn command: unknown keyword shear"),
+    "region wall of a region whose shape changes": (
+        deck(fix="variable r equal 2+0.1*time\nregion round sphere 0 0 0 v_r\n"
+                 "fix cup all wall/gran/region/mn round"),
+        "region round changes its shape (variable parameters)"),
+    # an atom faster than the contact can stop (v >> r sqrt(kn)): LAMMPS's fix wall/gran/region
+    # lets it go on outside the region without a word
+    "atom through the region wall": (
+        deck(fix=f"{REGION}\nfix cup all wall/gran/region/mn inside\nset atom 1 vy -3000"),
+        "atom 1 has passed through the surface of region inside"),
     "e near zero at tau_c/100": (
         deck(pair="pair_style gran/mn kn 2e5 e 1e-40 beta 0.7 mu 0.5",
              timestep="timestep $(v_mn_tau_c/100)"),

@@ -1,5 +1,6 @@
-"""The decks of examples/ (LAMMPS's own examples with the law) run as a user runs them, the short
-variants the tests can afford, with one line added at their end to write the final atoms."""
+"""The decks of examples/ (LAMMPS's own examples with the law, and a rotating drum) run as a user
+runs them, the short variants the tests can afford, with one line added at their end to write
+the final atoms."""
 import math
 from pathlib import Path
 
@@ -76,3 +77,35 @@ def test_pour_2d_settles_into_a_pile(tmp_path):
     fallen = (mass * G * (32.0 - atoms["y"])).sum()
     print(f"kinetic energy {kinetic:.3g} of {fallen:.3g} fallen through")
     assert kinetic < 0.01 * fallen
+
+
+def test_granregion_box_holds_its_spheres_while_it_turns(tmp_path):
+    """examples/granregion/in.granregion.box.mn, 1000 steps a stage: 100 spheres poured into
+    a box region, which is deleted and defined again turning about z, at rest, turning about
+    (1, 1, 1), at rest. Every sphere stays inside the container (centres at least a radius
+    less an impact's overlap from each face; the original's `thermo_modify lost ignore` would
+    drop one that left the box) through the turns."""
+    run = run_example("granregion/in.granregion.box.mn", tmp_path, steps=1000)
+    atoms = run.atoms()
+    assert len(atoms["id"]) == 100
+    bound = impact_bound(7639.4, 6.0)["floor"]
+    inside = np.max([np.abs(atoms[c]) for c in ("x", "y", "z")], axis=0)
+    print(f"farthest centre from the middle, per axis: {inside.max():.4f} (wall at 6, radius "
+          f"0.5, bound {bound:.3g})")
+    assert inside.max() < 6.0 - 0.5 + bound
+
+
+def test_drum_turning_lifts_its_pile_up_the_rising_side(tmp_path):
+    """examples/drum/in.drum.mn: the pile settled in the drum at rest has its centre of mass on
+    the axis's vertical (|x_cm| < 0.02 R, the lattice start is symmetric); a quarter turn at
+    Omega = 0.1 about +y carries it up the side where the wall rises (-x: the wall's velocity
+    Omega x r at the bottom points to -x), by more than 0.05 R (a half-filled drum's surface at
+    a repose angle alpha puts it at -4R/(3 pi) sin(alpha), -0.18 R at 25 degrees). A wall
+    without the rotating region's velocity would leave the pile where it was."""
+    turning = run_example("drum/in.drum.mn", tmp_path / "turning", turns=0.25).result("drum")
+    still = run_example("drum/in.drum.mn", tmp_path / "still", omega=0).result("drum")
+    radius = 6.0
+    print(f"x_cm at rest {still[0]:.4f}, turning {turning[0]:.4f} (R = {radius})")
+    assert turning[3] == still[3] > 100
+    assert abs(still[0]) < 0.02 * radius
+    assert turning[0] < -0.05 * radius
