@@ -22,9 +22,9 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-// fix ID group wall/gran/mn xplane|yplane|zplane lo hi [kn K] [e E] [beta B] [mu MU]
-//                                                  [limit_damping] [coulomb_cutback]
-// (zplane in dimension 3 only)
+// fix ID group wall/gran/mn xplane|yplane|zplane|zcylinder lo hi [kn K] [e E] [beta B]
+//                                         [mu MU] [limit_damping] [coulomb_cutback]
+// (zplane in dimension 3 only; zcylinder: radii of an inner and an outer cylinder about z)
 FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), own_law(false), use_history(false),
     integrator(mn::Integrator::VelocityVerlet), observer(nullptr),
@@ -36,7 +36,7 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
                       "(atom_style sphere)");
   if (narg < 6)
     error->all(FLERR, "Illegal fix wall/gran/mn command: expected {} lo hi",
-               three_d ? "xplane|yplane|zplane" : "xplane|yplane");
+               three_d ? "xplane|yplane|zplane|zcylinder" : "xplane|yplane|zcylinder");
 
   if (strcmp(arg[3], "xplane") == 0)
     axis = 0;
@@ -44,13 +44,15 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     axis = 1;
   else if (strcmp(arg[3], "zplane") == 0 && three_d)
     axis = 2;
+  else if (strcmp(arg[3], "zcylinder") == 0)
+    axis = ZCYLINDER;
   else if (strcmp(arg[3], "zplane") == 0)
     error->all(FLERR, "Illegal fix wall/gran/mn command: zplane needs dimension 3 (in 2D the "
-                      "walls are xplane or yplane)");
+                      "walls are xplane, yplane or zcylinder)");
   else
     error->all(FLERR, "Illegal fix wall/gran/mn command: unknown wall style {} "
-                      "(expected {}; planes only)", arg[3],
-               three_d ? "xplane, yplane or zplane" : "xplane or yplane");
+                      "(expected {}; other shapes: fix wall/gran/region/mn)", arg[3],
+               three_d ? "xplane, yplane, zplane or zcylinder" : "xplane, yplane or zcylinder");
   has_lo = strcmp(arg[4], "NULL") != 0;
   has_hi = strcmp(arg[5], "NULL") != 0;
   lo = has_lo ? utils::numeric(FLERR, arg[4], false, lmp) : 0.0;
@@ -59,6 +61,9 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
   if (has_lo && has_hi && lo >= hi)
     error->all(FLERR, "Illegal fix wall/gran/mn command: lower wall {} not below upper wall {}",
                lo, hi);
+  if (axis == ZCYLINDER && ((has_lo && lo <= 0.0) || (has_hi && hi <= 0.0)))
+    error->all(FLERR, "Illegal fix wall/gran/mn command: zcylinder radii must be positive "
+                      "(inner {}, outer {})", arg[4], arg[5]);
 
   int iarg = 6;
   while (iarg < narg) {
@@ -106,10 +111,19 @@ void FixWallGranMN::init()
 {
   // as LAMMPS's fix wall/gran: an atom that crosses the periodic boundary comes back on the
   // wall's other side, inside it (checked here, for change_box between runs too)
-  if (domain->periodicity[axis])
-    error->all(FLERR, "Fix wall/gran/mn: cannot use wall in periodic dimension {}: an atom "
-                      "re-entering through the boundary would be inside the wall; make the "
-                      "boundary of {} non-periodic (f, s or m)", "xyz"[axis], "xyz"[axis]);
+  for (int dim = 0; dim < 3; dim++) {
+    const bool walled = axis == ZCYLINDER ? dim < 2 : dim == axis;
+    if (walled && domain->periodicity[dim])
+      error->all(FLERR, "Fix wall/gran/mn: cannot use wall in periodic dimension {}: an atom "
+                        "re-entering through the boundary would be inside the wall; make the "
+                        "boundary of {} non-periodic (f, s or m)", "xyz"[dim], "xyz"[dim]);
+  }
+  if (axis == ZCYLINDER)
+    for (int dim = 0; dim < 2; dim++)
+      if (domain->boxlo[dim] > 0.0 || domain->boxhi[dim] < 0.0)
+        error->all(FLERR, "Fix wall/gran/mn: the zcylinder's axis (x = y = 0) lies outside the "
+                          "box ({} from {} to {}): its walls are about the z axis",
+                   "xy"[dim], domain->boxlo[dim], domain->boxhi[dim]);
   resolve_law();
   granmn::check_disc_integration(lmp, "fix wall/gran/mn");
   // the law gives mass x acceleration; LAMMPS turns force back into acceleration with ftm2v
@@ -159,15 +173,18 @@ void FixWallGranMN::setup(int vflag)
 
 void FixWallGranMN::post_force(int)
 {
+  const bool cylinder = axis == ZCYLINDER;
   if (domain->dimension == 3)
-    post_force_loop<3>();
+    cylinder ? post_force_loop<3, true>() : post_force_loop<3, false>();
   else
-    post_force_loop<2>();
+    cylinder ? post_force_loop<2, true>() : post_force_loop<2, false>();
 }
 
-// The force loop in dimension DIM: 2, disks against lines (u_t a scalar); 3, spheres against
-// planes normal to x, y or z (u_t a vector). Each contact as in the pair style's loop.
-template <int DIM> void FixWallGranMN::post_force_loop()
+// The force loop in dimension DIM: 2, disks against lines or circles (u_t a scalar); 3,
+// spheres against planes normal to x, y or z or cylinders about z (u_t a vector); CYLINDER:
+// the zcylinder's two walls, side 0 the inner one (the atoms outside it), side 1 the outer
+// one. Each contact as in the pair style's loop.
+template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
 {
   const double dt_history = granmn::history_dt(update);
   double **x = atom->x;
@@ -191,24 +208,33 @@ template <int DIM> void FixWallGranMN::post_force_loop()
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
+    // a cylinder's walls: the centre's distance from the axis, and the radial direction
+    const double rho = CYLINDER ? std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1]) : 0.0;
     for (int side = first_side; side <= last_side; side++) {
       // distance from the wall to the centre, along the wall's inward normal
-      const double dist = side == 0 ? x[i][axis] - lo : hi - x[i][axis];
+      const double dist = CYLINDER ? (side == 0 ? rho - lo : hi - rho)
+                                   : (side == 0 ? x[i][axis] - lo : hi - x[i][axis]);
       const double normal = side == 0 ? 1.0 : -1.0;
       const bool in_contact = dist < radius[i];
+      // the inward normal's components (a cylinder's: radial, in contact rho > 0)
+      double n[3] = {0.0, 0.0, 0.0};
+      if (CYLINDER && in_contact && rho > 0.0) {
+        n[0] = normal * x[i][0] / rho;
+        n[1] = normal * x[i][1] / rho;
+      }
+      const double vn = CYLINDER ? n[0] * v[i][0] + n[1] * v[i][1] : normal * v[i][axis];
       const granmn::ContactLayout &layout = layouts[side];
       double *row = history[i];
       if (events) {
         double &touching = row[layout.touching];
         if (in_contact) {
           const bool began = touching == 0.0;
-          events->update_record(row + layout.record, began, radius[i] - dist,
-                                normal * v[i][axis]);
+          events->update_record(row + layout.record, began, radius[i] - dist, vn);
           touching = 1.0;
           if (began || events->reports_every_contact()) events->boundary_touching(i, began);
         } else if (touching != 0.0) {
           touching = 0.0;
-          events->boundary_ended(i, row + layout.record, normal * v[i][axis]);
+          events->boundary_ended(i, row + layout.record, vn);
         }
       }
       double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
@@ -224,11 +250,13 @@ template <int DIM> void FixWallGranMN::post_force_loop()
         continue;
       }
       if (dist <= 0.0)
-        error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the wall at {} "
+        error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the {} at {} "
                           "(time step too large for the contact stiffness?)",
-                   atom->tag[i], side == 0 ? lo : hi);
-      const double d[3] = {axis == 0 ? normal * dist : 0.0, axis == 1 ? normal * dist : 0.0,
-                           axis == 2 ? normal * dist : 0.0};
+                   atom->tag[i], CYLINDER ? "zcylinder of radius" : "wall",
+                   side == 0 ? lo : hi);
+      const double d[3] = {CYLINDER ? n[0] * dist : axis == 0 ? normal * dist : 0.0,
+                           CYLINDER ? n[1] * dist : axis == 1 ? normal * dist : 0.0,
+                           CYLINDER ? 0.0 : axis == 2 ? normal * dist : 0.0};
       const double lever[3] = {radius[i] * omega[i][0], radius[i] * omega[i][1],
                                radius[i] * omega[i][2]};
       const auto kin = mn::kinematics(mn::Dim<DIM>(), d, dist, radius[i], v[i], lever);

@@ -1,6 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   fix wall/gran/mn: flat walls with the boundary rule of the gran/mn law (2D: xplane,
-   yplane; 3D: also zplane).
+   fix wall/gran/mn: flat and cylindrical walls with the boundary rule of the gran/mn law (2D:
+   xplane, yplane, zcylinder; 3D: also zplane).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_WALL_GRAN_MN_H
@@ -28,8 +28,9 @@ class FixWallGranMN : public FixPerAtomState, public granmn::HeldContacts {
   int contacts_held(int i) const override;
 
  private:
-  int axis;                   // 0: xplane, 1: yplane, 2: zplane (dimension 3)
-  double lo, hi;              // wall positions; only those flagged exist
+  static constexpr int ZCYLINDER = 3;
+  int axis;                   // 0: xplane, 1: yplane, 2: zplane (dimension 3), ZCYLINDER
+  double lo, hi;              // wall positions (a zcylinder's radii); only those flagged exist
   bool has_lo, has_hi;
   // Law keywords given on the fix line; what is not given comes from pair_style gran/mn.
   granmn::LawArguments parsed;
@@ -45,7 +46,7 @@ class FixWallGranMN : public FixPerAtomState, public granmn::HeldContacts {
   bool force_reduced;
 
   void resolve_law();
-  template <int DIM> void post_force_loop();
+  template <int DIM, bool CYLINDER> void post_force_loop();
 };
 
 }    // namespace LAMMPS_NS

@@ -78,8 +78,9 @@ ERRORS = {
                                           "zplane needs dimension 3"),
     "wall fix unknown wall style in three dimensions": (
         deck(dimension="dimension 3", z="-3 3",
-             fix="fix floor all wall/gran/mn zcylinder 0.0 NULL"),
-        "unknown wall style zcylinder (expected xplane, yplane or zplane; planes only)"),
+             fix="fix floor all wall/gran/mn xcylinder 0.0 NULL"),
+        "unknown wall style xcylinder (expected xplane, yplane, zplane or zcylinder; other "
+        "shapes: fix wall/gran/region/mn)"),
     "ghost velocities off": (deck(comm="comm_modify vel no"),
                              "requires ghost atoms store velocity"),
     "time step above stability limit": (deck(timestep="timestep 0.003"),
@@ -88,8 +89,20 @@ ERRORS = {
         deck(pair="pair_style zero 1.0", coeff="pair_coeff * *",
              fix="fix floor all wall/gran/mn yplane 0.0 NULL"),
         "takes its kn, e, beta, mu from pair_style gran/mn"),
-    "wall fix unknown wall style": (deck(fix="fix floor all wall/gran/mn zcylinder 0.0 NULL"),
-                                    "unknown wall style zcylinder (expected xplane or yplane"),
+    "wall fix unknown wall style": (deck(fix="fix floor all wall/gran/mn xcylinder 0.0 NULL"),
+                                    "unknown wall style xcylinder (expected xplane, yplane or "
+                                    "zcylinder"),
+    "zcylinder of radius zero": (
+        deck(boundary="f f p", fix="fix drum all wall/gran/mn zcylinder NULL 0"),
+        "zcylinder radii must be positive (inner NULL, outer 0)"),
+    # the walls are about x = y = 0: a box beside it has them nowhere near its atoms
+    "zcylinder whose axis is outside the box": (
+        deck(boundary="f f p", fix="change_box all x final 1 5 units box\n"
+                                   "fix drum all wall/gran/mn zcylinder NULL 4"),
+        "the zcylinder's axis (x = y = 0) lies outside the box (x from 1 to 5)"),
+    "zcylinder in a periodic dimension": (
+        deck(fix="fix drum all wall/gran/mn zcylinder NULL 2.5"),
+        "Fix wall/gran/mn: cannot use wall in periodic dimension x"),
     "wall fix unknown keyword": (deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL shear 1"),
                                  "unknown keyword shear"),
     "wall fix walls in wrong order": (deck(fix="fix floor all wall/gran/mn yplane 2.0 1.0"),
@@ -97,7 +110,7 @@ ERRORS = {
     "wall fix without walls": (deck(fix="fix floor all wall/gran/mn yplane NULL NULL"),
                                "both walls are NULL"),
     "wall fix too few arguments": (deck(fix="fix floor all wall/gran/mn yplane 0.0"),
-                                   "expected xplane|yplane lo hi"),
+                                   "expected xplane|yplane|zcylinder lo hi"),
     "wall fix bad restitution": (deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL e 2"),
                                  "e must lie in (0,1]"),
     "wall fix stiffer than time step allows": (
