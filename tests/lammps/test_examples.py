@@ -109,3 +109,19 @@ def test_drum_turning_lifts_its_pile_up_the_rising_side(tmp_path):
     assert turning[3] == still[3] > 100
     assert abs(still[0]) < 0.02 * radius
     assert turning[0] < -0.05 * radius
+
+
+def test_granregion_funnel_holds_its_spheres_then_runs_them_out(tmp_path):
+    """examples/granregion/in.granregion.funnel.mn with 200 spheres and short stages: poured
+    into the funnel (a union of an open cone and a cylinder closed at its bottom, z = 0), none
+    gets below the bottom or out of the box while it is closed; opened (the cylinder defined
+    again with both ends open), most run out through it. A wall that let spheres through its
+    cone or its closed bottom would show them below z = 0 in the first count; one that
+    counted an open face as a wall would hold them in the second."""
+    run = run_example("granregion/in.granregion.funnel.mn", tmp_path, particles=200,
+                      pour_steps=2000, settle_steps=60000, discharge_steps=40000)
+    settled, discharged = run.result("settled"), run.result("discharged")
+    print(f"settled: {settled[0]:.0f} spheres, {settled[1]:.0f} below the bottom; discharged: "
+          f"{discharged[1]:.0f} below")
+    assert settled == [200, 0]
+    assert discharged[0] == 200 and discharged[1] > 100
