@@ -220,7 +220,7 @@ write_data start.data
 """
 
 
-def drum_run(workdir, start, nprocs=1, restart_from=None, mu=0.5):
+def drum_run(workdir, start, nprocs=1, restart_from=None, mu=0.5, newton="on"):
     """The spheres of DRUM_PILE in a cylinder region (axis x, periodic in x) with gravity
     tilted along the axis and across it: they fall onto the curved wall, slide and roll along
     it; 1000 steps, a restart file, 1000 more (or the second half from a restart file)."""
@@ -237,7 +237,7 @@ thermo 0
         body = (f"read_restart {restart_from}\nneighbor 0.1 bin\ncomm_modify vel yes\n" + fixes
                 + "run 1000\n")
     else:
-        body = (f"processors * 1 1\nboundary p f f\nread_data {start}\n"
+        body = (f"newton {newton}\nprocessors * 1 1\nboundary p f f\nread_data {start}\n"
                 f"pair_style gran/mn kn {KN} e {E} beta {BETA} mu {mu}\npair_coeff * *\n"
                 + fixes + "run 1000\nwrite_restart mid.restart\nrun 1000\n")
     deck = HEADER_3D.replace("boundary p p p\n", "") + body + FINAL
@@ -251,9 +251,10 @@ def drum_state(run):
                            + [0.5 * a[c] / omega for c in ("omegax", "omegay", "omegaz")])
 
 
-def test_pile_in_a_cylinder_is_the_same_on_two_ranks_and_across_a_restart(tmp_path):
+def test_pile_in_a_cylinder_is_the_same_on_two_ranks_newton_off_and_across_a_restart(tmp_path):
     """u_t of each face in contact moves with its atom between ranks and comes back from a
-    restart file: two ranks (the atoms cross between them) give the serial pile to rounding
+    restart file: two ranks (the atoms cross between them), with newton on and off, give the
+    serial pile to rounding
     (1e-8 on positions and velocities in units of the contact's, as the plane wall's pile
     tests), and so does the second half run from the restart file. Frictionless, the pile is
     another (> 1e-3): the tolerance sees the history."""
@@ -262,14 +263,16 @@ def test_pile_in_a_cylinder_is_the_same_on_two_ranks_and_across_a_restart(tmp_pa
                        header=False).workdir / "start.data"
     serial = drum_run(tmp_path / "serial", start)
     ranks = drum_run(tmp_path / "ranks", start, nprocs=2)
+    newton_off = drum_run(tmp_path / "newton_off", start, nprocs=2, newton="off")
     resumed = drum_run(tmp_path / "resumed", start,
                        restart_from=serial.workdir / "mid.restart")
     reference = drum_state(serial)
     assert len(reference) > 20
     assert (reference[:, 1] ** 2 + reference[:, 2] ** 2).max() > 2.0 ** 2    # at the wall
-    difference = np.abs(drum_state(ranks) - reference).max()
-    print(f"two ranks: largest difference {difference:.1e}")
-    assert difference < 1e-8
+    for label, run in (("two ranks", ranks), ("two ranks, newton off", newton_off)):
+        difference = np.abs(drum_state(run) - reference).max()
+        print(f"{label}: largest difference {difference:.1e}")
+        assert difference < 1e-8
     difference = np.abs(drum_state(resumed) - reference).max()
     print(f"resumed: largest difference {difference:.1e}")
     assert difference < 1e-8
@@ -369,3 +372,38 @@ run {int(round(40 / dt))}
           f"{distance.min():.4f}-{distance.max():.4f} (rho {rho})")
     assert abs(orbit - 2 * rate / 7) < 0.01 * 2 * rate / 7
     assert np.abs(distance - rho).max() < 0.01 * rho
+
+
+def test_disk_rolls_down_a_region_floor_at_two_thirds_g_sin_theta(tmp_path):
+    """2D: a disk (I = m r^2/2) on the floor of a block region, gravity tilted by theta along
+    it: rolling without sliding (mu = 0.5 > tan(theta)/3) at a = g sin(theta)/(1 + 1/2) =
+    2/3 g sin(theta), within 0.5 % after the first time unit."""
+    g, sin_theta = 1.0, 0.2
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    deck = HEADER.format(plugin=PLUGIN).replace("boundary p p p\n", "") + f"""
+boundary p f p
+region box block 0 20 -1 5 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 10 {0.5 - g / KN!r} 0
+set atom 1 diameter 1.0 density {4 / np.pi!r}
+pair_style gran/mn kn {KN} e {E} beta {BETA} mu 0.5 coulomb_cutback
+pair_coeff * *
+fix integrate all nve/sphere disc
+region floor block INF INF -1 0 -0.5 0.5 side out units box
+fix w all wall/gran/region/mn floor
+fix down all gravity {g} vector 0 -1 0
+timestep {dt!r}
+thermo 0
+run {int(round(2 / dt))}
+unfix down
+fix down all gravity {g} vector {sin_theta!r} {-np.sqrt(1 - sin_theta ** 2)!r} 0
+variable t equal step*dt
+fix trace all print {int(round(0.05 / dt))} "$(v_t:%.15g) $(vx[1]:%.15g)" file trace.txt screen no
+run {int(round(5 / dt))}
+"""
+    trace = run_lammps(deck, tmp_path, header=False).table("trace.txt")
+    t, vx = trace[:, 0] - trace[0, 0], trace[:, 1]
+    late = t > 1.0
+    slope = np.polyfit(t[late], vx[late], 1)[0]
+    print(f"a = {slope:.6f}, 2/3 g sin theta = {2 / 3 * g * sin_theta:.6f}")
+    assert abs(slope - 2 / 3 * g * sin_theta) < 0.005 * 2 / 3 * g * sin_theta
