@@ -1,0 +1,80 @@
+#!/usr/bin/env python3
+"""The dynamic angle of repose of examples/drum's turning drums, from their log.lammps files:
+the tilt of the pile's centre of mass from below the axis, atan(-x_cm / -z_cm), which for a
+half-filled drum with a flat surface is the surface's angle. Averaged from a quarter turn
+after the drum starts (the pile has reached its steady tilt) to the end, with the standard
+error over four consecutive blocks (the angle swings with the avalanches, so single samples
+are not independent); a figure of the angle against time if asked.
+
+    scripts/drum_repose.py LOG [LOG ...] [--omega 0.1] [--start 20] [--figure drum.png]
+"""
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+
+BLOCKS = 4
+
+
+def thermo(path):
+    """The thermo rows of the drum decks' runs (columns Time, v_xcm, v_zcm) as arrays."""
+    rows, names, header = [], None, None
+    for line in Path(path).read_text().splitlines():
+        words = line.split()
+        if words[:2] == ["Step", "Time"]:
+            names = header = words
+            continue
+        if names and len(words) == len(names):
+            try:
+                rows.append([float(w) for w in words])
+            except ValueError:
+                names = None
+        elif names and words[:2] == ["Loop", "time"]:
+            names = None
+    if not rows:
+        raise SystemExit(f"drum_repose: {path}: no thermo rows with Step Time ... v_xcm v_zcm")
+    table = np.array(rows)
+    column = {n: k for k, n in enumerate(header)}
+    return table[:, column["Time"]], table[:, column["v_xcm"]], table[:, column["v_zcm"]]
+
+
+def repose(path, start, omega):
+    """(times, angles in degrees, mean, block standard error) of one log."""
+    t, x, z = thermo(path)
+    angle = np.degrees(np.arctan2(-x, -z))
+    steady = t >= start + 0.5 * np.pi / omega
+    blocks = [b.mean() for b in np.array_split(angle[steady], BLOCKS)]
+    return t, angle, float(np.mean(blocks)), float(np.std(blocks, ddof=1) / np.sqrt(BLOCKS))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("logs", nargs="+")
+    parser.add_argument("--omega", type=float, default=0.1, help="the drum's angular velocity")
+    parser.add_argument("--start", type=float, default=20.0, help="when the drum starts")
+    parser.add_argument("--figure")
+    args = parser.parse_args(argv)
+    results = {path: repose(path, args.start, args.omega) for path in args.logs}
+    for path, (_, _, mean, error) in results.items():
+        print(f"{path}: dynamic angle of repose {mean:.2f} +- {error:.2f} degrees")
+    if args.figure:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(7, 3.5))
+        for path, (t, angle, mean, error) in results.items():
+            ax.plot(t, angle, lw=1, label=f"{path}: {mean:.1f} +- {error:.1f} deg")
+        ax.axvline(args.start, color="k", lw=0.6, ls=":")
+        ax.set(xlabel="time", ylabel="tilt of the centre of mass (deg)",
+               title="half-filled drum, Omega = %g: the pile's tilt" % args.omega)
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+        fig.tight_layout()
+        fig.savefig(args.figure, dpi=100)
+        print(f"figure: {args.figure}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
