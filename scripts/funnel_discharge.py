@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""How many spheres have run out of examples/granregion's funnel, from the log.lammps files of
+in.granregion.funnel.mn and of LAMMPS's in.granregion.funnel with the same count added (thermo
+`v_below`, the spheres below the funnel's bottom z = 0): out = those below plus those gone
+from the box (`lost warn`), against the time since the bottom opened; a figure if asked.
+
+    scripts/funnel_discharge.py LOG [LOG ...] [--opened STEP] [--dt DT] [--figure funnel.png]
+"""
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+
+
+def discharge(path, opened, dt):
+    """(time since opening, spheres out) of one log's thermo rows (Step CPU Atoms KinEng
+    v_below) from the step the bottom opened on."""
+    rows, total = [], None
+    for line in Path(path).read_text().splitlines():
+        words = line.split()
+        if len(words) == 5 and words[0].isdigit():
+            try:
+                step, _, atoms, _, below = (float(w) for w in words)
+            except ValueError:
+                continue
+            total = total or atoms
+            if step >= opened:
+                rows.append((step, total - atoms + below))
+    if not rows:
+        raise SystemExit(f"funnel_discharge: {path}: no thermo rows from step {opened:g} on")
+    steps, out = np.array(sorted(dict(rows).items())).T
+    return (steps - opened) * dt, out
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("logs", nargs="+")
+    parser.add_argument("--opened", type=float, default=170000, help="the step the bottom opens")
+    parser.add_argument("--dt", type=float, default=1.0547660478914302e-04)
+    parser.add_argument("--figure")
+    args = parser.parse_args(argv)
+    curves = {path: discharge(path, args.opened, args.dt) for path in args.logs}
+    for path, (t, out) in curves.items():
+        marks = ", ".join(f"{out[np.argmin(np.abs(t - s))]:.0f} at {s:g} s"
+                          for s in (2.0, 5.0, 10.0) if t.max() >= s)
+        print(f"{path}: spheres out {marks}")
+    if args.figure:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6, 3.5))
+        for path, (t, out) in curves.items():
+            ax.plot(t, out, lw=1.2, label=path)
+        ax.set(xlabel="time since the bottom opened (s)", ylabel="spheres out",
+               title="funnel discharge")
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+        fig.tight_layout()
+        fig.savefig(args.figure, dpi=100)
+        print(f"figure: {args.figure}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
