@@ -13,7 +13,6 @@
 #include "granmn_compat.h"
 #include "granmn_run_checks.h"
 #include "modify.h"
-#include "pair.h"
 #include "update.h"
 
 #include <cmath>
@@ -91,20 +90,9 @@ int FixWallGranMN::setmask()
 // Material from the fix line where given, else from pair_style gran/mn.
 void FixWallGranMN::resolve_law()
 {
-  // asked of gran/mn alone: some styles' extract() fails on a name they do not know
-  Pair *pair = force->pair_match("gran/mn", 1);
-  int dim = 0;
-  const auto *pair_law =
-      pair ? static_cast<const mn::Law *>(pair->extract(granmn::LAW_EXTRACT_NAME, dim)) : nullptr;
-  if (!pair_law && !parsed.all_numbers_given())
-    error->all(FLERR, "Fix wall/gran/mn takes its kn, e, beta, mu from pair_style gran/mn: "
-                      "define that pair style first or give all four on the fix line");
-  law = granmn::law_from_arguments(lmp, "fix wall/gran/mn", parsed, pair_law);
-  own_law = !pair_law;
-  for (const granmn::LawKeyword &keyword : granmn::LAW_KEYWORDS)
-    own_law = own_law ||
-        (keyword.number ? law.material.*keyword.number != pair_law->material.*keyword.number
-                        : law.options.*keyword.option != pair_law->options.*keyword.option);
+  const granmn::WallLaw wall = granmn::wall_law(lmp, "wall/gran/mn", parsed);
+  law = wall.law;
+  own_law = wall.own;
 }
 
 void FixWallGranMN::init()

@@ -8,17 +8,20 @@
 
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "lammps.h"
+#include "pair.h"
 #include "utils.h"
 
 #include "mn_contact.h"
 
 #include <cstring>
+#include <string>
 
 namespace granmn {
 
 // The name under which pair_style gran/mn hands out its law through Pair::extract (a
-// const mn::Law *, dim 0; read only): fix wall/gran/mn takes what its line does not give.
+// const mn::Law *, dim 0; read only): the wall fixes take what their line does not give.
 constexpr const char *LAW_EXTRACT_NAME = "granmn_law";
 
 // The shape of inertia the law is derived for (mn::derive's q): the dimension decides it, as
@@ -110,6 +113,31 @@ inline mn::Law law_from_arguments(LAMMPS_NS::LAMMPS *lmp, const char *command,
       lmp->error->all(FLERR, "Illegal {} command: {} must be given", command, keyword.name);
   }
   return checked_law(lmp, command, material, options, dimension_q(lmp));
+}
+
+// A wall fix's law: the keywords its line gives, the rest from pair_style gran/mn; `own`:
+// it is not exactly the pair style's (the fix then checks the time step against it itself).
+struct WallLaw {
+  mn::Law law;
+  bool own;
+};
+inline WallLaw wall_law(LAMMPS_NS::LAMMPS *lmp, const char *style, const LawArguments &parsed)
+{
+  // asked of gran/mn alone: some styles' extract() fails on a name they do not know
+  LAMMPS_NS::Pair *pair = lmp->force->pair_match("gran/mn", 1);
+  int dim = 0;
+  const auto *pair_law =
+      pair ? static_cast<const mn::Law *>(pair->extract(LAW_EXTRACT_NAME, dim)) : nullptr;
+  if (!pair_law && !parsed.all_numbers_given())
+    lmp->error->all(FLERR, "Fix {} takes its kn, e, beta, mu from pair_style gran/mn: define "
+                           "that pair style first or give all four on the fix line", style);
+  const std::string command = std::string("fix ") + style;
+  WallLaw wall{law_from_arguments(lmp, command.c_str(), parsed, pair_law), !pair_law};
+  for (const LawKeyword &keyword : LAW_KEYWORDS)
+    wall.own = wall.own ||
+        (keyword.number ? wall.law.material.*keyword.number != pair_law->material.*keyword.number
+                        : wall.law.options.*keyword.option != pair_law->options.*keyword.option);
+  return wall;
 }
 
 }    // namespace granmn
