@@ -97,7 +97,8 @@ ERRORS = {
         "zcylinder radii must be positive (inner NULL, outer 0)"),
     # the walls are about x = y = 0: a box beside it has them nowhere near its atoms
     "zcylinder whose axis is outside the box": (
-        deck(boundary="f f p", fix="change_box all x final 1 5 units box\n"
+        deck(boundary="f f p", fix="displace_atoms all move 2.5 0 0 units box\n"
+                                   "change_box all x final 1 5 units box\n"
                                    "fix drum all wall/gran/mn zcylinder NULL 4"),
         "the zcylinder's axis (x = y = 0) lies outside the box (x from 1 to 5)"),
     "zcylinder in a periodic dimension": (
