@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""The poured pile of examples/pour/in.pour.mn (its `-var dump_poured 1` file) and of LAMMPS's
+in.pour run with the same dump: the solid fraction of the pile's bulk, and the kinetic
+energy's decay while it settles, from the runs' log.lammps (thermo's `ke`) if given.
+
+The bulk: the slab from 1.5 diameters above the floor to 2 below the pile's top (the height
+under which 99 % of the centres lie), the 20 x 20 periodic cross-section of the decks; its
+solid fraction counts the centres in it (an unbiased estimate for a homogeneous packing: each
+sphere's volume pi d^3/6 where its centre lies), with the spread over the slab's three equal
+layers as the error.
+
+    scripts/pour_packing.py DUMP [DUMP ...] [--logs LOG ...] [--figure pour.png]
+"""
+import argparse
+import sys
+
+import numpy as np
+
+AREA = 20.0 * 20.0
+
+
+def atoms(path):
+    lines = open(path).read().splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
+    names = lines[start].split()[2:]
+    data = np.loadtxt(lines[start + 1:], ndmin=2)
+    return {name: data[:, k] for k, name in enumerate(names)}
+
+
+def solid_fraction(path):
+    """(fraction, its error, the slab, the pile's top) of one dump."""
+    a = atoms(path)
+    z, d = a["z"], 2 * a["radius"]
+    top = np.quantile(z, 0.99)
+    low, high = 1.5 * d.mean(), top - 2.0 * d.mean()
+    edges = np.linspace(low, high, 4)
+    layers = [np.sum(np.pi / 6 * d[(z >= lo) & (z < hi)] ** 3) / (AREA * (hi - lo))
+              for lo, hi in zip(edges[:-1], edges[1:])]
+    return float(np.mean(layers)), float(np.std(layers, ddof=1) / np.sqrt(3)), (low, high), top
+
+
+def kinetic(path):
+    rows = []
+    for line in open(path):
+        words = line.split()
+        if len(words) == 5 and words[0].isdigit():
+            rows.append((float(words[0]), float(words[2])))
+    steps, ke = np.array(sorted(dict(rows).items())).T
+    return steps, ke
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("dumps", nargs="+")
+    parser.add_argument("--logs", nargs="*", default=[])
+    parser.add_argument("--figure")
+    args = parser.parse_args(argv)
+    for path in args.dumps:
+        phi, error, (low, high), top = solid_fraction(path)
+        print(f"{path}: solid fraction {phi:.4f} +- {error:.4f} in z = {low:.2f}-{high:.2f} "
+              f"(pile top {top:.2f})")
+    if args.figure and args.logs:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6, 3.5))
+        for path in args.logs:
+            steps, ke = kinetic(path)
+            settling = (steps <= 25000) & (ke > 0)
+            ax.semilogy(steps[settling], ke[settling], lw=1.2, label=path)
+        ax.set(xlabel="step", ylabel="kinetic energy (thermo ke)",
+               title="3D pour: pouring and settling")
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3, which="both")
+        fig.tight_layout()
+        fig.savefig(args.figure, dpi=100)
+        print(f"figure: {args.figure}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
