@@ -14,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+import example_figures
+
 BLOCKS = 4
 
 
@@ -59,20 +61,13 @@ def main(argv=None):
     for path, (_, _, mean, error) in results.items():
         print(f"{path}: dynamic angle of repose {mean:.2f} +- {error:.2f} degrees")
     if args.figure:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(7, 3.5))
+        fig, ax = example_figures.axes((7, 3.5))
         for path, (t, angle, mean, error) in results.items():
             ax.plot(t, angle, lw=1, label=f"{path}: {mean:.1f} +- {error:.1f} deg")
         ax.axvline(args.start, color="k", lw=0.6, ls=":")
         ax.set(xlabel="time", ylabel="tilt of the centre of mass (deg)",
                title="half-filled drum, Omega = %g: the pile's tilt" % args.omega)
-        ax.legend(fontsize=7)
-        ax.grid(alpha=0.3)
-        fig.tight_layout()
-        fig.savefig(args.figure, dpi=100)
-        print(f"figure: {args.figure}")
+        example_figures.save(fig, ax, args.figure)
     return 0
 
 

@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
+import example_figures
+
 
 def discharge(path, opened, dt):
     """(time since opening, spheres out) of one log's thermo rows (Step CPU Atoms KinEng
@@ -46,19 +48,12 @@ def main(argv=None):
                           for s in (2.0, 5.0, 10.0) if t.max() >= s)
         print(f"{path}: spheres out {marks}")
     if args.figure:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(6, 3.5))
+        fig, ax = example_figures.axes((6, 3.5))
         for path, (t, out) in curves.items():
             ax.plot(t, out, lw=1.2, label=path)
         ax.set(xlabel="time since the bottom opened (s)", ylabel="spheres out",
                title="funnel discharge")
-        ax.legend(fontsize=7)
-        ax.grid(alpha=0.3)
-        fig.tight_layout()
-        fig.savefig(args.figure, dpi=100)
-        print(f"figure: {args.figure}")
+        example_figures.save(fig, ax, args.figure)
     return 0
 
 

@@ -16,6 +16,8 @@ import sys
 
 import numpy as np
 
+import example_figures
+
 AREA = 20.0 * 20.0
 
 
@@ -60,21 +62,14 @@ def main(argv=None):
         print(f"{path}: solid fraction {phi:.4f} +- {error:.4f} in z = {low:.2f}-{high:.2f} "
               f"(pile top {top:.2f})")
     if args.figure and args.logs:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(6, 3.5))
+        fig, ax = example_figures.axes((6, 3.5))
         for path in args.logs:
             steps, ke = kinetic(path)
             settling = (steps <= 25000) & (ke > 0)
             ax.semilogy(steps[settling], ke[settling], lw=1.2, label=path)
         ax.set(xlabel="step", ylabel="kinetic energy (thermo ke)",
                title="3D pour: pouring and settling")
-        ax.legend(fontsize=7)
-        ax.grid(alpha=0.3, which="both")
-        fig.tight_layout()
-        fig.savefig(args.figure, dpi=100)
-        print(f"figure: {args.figure}")
+        example_figures.save(fig, ax, args.figure)
     return 0
 
 
