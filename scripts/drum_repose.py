@@ -10,40 +10,18 @@ are not independent); a figure of the angle against time if asked.
 """
 import argparse
 import sys
-from pathlib import Path
 
 import numpy as np
 
-import example_figures
+import example_runs
 
 BLOCKS = 4
 
 
-def thermo(path):
-    """The thermo rows of the drum decks' runs (columns Time, v_xcm, v_zcm) as arrays."""
-    rows, names, header = [], None, None
-    for line in Path(path).read_text().splitlines():
-        words = line.split()
-        if words[:2] == ["Step", "Time"]:
-            names = header = words
-            continue
-        if names and len(words) == len(names):
-            try:
-                rows.append([float(w) for w in words])
-            except ValueError:
-                names = None
-        elif names and words[:2] == ["Loop", "time"]:
-            names = None
-    if not rows:
-        raise SystemExit(f"drum_repose: {path}: no thermo rows with Step Time ... v_xcm v_zcm")
-    table = np.array(rows)
-    column = {n: k for k, n in enumerate(header)}
-    return table[:, column["Time"]], table[:, column["v_xcm"]], table[:, column["v_zcm"]]
-
-
 def repose(path, start, omega):
     """(times, angles in degrees, mean, block standard error) of one log."""
-    t, x, z = thermo(path)
+    rows = example_runs.thermo(path, ("Time", "v_xcm", "v_zcm"))
+    t, x, z = rows["Time"], rows["v_xcm"], rows["v_zcm"]
     angle = np.degrees(np.arctan2(-x, -z))
     steady = t >= start + 0.5 * np.pi / omega
     blocks = [b.mean() for b in np.array_split(angle[steady], BLOCKS)]
@@ -61,13 +39,13 @@ def main(argv=None):
     for path, (_, _, mean, error) in results.items():
         print(f"{path}: dynamic angle of repose {mean:.2f} +- {error:.2f} degrees")
     if args.figure:
-        fig, ax = example_figures.axes((7, 3.5))
+        fig, ax = example_runs.axes((7, 3.5))
         for path, (t, angle, mean, error) in results.items():
             ax.plot(t, angle, lw=1, label=f"{path}: {mean:.1f} +- {error:.1f} deg")
         ax.axvline(args.start, color="k", lw=0.6, ls=":")
         ax.set(xlabel="time", ylabel="tilt of the centre of mass (deg)",
                title="half-filled drum, Omega = %g: the pile's tilt" % args.omega)
-        example_figures.save(fig, ax, args.figure)
+        example_runs.save(fig, ax, args.figure)
     return 0
 
 

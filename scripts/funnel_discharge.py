@@ -8,31 +8,21 @@ from the box (`lost warn`), against the time since the bottom opened; a figure i
 """
 import argparse
 import sys
-from pathlib import Path
 
 import numpy as np
 
-import example_figures
+import example_runs
 
 
 def discharge(path, opened, dt):
-    """(time since opening, spheres out) of one log's thermo rows (Step CPU Atoms KinEng
-    v_below) from the step the bottom opened on."""
-    rows, total = [], None
-    for line in Path(path).read_text().splitlines():
-        words = line.split()
-        if len(words) == 5 and words[0].isdigit():
-            try:
-                step, _, atoms, _, below = (float(w) for w in words)
-            except ValueError:
-                continue
-            total = total or atoms
-            if step >= opened:
-                rows.append((step, total - atoms + below))
-    if not rows:
+    """(time since opening, spheres out) of one log's thermo rows (Step, Atoms, v_below) from
+    the step the bottom opened on."""
+    rows = example_runs.thermo(path, ("Step", "Atoms", "v_below"))
+    out = rows["Atoms"].max() - rows["Atoms"] + rows["v_below"]    # all poured, less those left
+    after = rows["Step"] >= opened
+    if not after.any():
         raise SystemExit(f"funnel_discharge: {path}: no thermo rows from step {opened:g} on")
-    steps, out = np.array(sorted(dict(rows).items())).T
-    return (steps - opened) * dt, out
+    return (rows["Step"][after] - opened) * dt, out[after]
 
 
 def main(argv=None):
@@ -48,12 +38,12 @@ def main(argv=None):
                           for s in (2.0, 5.0, 10.0) if t.max() >= s)
         print(f"{path}: spheres out {marks}")
     if args.figure:
-        fig, ax = example_figures.axes((6, 3.5))
+        fig, ax = example_runs.axes((6, 3.5))
         for path, (t, out) in curves.items():
             ax.plot(t, out, lw=1.2, label=path)
         ax.set(xlabel="time since the bottom opened (s)", ylabel="spheres out",
                title="funnel discharge")
-        example_figures.save(fig, ax, args.figure)
+        example_runs.save(fig, ax, args.figure)
     return 0
 
 

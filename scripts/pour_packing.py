@@ -16,22 +16,15 @@ import sys
 
 import numpy as np
 
-import example_figures
+import example_runs
+from postprocess.io import read_dump_atoms
 
 AREA = 20.0 * 20.0
 
 
-def atoms(path):
-    lines = open(path).read().splitlines()
-    start = next(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
-    names = lines[start].split()[2:]
-    data = np.loadtxt(lines[start + 1:], ndmin=2)
-    return {name: data[:, k] for k, name in enumerate(names)}
-
-
 def solid_fraction(path):
     """(fraction, its error, the slab, the pile's top) of one dump."""
-    a = atoms(path)
+    a = read_dump_atoms(path, ("z", "radius"))
     z, d = a["z"], 2 * a["radius"]
     top = np.quantile(z, 0.99)
     low, high = 1.5 * d.mean(), top - 2.0 * d.mean()
@@ -39,16 +32,6 @@ def solid_fraction(path):
     layers = [np.sum(np.pi / 6 * d[(z >= lo) & (z < hi)] ** 3) / (AREA * (hi - lo))
               for lo, hi in zip(edges[:-1], edges[1:])]
     return float(np.mean(layers)), float(np.std(layers, ddof=1) / np.sqrt(3)), (low, high), top
-
-
-def kinetic(path):
-    rows = []
-    for line in open(path):
-        words = line.split()
-        if len(words) == 5 and words[0].isdigit():
-            rows.append((float(words[0]), float(words[2])))
-    steps, ke = np.array(sorted(dict(rows).items())).T
-    return steps, ke
 
 
 def main(argv=None):
@@ -62,14 +45,15 @@ def main(argv=None):
         print(f"{path}: solid fraction {phi:.4f} +- {error:.4f} in z = {low:.2f}-{high:.2f} "
               f"(pile top {top:.2f})")
     if args.figure and args.logs:
-        fig, ax = example_figures.axes((6, 3.5))
+        fig, ax = example_runs.axes((6, 3.5))
         for path in args.logs:
-            steps, ke = kinetic(path)
+            rows = example_runs.thermo(path, ("Step", "KinEng"))
+            steps, ke = rows["Step"], rows["KinEng"]
             settling = (steps <= 25000) & (ke > 0)
             ax.semilogy(steps[settling], ke[settling], lw=1.2, label=path)
         ax.set(xlabel="step", ylabel="kinetic energy (thermo ke)",
                title="3D pour: pouring and settling")
-        example_figures.save(fig, ax, args.figure)
+        example_runs.save(fig, ax, args.figure)
     return 0
 
 
