@@ -1,18 +1,21 @@
 #!/usr/bin/env bash
-# Prints the path of an unpacked LAMMPS source tree from Debian's archive, fetching it with
-# `apt-get source` into a cache directory on first use.
-# Usage: get-lammps-source.sh CACHE_DIR [debian12|2025|2026]
+# Prints the path of an unpacked LAMMPS or LIGGGHTS source tree from Debian's archive, fetching
+# it with `apt-get source` into a cache directory on first use.
+# Usage: get-debian-source.sh CACHE_DIR [debian12|2025|2026|liggghts]
 #   debian12 (default): the LAMMPS Debian 12 packages (20220106, "29 Sep 2021 - Update 2")
 #   2025:               the LAMMPS of Debian's trixie suite (20250204, "4 Feb 2025")
 #   2026:               the LAMMPS of Debian's sid suite (20260704, "4 Jul 2026")
+#   liggghts:           Debian 12's LIGGGHTS (3.8.0+repack1)
 set -euo pipefail
-cache=${1:?usage: get-lammps-source.sh CACHE_DIR [debian12|2025|2026]}
+cache=${1:?usage: get-debian-source.sh CACHE_DIR [debian12|2025|2026|liggghts]}
 generation=${2:-debian12}
+package=lammps
 case $generation in
   debian12) tree="$cache/lammps-src"; suite=""; version=20220106 ;;
   2025)     tree="$cache/lammps-2025-src"; suite=trixie; version=20250204 ;;
   2026)     tree="$cache/lammps-2026-src"; suite=sid; version=20260704 ;;
-  *) echo "get-lammps-source.sh: unknown LAMMPS generation '$generation' (debian12, 2025 or 2026)" >&2
+  liggghts) tree="$cache/liggghts-src"; suite=""; version=3.8.0; package=liggghts ;;
+  *) echo "get-debian-source.sh: unknown source '$generation' (debian12, 2025, 2026 or liggghts)" >&2
      exit 2 ;;
 esac
 if [ -f "$tree/.unpacked" ]; then echo "$tree"; exit 0; fi
@@ -39,7 +42,7 @@ deb_src_entry() {  # $1: suite to name instead of the listed ones ("" keeps them
 }
 # The Debian revision of the wanted upstream version.
 source_version() {
-  apt-cache showsrc lammps 2>/dev/null | awk -v v="$version" '/^Version: / && index($2, v) == 1 {
+  apt-cache showsrc "$package" 2>/dev/null | awk -v v="$version" '/^Version: / && index($2, v) == 1 {
     print $2; exit }'
 }
 src_list=/etc/apt/sources.list.d/granmn-${suite:-deb}-src.sources
@@ -52,20 +55,22 @@ fi
 mkdir -p "$cache"
 work=$(mktemp -d "$cache/fetch.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-# Debian's patches only touch packaging (potential paths, docs), so where the archive serves
-# the tarballs but not the .dsc (as it does for trixie and sid) the upstream tarball is the same
-# tree.
-(cd "$work" && { apt-get source --download-only "lammps=$(source_version)" >&2 || true; }
- if ls ./*.dsc >/dev/null 2>&1; then
-   dpkg-source -x ./*.dsc src >&2
+# Debian's patches to LAMMPS only touch packaging (potential paths, docs), so where the archive
+# serves the tarballs but not the .dsc (as it does for trixie and sid) the upstream tarball is the
+# same tree. For LIGGGHTS the archive serves the .dsc and the upstream tarball but not Debian's
+# patches (dpkg-source fails); what the project needs of them (building with this compiler) is in
+# plugin/liggghts/.
+(cd "$work" && { apt-get source --download-only "$package=$(source_version)" >&2 || true; }
+ if ls ./*.dsc >/dev/null 2>&1 && dpkg-source -x ./*.dsc src >&2; then
+   :
  elif ls ./*.orig.tar.* >/dev/null 2>&1; then
-   echo "get-lammps-source.sh: no .dsc from the archive (apt-get's error above): unpacking the upstream tarball" >&2
+   echo "get-debian-source.sh: no Debian source package from the archive (the error above): unpacking the upstream tarball" >&2
    # trixie's tarball holds one top directory, sid's (20260704) the tree itself
-   mkdir unpacked && tar -xf ./*.orig.tar.* -C unpacked
+   rm -rf src && mkdir unpacked && tar -xf ./*.orig.tar.* -C unpacked
    top=(unpacked/*)
    if [ ${#top[@]} -eq 1 ] && [ -d "${top[0]}" ]; then mv "${top[0]}" src; else mv unpacked src; fi
  else
-   echo "get-lammps-source.sh: apt-get source fetched no LAMMPS source" >&2; exit 1
+   echo "get-debian-source.sh: apt-get source fetched no $package source" >&2; exit 1
  fi)
 rm -rf "$tree"
 mv "$work/src" "$tree"
