@@ -179,24 +179,25 @@ inline void advance_tangential_displacement(Integrator integrator, double vt, do
   if (vt_previous) *vt_previous = vt;
 }
 
-// Force of one contact. force_scale turns the law's accelerations into forces: the contact's
-// mass scale, in units where force = mass x acceleration (in LAMMPS's, divided by ftm2v).
-// ut is the tangential displacement of this contact (nullptr when mu = 0: no friction, no
-// history). It is advanced first over dt_history (0 when forces are only re-evaluated, as in
-// LAMMPS's setup) by the integrator's rule; Adams-Bashforth 2 needs vt_previous (see
-// advance_tangential_displacement), velocity Verlet none.
-inline Force contact_force(const Law &law, double force_scale, const Kinematics &k, double *ut,
-                           double dt_history,
-                           Integrator integrator = Integrator::VelocityVerlet,
-                           double *vt_previous = nullptr)
+// The normal force of a contact in either dimension (Kinematics or Kinematics3): spring and
+// dashpot on the overlap, along n, positive = repulsive; force_scale as in contact_force.
+template <class ContactKinematics>
+inline double normal_force(const Law &law, double force_scale, const ContactKinematics &k)
+{
+  const double fn = force_scale * (law.material.kn * k.delta - law.eta_n * k.vn);
+  return law.options.limit_damping && fn < 0.0 ? 0.0 : fn;
+}
+
+// The tangential part of contact_force for a contact whose normal force is fn (it sets the
+// Coulomb cap): ut advanced, then the force capped. For a host that computes the two parts in
+// separate places (LIGGGHTS's normal and tangential models); the result's fn is fn.
+inline Force tangential_force(const Law &law, double force_scale, const Kinematics &k, double fn,
+                              double *ut, double dt_history, Integrator integrator,
+                              double *vt_previous)
 {
   Force f;
-  f.fn = force_scale * (law.material.kn * k.delta - law.eta_n * k.vn);
-  if (law.options.limit_damping && f.fn < 0.0) f.fn = 0.0;
-  f.ft = 0.0;
+  f.fn = fn;
   f.sliding = false;
-  if (!ut) return f;
-
   advance_tangential_displacement(integrator, k.vt, dt_history, ut, vt_previous);
   const double trial = -force_scale * (law.kt * (*ut) + law.eta_t * k.vt);
   const double cap = law.material.mu * std::fabs(f.fn);
@@ -209,6 +210,22 @@ inline Force contact_force(const Law &law, double force_scale, const Kinematics 
     f.ft = trial;
   }
   return f;
+}
+
+// Force of one contact. force_scale turns the law's accelerations into forces: the contact's
+// mass scale, in units where force = mass x acceleration (in LAMMPS's, divided by ftm2v).
+// ut is the tangential displacement of this contact (nullptr when mu = 0: no friction, no
+// history). It is advanced first over dt_history (0 when forces are only re-evaluated, as in
+// LAMMPS's setup) by the integrator's rule; Adams-Bashforth 2 needs vt_previous (see
+// advance_tangential_displacement), velocity Verlet none.
+inline Force contact_force(const Law &law, double force_scale, const Kinematics &k, double *ut,
+                           double dt_history,
+                           Integrator integrator = Integrator::VelocityVerlet,
+                           double *vt_previous = nullptr)
+{
+  const double fn = normal_force(law, force_scale, k);
+  if (!ut) return {fn, 0.0, false};
+  return tangential_force(law, force_scale, k, fn, ut, dt_history, integrator, vt_previous);
 }
 
 // The contact's force on i in Cartesian components (fn along n, ft along t), and the torque
@@ -282,22 +299,14 @@ struct Force3 {
   bool sliding;   // the Coulomb cap was active
 };
 
-// Force of one contact in 3D, as contact_force in 2D: ut (3 values; nullptr when mu = 0) is
-// first turned into the current tangent plane and advanced by u_t += v_t dt (velocity Verlet's
-// midpoint rule; Adams-Bashforth 2 is a 2D integrator here), both only when dt_history > 0 (a
-// re-evaluation, as in LAMMPS's setup, leaves u_t as it is, so that it gives the last step's
-// force again). The trial force -scale (k_t u_t + eta_t v_t) is capped at mu |fn| in
-// magnitude; with coulomb_cutback u_t is then set so that the trial force is the capped one.
-inline Force3 contact_force3(const Law &law, double force_scale, const Kinematics3 &k, double *ut,
-                             double dt_history)
+// The tangential part of contact_force3 for a contact whose normal force is fn, as
+// tangential_force in 2D; the result's fn is fn.
+inline Force3 tangential_force3(const Law &law, double force_scale, const Kinematics3 &k,
+                                double fn, double *ut, double dt_history)
 {
   Force3 f;
-  f.fn = force_scale * (law.material.kn * k.delta - law.eta_n * k.vn);
-  if (law.options.limit_damping && f.fn < 0.0) f.fn = 0.0;
-  f.ft[0] = f.ft[1] = f.ft[2] = 0.0;
+  f.fn = fn;
   f.sliding = false;
-  if (!ut) return f;
-
   if (dt_history > 0.0) {
     rotate_into_tangent_plane(k.n, ut);
     for (int c = 0; c < 3; c++) ut[c] += k.vt[c] * dt_history;
@@ -317,6 +326,20 @@ inline Force3 contact_force3(const Law &law, double force_scale, const Kinematic
     for (int c = 0; c < 3; c++) f.ft[c] = trial[c];
   }
   return f;
+}
+
+// Force of one contact in 3D, as contact_force in 2D: ut (3 values; nullptr when mu = 0) is
+// first turned into the current tangent plane and advanced by u_t += v_t dt (velocity Verlet's
+// midpoint rule; Adams-Bashforth 2 is a 2D integrator here), both only when dt_history > 0 (a
+// re-evaluation, as in LAMMPS's setup, leaves u_t as it is, so that it gives the last step's
+// force again). The trial force -scale (k_t u_t + eta_t v_t) is capped at mu |fn| in
+// magnitude; with coulomb_cutback u_t is then set so that the trial force is the capped one.
+inline Force3 contact_force3(const Law &law, double force_scale, const Kinematics3 &k, double *ut,
+                             double dt_history)
+{
+  const double fn = normal_force(law, force_scale, k);
+  if (!ut) return {fn, {0.0, 0.0, 0.0}, false};
+  return tangential_force3(law, force_scale, k, fn, ut, dt_history);
 }
 
 // The contact's force on i in Cartesian components.
