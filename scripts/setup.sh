@@ -2,7 +2,7 @@
 # Installs what the project needs from Debian's archive. Idempotent and quiet when all is present.
 set -euo pipefail
 
-packages=(cmake g++ make dpkg-dev libopenmpi-dev openmpi-bin libgtest-dev
+packages=(cmake g++ make ccache patch dpkg-dev libopenmpi-dev openmpi-bin libgtest-dev
           python3-numpy python3-matplotlib python3-pytest liggghts yade)
 
 missing=()

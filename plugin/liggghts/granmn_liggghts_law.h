@@ -1,0 +1,159 @@
+// What LIGGGHTS's normal model `mn` and tangential model `mn` share (docs/liggghts.md): the law
+// per pair of atom types from LIGGGHTS's property/global values, a contact's mass scale and
+// kinematics from LIGGGHTS's contact data, and the check that the two models go together. The
+// law itself (mapping and force) is mn_contact.h's, the same header the LAMMPS styles use.
+#ifndef GRANMN_LIGGGHTS_LAW_H
+#define GRANMN_LIGGGHTS_LAW_H
+
+#include <cstring>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "contact_interface.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_wall_gran.h"
+#include "force.h"
+#include "global_properties.h"
+#include "mn_contact.h"
+#include "modify.h"
+#include "pair_gran.h"
+#include "property_registry.h"
+
+namespace granmn_liggghts {
+
+// The property/global (peratomtypepair) names of the law's four parameters. e and mu are
+// LIGGGHTS's own names for them; k_n (per unit mass scale, not LIGGGHTS's absolute kn) and beta
+// have names of their own.
+constexpr const char *NORMAL_STIFFNESS = "normalStiffnessPerMass";
+constexpr const char *RESTITUTION = "coefficientRestitution";
+constexpr const char *TANGENTIAL_RESTITUTION = "coefficientTangentialRestitution";
+constexpr const char *FRICTION = "coefficientFriction";
+
+// The values as given: the law checks them itself (mn::material_error), for e over all of
+// (0,1] where LIGGGHTS's own reader of coefficientRestitution refuses e <= 0.05.
+template <const char *const *NAME>
+MatrixProperty *create_parameter(PropertyRegistry &registry, const char *caller, bool)
+{
+  return MODEL_PARAMS::createPerTypePairProperty(registry, *NAME, caller);
+}
+
+// The laws of all pairs of atom types (1..max_type, walls' types included), derived from the
+// property/global values at each run's init, for the particles' shape of inertia: LIGGGHTS's
+// nve/sphere integrates solid spheres in 3D and discs in 2D (its I = m r^2/2 there).
+class LawTable {
+ public:
+  void derive(LAMMPS_NS::LAMMPS *lmp, PropertyRegistry &registry, const mn::Options &options,
+              const char *caller)
+  {
+    registry.registerProperty(NORMAL_STIFFNESS, &create_parameter<&NORMAL_STIFFNESS>);
+    registry.registerProperty(RESTITUTION, &create_parameter<&RESTITUTION>);
+    registry.registerProperty(TANGENTIAL_RESTITUTION, &create_parameter<&TANGENTIAL_RESTITUTION>);
+    registry.registerProperty(FRICTION, &create_parameter<&FRICTION>);
+    double **kn = nullptr, **e = nullptr, **beta = nullptr, **mu = nullptr;
+    registry.connect(NORMAL_STIFFNESS, kn, caller);
+    registry.connect(RESTITUTION, e, caller);
+    registry.connect(TANGENTIAL_RESTITUTION, beta, caller);
+    registry.connect(FRICTION, mu, caller);
+
+    const double q = lmp->domain->dimension == 2 ? mn::DISC_Q : mn::SOLID_SPHERE_Q;
+    stride = registry.max_type() + 1;
+    laws.assign(stride * stride, mn::Law());
+    // (fix property/global has made sure that each matrix is symmetric)
+    for (int i = 1; i < stride; i++)
+      for (int j = 1; j < stride; j++) {
+        const mn::Material material{kn[i][j], e[i][j], beta[i][j], mu[i][j]};
+        const char *wrong = mn::material_error(material);
+        const mn::Law law = mn::derive(material, options, q);
+        if (!wrong) wrong = mn::law_error(law);
+        if (wrong) {
+          const std::string message = std::string(caller) + ": for atom types " +
+              std::to_string(i) + " and " + std::to_string(j) + ": " + wrong + " (kn: " +
+              NORMAL_STIFFNESS + ", e: " + RESTITUTION + ", beta: " + TANGENTIAL_RESTITUTION +
+              ", mu: " + FRICTION + ")";
+          lmp->error->all(FLERR, message.c_str());
+        }
+        laws[i * stride + j] = law;
+      }
+    force_per_mass_acceleration = 1.0 / lmp->force->ftm2v;
+  }
+
+  const mn::Law &operator()(int itype, int jtype) const { return laws[itype * stride + jtype]; }
+
+  // Turns the law's mass x acceleration into LIGGGHTS's force units (as the LAMMPS styles do).
+  double force_per_mass_acceleration = 1.0;
+
+ private:
+  int stride = 0;
+  std::vector<mn::Law> laws;
+};
+
+// A contact's mass scale (docs/model.md section 2): against a wall the particle's own mass (m_i,
+// LIGGGHTS's meff there); against a particle in fix freeze's group the mobile one's mass, which
+// is LIGGGHTS's meff then (pair_gran_base.h sets meff to the other particle's mass, never equal
+// to it otherwise: m_i m_j/(m_i + m_j) < min(m_i, m_j)); else 2M of the two masses.
+inline double mass_scale(const LIGGGHTS::ContactModels::SurfacesIntersectData &contact)
+{
+  if (contact.is_wall || contact.meff == contact.mi || contact.meff == contact.mj)
+    return mn::boundary_mass_scale(contact.meff);
+  return mn::pair_mass_scale(contact.mi, contact.mj);
+}
+
+// The contact's kinematics as the LAMMPS styles compute them: n from the partner to i, the
+// full radii as lever arms (LIGGGHTS's own models use the radii less half the overlap), from the
+// same centre distance LIGGGHTS found (delta = x_i - x_j, or from the wall's contact point to
+// the centre; radsum = r_i + r_j, or r_i against a wall).
+template <int DIM>
+using Kinematics = typename std::conditional<DIM == 2, mn::Kinematics, mn::Kinematics3>::type;
+
+template <int DIM>
+inline Kinematics<DIM> kinematics(const LIGGGHTS::ContactModels::SurfacesIntersectData &contact)
+{
+  const double *vi = contact.v_i, *vj = contact.v_j, *wi = contact.omega_i;
+  const double dv[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
+  double lever[3];
+  if (contact.is_wall) {
+    for (int c = 0; c < 3; c++) lever[c] = contact.radi * wi[c];
+  } else {
+    const double *wj = contact.omega_j;
+    for (int c = 0; c < 3; c++) lever[c] = contact.radi * wi[c] + contact.radj * wj[c];
+  }
+  return mn::kinematics(mn::Dim<DIM>(), contact.delta, contact.r, contact.radsum, dv, lever);
+}
+
+// `model mn` and `tangential mn` are one law: every pair style or wall that names one must name
+// the other, with neither cohesion nor rolling friction (their forces would change the
+// restitution and contact time the law is derived to keep).
+inline void check_combination(LAMMPS_NS::LAMMPS *lmp)
+{
+  auto check = [lmp](const std::string &owner, bool normal, bool tangential, bool cohesion_off,
+                     bool rolling_off) {
+    std::string wrong;
+    if (normal && !tangential)
+      wrong = "model mn needs tangential mn";
+    else if (tangential && !normal)
+      wrong = "tangential mn needs model mn";
+    else if (normal && !cohesion_off)
+      wrong = "model mn takes no cohesion model";
+    else if (normal && !rolling_off)
+      wrong = "model mn takes no rolling_friction model";
+    if (!wrong.empty()) lmp->error->all(FLERR, (owner + ": " + wrong).c_str());
+  };
+  LAMMPS_NS::Pair *pair = lmp->force->pair_match("gran", 0);
+  if (auto *gran = dynamic_cast<LAMMPS_NS::PairGran *>(pair))
+    check("pair_style gran", gran->contact_match("normal", "mn"),
+          gran->contact_match("tangential", "mn"), gran->contact_match("cohesion", "off"),
+          gran->contact_match("rolling_friction", "off"));
+  for (int f = 0; f < lmp->modify->nfix; f++) {
+    auto *wall = dynamic_cast<LAMMPS_NS::FixWallGran *>(lmp->modify->fix[f]);
+    if (!wall) continue;
+    check(std::string("fix ") + wall->id + " wall/gran", wall->contact_match("normal", "mn"),
+          wall->contact_match("tangential", "mn"), wall->contact_match("cohesion", "off"),
+          wall->contact_match("rolling_friction", "off"));
+  }
+}
+
+}    // namespace granmn_liggghts
+
+#endif

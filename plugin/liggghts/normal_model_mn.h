@@ -1,0 +1,76 @@
+/* LIGGGHTS 3.8 normal model `mn`: the normal force of the Mitarai-Nakanishi linear
+   spring-dashpot law (Phys. Rev. E 67, 021301 (2003)), with tangential model `mn`
+   (docs/liggghts.md). The force is mn_contact.h's, as in the LAMMPS pair style gran/mn:
+   fn = 2M (k_n delta - eta_n v_n), 2M -> m_i against walls and frozen particles.
+   Setting: limit_damping on|off (off): clamp fn at zero. */
+#ifdef NORMAL_MODEL
+NORMAL_MODEL(MN,mn,20)
+#else
+#ifndef NORMAL_MODEL_MN_H_
+#define NORMAL_MODEL_MN_H_
+#include "contact_models.h"
+#include "granmn_liggghts_law.h"
+#include "normal_model_base.h"
+
+namespace LIGGGHTS {
+namespace ContactModels {
+
+template <>
+class NormalModel<MN> : public NormalModelBase {
+ public:
+  NormalModel(LAMMPS *lmp, IContactHistorySetup *hsetup, class ContactModelBase *c)
+      : NormalModelBase(lmp, hsetup, c)
+  {
+  }
+
+  void registerSettings(Settings &settings)
+  {
+    settings.registerOnOff("limit_damping", options.limit_damping, false);
+  }
+
+  void postSettings(IContactHistorySetup *, ContactModelBase *) {}
+
+  void connectToProperties(PropertyRegistry &registry)
+  {
+    granmn_liggghts::check_combination(lmp);
+    laws.derive(lmp, registry, options, "model mn");
+    two_d = domain->dimension == 2;
+  }
+
+  double stressStrainExponent() { return 1.0; }
+
+  void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces, ForceData &j_forces)
+  {
+    if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_NORMAL_MODEL;
+    const mn::Law &law = laws(sidata.itype, sidata.jtype);
+    const double scale = granmn_liggghts::mass_scale(sidata) * laws.force_per_mass_acceleration;
+    const double fn = two_d ? mn::normal_force(law, scale, granmn_liggghts::kinematics<2>(sidata))
+                            : mn::normal_force(law, scale, granmn_liggghts::kinematics<3>(sidata));
+    sidata.Fn = fn;
+    // the absolute coefficients of this contact, for what reads them from a normal model
+    // (LIGGGHTS's timestep check, pair/gran/local)
+    sidata.kn = scale * law.material.kn;
+    sidata.gamman = scale * law.eta_n;
+    sidata.kt = scale * law.kt;
+    sidata.gammat = scale * law.eta_t;
+
+    const double f = sidata.is_wall ? fn * sidata.area_ratio : fn;
+    for (int c = 0; c < 3; c++) i_forces.delta_F[c] += f * sidata.en[c];
+    if (!sidata.is_wall)
+      for (int c = 0; c < 3; c++) j_forces.delta_F[c] -= f * sidata.en[c];
+  }
+
+  void surfacesClose(SurfacesCloseData &, ForceData &, ForceData &) {}
+  void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
+  void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
+
+ private:
+  mn::Options options;
+  granmn_liggghts::LawTable laws;
+  bool two_d = false;
+};
+
+}    // namespace ContactModels
+}    // namespace LIGGGHTS
+#endif
+#endif

@@ -1,0 +1,69 @@
+"""LIGGGHTS's `model mn tangential mn` refuses what it cannot do with an ERROR that names the
+input (docs/bad_input.md lists each case): missing or asymmetric property/global values, e or
+beta out of range, and the models combined with others (cohesion, rolling friction, LIGGGHTS's
+own tangential or normal models), for the pair style and for walls alike."""
+import pytest
+
+from liggghts_decks import LIGGGHTS, Particle, Scene, data_file, liggghts_deck, run_liggghts
+
+pytestmark = pytest.mark.skipif(not LIGGGHTS, reason="LIGGGHTS was not built (GRANMN_LIGGGHTS unset)")
+
+
+SCENE = Scene([Particle((-0.505, 0.0, 0.6)), Particle((0.505, 0.0, 0.6))], dt=1e-5, steps=10)
+
+
+def deck(replace=(), wall=False, atom_types=1, **law):
+    """The two-sphere deck of the cross-checks, with the given text replacements, and its data
+    file (with so many atom types)."""
+    scene = Scene(SCENE.particles, SCENE.dt, SCENE.steps, wall=wall, **law)
+    text = liggghts_deck(scene)
+    for old, new in replace:
+        assert old in text, old
+        text = text.replace(old, new)
+    return text, data_file(scene, atom_types)
+
+# what LIGGGHTS's hooke/stiffness reads, so that its own refusal does not come first
+HOOKE_STIFFNESS = "".join(f"fix {name} all property/global {name} peratomtypepair 1 1.0\n"
+                          for name in ("kn", "kt", "gamman", "gammat"))
+
+BAD = {
+    "LIGGGHTS: coefficientTangentialRestitution missing": (
+        deck([("fix b all property/global coefficientTangentialRestitution peratomtypepair 1 0.7\n", "")]),
+        "Could not locate a fix/property storing value(s) for coefficientTangentialRestitution as requested by model mn"),
+    "LIGGGHTS: e above one": (deck(e=1.2), "model mn: for atom types 1 and 1: e must lie in (0,1]"),
+    "LIGGGHTS: beta zero": (deck(beta=0.0), "for atom types 1 and 1: beta must lie in (0,1]"),
+    "LIGGGHTS: normalStiffnessPerMass negative": (
+        deck(kn=-1.0), "for atom types 1 and 1: kn must be a finite number > 0"),
+    "LIGGGHTS: coefficientFriction not symmetric (LIGGGHTS's own check)": (
+        deck([("normalStiffnessPerMass peratomtypepair 1 200000.0", "normalStiffnessPerMass peratomtypepair 2 2e5 2e5 2e5 2e5"),
+              ("coefficientRestitution peratomtypepair 1 0.7", "coefficientRestitution peratomtypepair 2 0.7 0.7 0.7 0.7"),
+              ("coefficientTangentialRestitution peratomtypepair 1 0.7", "coefficientTangentialRestitution peratomtypepair 2 0.7 0.7 0.7 0.7"),
+              ("coefficientFriction peratomtypepair 1 0.5", "coefficientFriction peratomtypepair 2 0.5 0.3 0.4 0.5")],
+             atom_types=2),
+        "Fix property/global (id m): per-atomtype property matrix must be symmetric"),
+    "LIGGGHTS: model mn with tangential history": (
+        deck([("model mn tangential mn", "model mn tangential history")]),
+        "pair_style gran: model mn needs tangential mn"),
+    "LIGGGHTS: tangential mn with model hooke/stiffness": (
+        deck([("model mn tangential mn", "model hooke/stiffness tangential mn")],
+             extra=HOOKE_STIFFNESS),
+        "pair_style gran: tangential mn needs model mn"),
+    "LIGGGHTS: model mn with a cohesion model": (
+        deck([("model mn tangential mn", "model mn tangential mn cohesion sjkr")]),
+        "pair_style gran: model mn takes no cohesion model"),
+    "LIGGGHTS: model mn with rolling friction": (
+        deck([("model mn tangential mn", "model mn tangential mn rolling_friction cdt")]),
+        "pair_style gran: model mn takes no rolling_friction model"),
+    "LIGGGHTS: wall with model mn and tangential history": (
+        deck([("wall/gran model mn tangential mn", "wall/gran model mn tangential history")],
+             wall=True),
+        "fix floor wall/gran: model mn needs tangential mn"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_refused(tmp_path, case):
+    (text, data), message = BAD[case]
+    status, output = run_liggghts(text, tmp_path, data, check=False)
+    assert status != 0, output[-2000:]
+    assert "ERROR" in output and message in output, output[-2000:]
