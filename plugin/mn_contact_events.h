@@ -95,6 +95,19 @@ class ContactObserver {
   bool tallies_every_pair = false;    // pair_tallies()
 };
 
+// An observer that counts every evaluation's contacts anew and keeps no per-contact record
+// (LIGGGHTS's fix contacts/mn, plugin/liggghts/): a publisher adds each touching contact to
+// tallies() (ContactTallies::add, inline), marking those begun at this evaluation, which it
+// tells from a flag it keeps with the contact; it makes no other call.
+class ContactCounter {
+ public:
+  const ContactTallies &tallies() const { return step; }
+
+ protected:
+  ~ContactCounter() = default;
+  ContactTallies step;    // this evaluation's contacts, owned and ghost atoms
+};
+
 // A publisher that remembers its contacts between force evaluations.
 class HeldContacts {
  public:
@@ -107,11 +120,12 @@ class HeldContacts {
 };
 
 // The first of `fixes` (pointers to polymorphic objects, e.g. LAMMPS's Fix *) that is an
-// observer, or nullptr.
-template <class Fixes> ContactObserver *find_observer(const Fixes &fixes)
+// Observer (ContactObserver, ContactCounter), or nullptr.
+template <class Observer = ContactObserver, class Fixes>
+Observer *find_observer(const Fixes &fixes)
 {
   for (auto *fix : fixes)
-    if (auto *observer = dynamic_cast<ContactObserver *>(fix)) return observer;
+    if (auto *observer = dynamic_cast<Observer *>(fix)) return observer;
   return nullptr;
 }
 

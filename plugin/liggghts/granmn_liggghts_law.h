@@ -6,10 +6,12 @@
 #define GRANMN_LIGGGHTS_LAW_H
 
 #include <cstring>
+#include <mpi.h>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "atom.h"
 #include "contact_interface.h"
 #include "domain.h"
 #include "error.h"
@@ -17,7 +19,9 @@
 #include "force.h"
 #include "global_properties.h"
 #include "mn_contact.h"
+#include "mn_contact_events.h"
 #include "modify.h"
+#include "neighbor.h"
 #include "pair_gran.h"
 #include "property_registry.h"
 
@@ -89,13 +93,25 @@ class LawTable {
   std::vector<mn::Law> laws;
 };
 
-// A contact's mass scale (docs/model.md section 2): against a wall the particle's own mass (m_i,
-// LIGGGHTS's meff there); against a particle in fix freeze's group the mobile one's mass, which
-// is LIGGGHTS's meff then (pair_gran_base.h sets meff to the other particle's mass, never equal
-// to it otherwise: m_i m_j/(m_i + m_j) < min(m_i, m_j)); else 2M of the two masses.
+// The boundary (docs/model.md section 2): walls, and particles in fix freeze's group, which
+// LIGGGHTS tells by meff: pair_gran_base.h sets it to the other particle's mass when one is
+// frozen, a value it never has otherwise (m_i m_j/(m_i + m_j) < min(m_i, m_j)).
+inline bool partner_is_boundary(const LIGGGHTS::ContactModels::SurfacesIntersectData &contact)
+{
+  return contact.is_wall || contact.meff == contact.mi;
+}
+
+// ... and, for two particles, whether i is the frozen one (j's partner is the boundary).
+inline bool i_is_boundary(const LIGGGHTS::ContactModels::SurfacesIntersectData &contact)
+{
+  return !contact.is_wall && contact.meff == contact.mj;
+}
+
+// A contact's mass scale: against the boundary the mobile particle's own mass (LIGGGHTS's meff
+// there), else 2M of the two masses.
 inline double mass_scale(const LIGGGHTS::ContactModels::SurfacesIntersectData &contact)
 {
-  if (contact.is_wall || contact.meff == contact.mi || contact.meff == contact.mj)
+  if (partner_is_boundary(contact) || i_is_boundary(contact))
     return mn::boundary_mass_scale(contact.meff);
   return mn::pair_mass_scale(contact.mi, contact.mj);
 }
@@ -152,6 +168,32 @@ inline void check_combination(LAMMPS_NS::LAMMPS *lmp)
           wall->contact_match("tangential", "mn"), wall->contact_match("cohesion", "off"),
           wall->contact_match("rolling_friction", "off"));
   }
+}
+
+// LIGGGHTS evaluates the contact models' surfacesClose, where a contact's end is seen and its
+// history cleared, only for pairs closer than neighbor's contact distance factor times the
+// radii's sum (1 by default: never). The LAMMPS styles see every pair of the neighbour list at
+// every step, and clear a contact's history at the first evaluation after it ended. The same
+// here: a factor that covers every listed pair, 1 + 2 skin / (the smallest radii's sum) (a
+// pair drifts apart by at most a skin between two rebuilds, and leaves the list at the next),
+// registered at each init from the particles then present.
+inline void see_every_listed_pair(LAMMPS_NS::LAMMPS *lmp)
+{
+  const LAMMPS_NS::Atom *atom = lmp->atom;
+  double smallest = 1e300;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->radius[i] > 0.0 && atom->radius[i] < smallest) smallest = atom->radius[i];
+  double all = smallest;
+  MPI_Allreduce(&smallest, &all, 1, MPI_DOUBLE, MPI_MIN, lmp->world);
+  if (all < 1e300) lmp->neighbor->register_contact_dist_factor(1.0 + lmp->neighbor->skin / all);
+}
+
+// The fix contacts/mn of the run, if one is defined (the counters: fix_contacts_mn.h).
+inline const granmn::ContactCounter *find_counter(LAMMPS_NS::LAMMPS *lmp)
+{
+  LAMMPS_NS::Modify *modify = lmp->modify;
+  return granmn::find_observer<granmn::ContactCounter>(
+      std::vector<LAMMPS_NS::Fix *>(modify->fix, modify->fix + modify->nfix));
 }
 
 }    // namespace granmn_liggghts

@@ -2,12 +2,15 @@
    spring-dashpot law (Phys. Rev. E 67, 021301 (2003)), with tangential model `mn`
    (docs/liggghts.md). The force is mn_contact.h's, as in the LAMMPS pair style gran/mn:
    fn = 2M (k_n delta - eta_n v_n), 2M -> m_i against walls and frozen particles.
-   Setting: limit_damping on|off (off): clamp fn at zero. */
+   Setting: limit_damping on|off (off): clamp fn at zero. With a fix contacts/mn defined, it
+   adds each touching contact to the fix's tallies at every evaluation (a flag per contact,
+   in the contact's history, tells those begun). */
 #ifdef NORMAL_MODEL
 NORMAL_MODEL(MN,mn,20)
 #else
 #ifndef NORMAL_MODEL_MN_H_
 #define NORMAL_MODEL_MN_H_
+#include "atom.h"
 #include "contact_models.h"
 #include "granmn_liggghts_law.h"
 #include "normal_model_base.h"
@@ -19,7 +22,8 @@ template <>
 class NormalModel<MN> : public NormalModelBase {
  public:
   NormalModel(LAMMPS *lmp, IContactHistorySetup *hsetup, class ContactModelBase *c)
-      : NormalModelBase(lmp, hsetup, c)
+      : NormalModelBase(lmp, hsetup, c),
+        touching_offset(hsetup->add_history_value("mn_touching", "0"))
   {
   }
 
@@ -35,6 +39,8 @@ class NormalModel<MN> : public NormalModelBase {
     granmn_liggghts::check_combination(lmp);
     laws.derive(lmp, registry, options, "model mn");
     two_d = domain->dimension == 2;
+    counter = granmn_liggghts::find_counter(lmp);
+    granmn_liggghts::see_every_listed_pair(lmp);
   }
 
   double stressStrainExponent() { return 1.0; }
@@ -58,13 +64,33 @@ class NormalModel<MN> : public NormalModelBase {
     for (int c = 0; c < 3; c++) i_forces.delta_F[c] += f * sidata.en[c];
     if (!sidata.is_wall)
       for (int c = 0; c < 3; c++) j_forces.delta_F[c] -= f * sidata.en[c];
+    if (counter) count(sidata);
   }
 
-  void surfacesClose(SurfacesCloseData &, ForceData &, ForceData &) {}
+  // the contact has ended (it is in the neighbour list, not touching): the next one begins anew
+  void surfacesClose(SurfacesCloseData &scdata, ForceData &, ForceData &)
+  {
+    if (scdata.contact_history) scdata.contact_history[touching_offset] = 0.0;
+  }
   void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
   void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
 
  private:
+  // i's share of a touching contact, and j's where j is owned here (newton off: a pair with a
+  // ghost is computed by both processes)
+  void count(const SurfacesIntersectData &sidata)
+  {
+    double &touching = sidata.contact_history[touching_offset];
+    const bool began = touching == 0.0;
+    touching = 1.0;
+    const granmn::ContactTallies &tallies = counter->tallies();
+    tallies.add(sidata.i, granmn_liggghts::partner_is_boundary(sidata), began);
+    if (!sidata.is_wall && sidata.j < atom->nlocal)
+      tallies.add(sidata.j, granmn_liggghts::i_is_boundary(sidata), began);
+  }
+
+  int touching_offset;
+  const granmn::ContactCounter *counter = nullptr;
   mn::Options options;
   granmn_liggghts::LawTable laws;
   bool two_d = false;

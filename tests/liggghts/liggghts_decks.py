@@ -22,6 +22,8 @@ class Particle:
     omega: tuple = (0.0, 0.0, 0.0)
     diameter: float = 1.0
     mass: float = 1.0
+    fixed: bool = False     # a boundary particle (type 2): fix freeze in LIGGGHTS, wall_types 2
+                            # of gran/mn; never integrated
 
 
 @dataclass
@@ -40,6 +42,10 @@ class Scene:
     settings: str = ""              # more keywords on LIGGGHTS's pair_style line
     extra: str = ""                 # LIGGGHTS commands after the law's properties
     sample_every: int = 0           # print the first particle's velocity every so many steps
+    counters: bool = False          # fix contacts/mn on the mobile particles: RESULT counters
+
+    def types(self):
+        return 2 if any(p.fixed for p in self.particles) else 1
 
 
 def data_file(scene, atom_types=1):
@@ -51,12 +57,13 @@ def data_file(scene, atom_types=1):
         [("-60", "60"), ("-60", "60"), (lo, "60")]
     if scene.dimension == 2:
         bounds[1] = (lo, "60")
+    atom_types = max(atom_types, scene.types())
     text = f"particles\n\n{len(scene.particles)} atoms\n{atom_types} atom types\n\n"
     for (a, b), axis in zip(bounds, "xyz"):
         text += f"{a} {b} {axis}lo {axis}hi\n"
     text += "\nAtoms\n\n"
     for n, p in enumerate(scene.particles, start=1):
-        text += "{} 1 {!r} 1.0 {!r} {!r} {!r}\n".format(n, p.diameter, *p.x)
+        text += "{} {} {!r} 1.0 {!r} {!r} {!r}\n".format(n, 2 if p.fixed else 1, p.diameter, *p.x)
     text += "\nVelocities\n\n"
     for n, p in enumerate(scene.particles, start=1):
         text += "{} {!r} {!r} {!r} {!r} {!r} {!r}\n".format(n, *p.v, *p.omega)
@@ -65,7 +72,19 @@ def data_file(scene, atom_types=1):
 
 def _masses(scene):
     return "".join(f"set atom {n} mass {p.mass!r}\n"
-                   for n, p in enumerate(scene.particles, start=1))
+                   for n, p in enumerate(scene.particles, start=1)) + \
+        "group mobile type 1\ngroup base type 2\n"
+
+
+def _counters(scene):
+    if not scene.counters:
+        return ""
+    text = "fix c mobile contacts/mn\n"
+    names = []
+    for k in range(1, 8):
+        text += f"variable c{k} equal f_c[{k}]\n"
+        names.append(f"${{c{k}}}")
+    return text + f'fix result_c all print {scene.steps} "RESULT counters {" ".join(names)}" screen yes\n'
 
 
 def _results(scene):
@@ -95,7 +114,7 @@ def _gravity_and_run(scene):
                  f"variable w1 equal c_sample[1][{spin}]\n"
                  f"fix samples all print {scene.sample_every} \"SAMPLE ${{t}} ${{vx1}} ${{w1}}\""
                  " screen yes\n")
-    return text + _results(scene) + f"run {scene.steps}\n"
+    return text + _results(scene) + _counters(scene) + f"run {scene.steps}\n"
 
 
 def liggghts_deck(scene, wall=None):
@@ -104,6 +123,8 @@ def liggghts_deck(scene, wall=None):
     boundary = f"p {walls} p" if scene.dimension == 2 else f"p p {walls}"
     plane = "yplane" if scene.dimension == 2 else "zplane"
     pair = "pair_style gran model mn tangential mn"
+    n = scene.types()
+    table = lambda value: f"{n} " + " ".join([repr(value)] * (n * n))
     if scene.coulomb_cutback:
         pair += " coulomb_cutback on"
     deck = f"""atom_style granular
@@ -116,16 +137,16 @@ units lj
 read_data atoms.data
 neighbor 0.1 bin
 neigh_modify delay 0
-fix k all property/global normalStiffnessPerMass peratomtypepair 1 {scene.kn!r}
-fix e all property/global coefficientRestitution peratomtypepair 1 {scene.e!r}
-fix b all property/global coefficientTangentialRestitution peratomtypepair 1 {scene.beta!r}
-fix m all property/global coefficientFriction peratomtypepair 1 {scene.mu!r}
+fix k all property/global normalStiffnessPerMass peratomtypepair {table(scene.kn)}
+fix e all property/global coefficientRestitution peratomtypepair {table(scene.e)}
+fix b all property/global coefficientTangentialRestitution peratomtypepair {table(scene.beta)}
+fix m all property/global coefficientFriction peratomtypepair {table(scene.mu)}
 {scene.extra}{pair} {scene.settings}
 pair_coeff * *
 """
     if scene.wall:
         deck += wall or f"fix floor all wall/gran model mn tangential mn primitive type 1 {plane} 0.0\n"
-    deck += _masses(scene) + "fix integrate all nve/sphere\n"
+    deck += _masses(scene) + "fix frozen base freeze\nfix integrate mobile nve/sphere\n"
     return deck + _gravity_and_run(scene)
 
 
@@ -134,6 +155,8 @@ def lammps_deck(scene):
     boundary = f"p {walls} p" if scene.dimension == 2 else f"p p {walls}"
     plane = "yplane" if scene.dimension == 2 else "zplane"
     law = f"kn {scene.kn!r} e {scene.e!r} beta {scene.beta!r} mu {scene.mu!r}"
+    if scene.types() == 2:
+        law += " wall_types 2"
     if scene.coulomb_cutback:
         law += " coulomb_cutback"
     deck = HEADER.format(plugin=PLUGIN).replace("dimension 2", f"dimension {scene.dimension}")
@@ -146,13 +169,14 @@ pair_coeff * *
     if scene.wall:
         deck += f"fix floor all wall/gran/mn {plane} 0.0 NULL\n"
     disc = " disc" if scene.dimension == 2 else ""
-    deck += _masses(scene) + f"fix integrate all nve/sphere{disc}\n"
+    deck += _masses(scene) + f"fix integrate mobile nve/sphere{disc}\n"
     return deck + _gravity_and_run(scene)
 
 
 @dataclass
 class Outcome:
     states: list                    # per particle: x y z vx vy vz wx wy wz
+    counters: list = None           # fix contacts/mn's seven sums, where asked for
     samples: list = field(default_factory=list)    # (t, vx, omega) of particle 1
     output: str = ""
 
@@ -160,7 +184,10 @@ class Outcome:
 def outcome(text, count):
     results = {}
     samples = []
+    counters = None
     for line in text.splitlines():
+        if line.startswith("RESULT counters "):
+            counters = [float(v) for v in line.split()[2:]]
         m = re.match(r"^RESULT state(\d+) (.*)$", line)
         if m:
             results[int(m.group(1))] = [float(v) for v in m.group(2).split()]
@@ -170,7 +197,7 @@ def outcome(text, count):
     missing = [n for n in range(1, count + 1) if n not in results]
     if missing:
         raise AssertionError(f"no RESULT state for particles {missing}; output tail:\n{text[-3000:]}")
-    return Outcome([results[n] for n in range(1, count + 1)], samples, text)
+    return Outcome([results[n] for n in range(1, count + 1)], counters, samples, text)
 
 
 def run_liggghts(deck, workdir, data="", check=True):

@@ -140,3 +140,29 @@ def test_rolling_down_a_plane(tmp_path):
     assert slope == pytest.approx(5 / 7 * g * math.sin(theta), rel=1e-3)
     # rolling without slip: v = r omega (omega about +y for motion along +x)
     assert late[-1, 1] == pytest.approx(0.5 * late[-1, 2], rel=1e-3)
+
+
+def test_counters_as_the_plugins(tmp_path):
+    """fix contacts/mn in LIGGGHTS counts as the plugin's does: spheres falling onto a frozen
+    sphere (fix freeze; the plugin's wall_types 2), a plane wall and each other, with
+    multiple contacts; the seven sums (contacts begun with particles and with the boundary,
+    time touching each, time with two or more, contacts now, the window) are equal. A
+    frozen sphere counted as a particle, a wall contact missed, a contact begun counted at
+    every step or a time counted at the setup would each change them by whole contacts or
+    steps."""
+    c = sphere_law()
+    dt = c["tau_c"] / 50
+    spheres = [Particle((0.0, 0.0, 0.5), fixed=True),
+               Particle((0.3, 0.0, 1.6), omega=(0.0, 1.0, 0.0)),
+               Particle((-0.4, 0.2, 2.8)),
+               Particle((1.2, 0.1, 0.55), v=(-0.2, 0.0, 0.0), diameter=0.9, mass=0.7)]
+    scene = Scene(spheres, dt=dt, steps=int(3.0 / dt), kn=KN, e=E, beta=BETA, mu=0.5,
+                  wall=True, gravity=(1.0, 0.0, 0.0, -1.0), counters=True)
+    theirs, ours = run_both(scene, tmp_path)
+    print("counters LIGGGHTS", theirs.counters, "\ncounters gran/mn ", ours.counters)
+    assert_same(theirs, ours, 3.0)
+    begun_particle, begun_boundary, time_particle, time_boundary, time_multiple, now, window = \
+        theirs.counters
+    assert begun_particle >= 2 and begun_boundary >= 3 and time_multiple > 0   # all kinds seen
+    assert window == pytest.approx(scene.steps * dt, rel=1e-12)
+    assert theirs.counters == pytest.approx(ours.counters, rel=1e-12, abs=1e-12)

@@ -1,0 +1,132 @@
+// LIGGGHTS 3.8 fix contacts/mn (fix_contacts_mn.h): `model mn` adds each touching contact of
+// each force evaluation to this fix's tallies (granmn::ContactCounter); at the end of the step
+// the fix turns them into the per-atom counters, so that a contact counts at every step whose
+// force evaluation found it (the run's setup excluded: the tallies are cleared before each
+// step's evaluation).
+#include "fix_contacts_mn.h"
+
+#include <cstring>
+#include <mpi.h>
+#include <string>
+
+#include "atom.h"
+#include "error.h"
+#include "fix_property_atom.h"
+#include "group.h"
+#include "modify.h"
+#include "update.h"
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+// the per-atom columns (the plugin's fix contacts/mn's): begun with particles, begun with the
+// boundary, time touching particles, time touching the boundary, time with two or more,
+// contacts now
+enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, COLUMNS };
+
+FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg)
+    : Fix(lmp, narg, arg), accumulated(NULL), window(0.0)
+{
+  if (narg != 3) error->all(FLERR, "Illegal fix contacts/mn command: it takes no arguments");
+  if (modify->find_fix_style("contacts/mn", 0))
+    error->all(FLERR, "Only one fix contacts/mn may be defined");
+  vector_flag = 1;
+  size_vector = COLUMNS + 1;
+  global_freq = 1;
+  extvector = 0;
+  peratom_flag = 1;
+  size_peratom_cols = COLUMNS;
+  peratom_freq = 1;
+}
+
+void FixContactsMN::post_create()
+{
+  const std::string name = std::string("contacts_mn_") + id;
+  const char *fixarg[9 + COLUMNS] = {name.c_str(), group->names[igroup], "property/atom",
+                                     name.c_str(), "vector", "yes", "no", "no"};
+  for (int c = 0; c < COLUMNS; c++) fixarg[8 + c] = "0.0";
+  accumulated = modify->add_fix_property_atom(8 + COLUMNS, const_cast<char **>(fixarg),
+                                              style);
+}
+
+int FixContactsMN::setmask()
+{
+  return PRE_FORCE | END_OF_STEP;
+}
+
+void FixContactsMN::init()
+{
+  array_atom = accumulated->array_atom;
+}
+
+void FixContactsMN::setup_pre_force(int)
+{
+  clear_tallies();
+}
+
+void FixContactsMN::pre_force(int)
+{
+  clear_tallies();
+}
+
+// zeros for this evaluation's contacts, owned and ghost atoms
+void FixContactsMN::clear_tallies()
+{
+  const std::size_t n = atom->nmax;
+  for (std::vector<double> *tally : {&particle, &boundary, &begun_particle, &begun_boundary})
+    tally->assign(n, 0.0);
+  step.particle = particle.data();
+  step.boundary = boundary.data();
+  step.begun_particle = begun_particle.data();
+  step.begun_boundary = begun_boundary.data();
+}
+
+void FixContactsMN::end_of_step()
+{
+  const double dt = update->dt;
+  double **counters = array_atom = accumulated->array_atom;
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *c = counters[i];
+    c[BEGUN_PARTICLE] += begun_particle[i];
+    c[BEGUN_BOUNDARY] += begun_boundary[i];
+    if (particle[i] > 0.0) c[TIME_PARTICLE] += dt;
+    if (boundary[i] > 0.0) c[TIME_BOUNDARY] += dt;
+    if (particle[i] + boundary[i] >= 2.0) c[TIME_MULTIPLE] += dt;
+    c[NOW] = particle[i] + boundary[i];
+  }
+  window += dt;
+}
+
+// the sums over the group (columns 1-6) and the window's length (7)
+double FixContactsMN::compute_vector(int n)
+{
+  if (n == COLUMNS) return window;
+  double **counters = accumulated->array_atom;
+  const int *mask = atom->mask;
+  double local = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) local += counters[i][n];
+  double sum = 0.0;
+  MPI_Allreduce(&local, &sum, 1, MPI_DOUBLE, MPI_SUM, world);
+  return sum;
+}
+
+// fix_modify ID reset: a new window (the per-atom counters and the sums start again at zero)
+int FixContactsMN::modify_param(int narg, char **arg)
+{
+  if (narg >= 1 && strcmp(arg[0], "reset") == 0) {
+    reset_window();
+    return 1;
+  }
+  return 0;
+}
+
+void FixContactsMN::reset_window()
+{
+  double **counters = accumulated->array_atom;
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int c = 0; c < COLUMNS; c++) counters[i][c] = 0.0;
+  window = 0.0;
+}
