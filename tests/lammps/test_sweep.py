@@ -569,7 +569,7 @@ def test_a_deck_that_makes_other_atoms_than_it_declares_stops(tmp_path):
 
 
 def test_the_runner_follows_the_decks_time_step_rule(tmp_path, monkeypatch):
-    """The runner reads the time step's rule from the decks (inputs/lib/dynamics.lmp's
+    """The runner reads the time step's rule from the decks (inputs/lib/time_step.lmp's
     timestep): decks whose rule is dt = tau_c/50 give run_time/(tau_c/50) steps. A copy of the
     rule in Python (min(dt_fraction x tau_c, dt_cap)) predicted the old rule's steps."""
     import shutil
@@ -577,7 +577,7 @@ def test_the_runner_follows_the_decks_time_step_rule(tmp_path, monkeypatch):
     from granmn_sweep.cost import predicted_steps
     from mn_law import derived
     shutil.copytree(ROOT / "inputs", tmp_path / "inputs")
-    dynamics = tmp_path / "inputs" / "lib" / "dynamics.lmp"
+    dynamics = tmp_path / "inputs" / "lib" / "time_step.lmp"
     text = dynamics.read_text()
     assert "timestep ${dt_resolved}\n" in text
     dynamics.write_text(text.replace("timestep ${dt_resolved}\n", "timestep $(v_mn_tau_c/50)\n"))
