@@ -5,10 +5,12 @@
 #ifndef GRANMN_LIGGGHTS_LAW_H
 #define GRANMN_LIGGGHTS_LAW_H
 
+#include <cstdio>
 #include <cstring>
 #include <mpi.h>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "atom.h"
@@ -18,12 +20,16 @@
 #include "fix_wall_gran.h"
 #include "force.h"
 #include "global_properties.h"
+#include "input.h"
 #include "mn_contact.h"
+#include "mn_integration.h"
 #include "mn_contact_events.h"
 #include "modify.h"
 #include "neighbor.h"
 #include "pair_gran.h"
 #include "property_registry.h"
+#include "update.h"
+#include "variable.h"
 
 namespace granmn_liggghts {
 
@@ -79,8 +85,10 @@ class LawTable {
           lmp->error->all(FLERR, message.c_str());
         }
         laws[i * stride + j] = law;
+        check_timestep(lmp, caller, i, j);
       }
     force_per_mass_acceleration = 1.0 / lmp->force->ftm2v;
+    publish(lmp, (*this)(1, 1));
   }
 
   const mn::Law &operator()(int itype, int jtype) const { return laws[itype * stride + jtype]; }
@@ -89,6 +97,42 @@ class LawTable {
   double force_per_mass_acceleration = 1.0;
 
  private:
+  // velocity Verlet (LIGGGHTS's nve/sphere) is stable on the law's stiffest contact mode (a run
+  // of no steps takes none)
+  void check_timestep(LAMMPS_NS::LAMMPS *lmp, const char *caller, int i, int j) const
+  {
+    const mn::StabilityLimit limit =
+        mn::stability_limit((*this)(i, j), mn::Integrator::VelocityVerlet);
+    if (lmp->update->nsteps == 0 || !(lmp->update->dt > limit.dt)) return;
+    // the modes are named for disks; in 3D they are those of spheres
+    std::string mode = mn::mode_name(limit.mode);
+    const std::size_t disks = mode.find("disks");
+    if (lmp->domain->dimension == 3 && disks != std::string::npos) mode.replace(disks, 5, "spheres");
+    char message[512];
+    snprintf(message, sizeof(message),
+             "%s: for atom types %d and %d: timestep %g exceeds the stability limit %.6g of "
+             "velocity Verlet for %s (the paper uses tau_c/100 = %.6g)",
+             caller, i, j, lmp->update->dt, limit.dt, mode.c_str(), 0.01 * (*this)(i, j).tau_c);
+    lmp->error->all(FLERR, message);
+  }
+
+  // The law of atom types 1 and 1 as equal-style variables, under the names the LAMMPS pair
+  // style publishes them (mn_tau_c, ...): a deck's time step or output can read them after a
+  // run (LIGGGHTS derives the law at a run's init; a deck runs `run 0` first).
+  static void publish(LAMMPS_NS::LAMMPS *lmp, const mn::Law &law)
+  {
+    const std::pair<const char *, double> published[] = {
+        {"mn_tau_c", law.tau_c}, {"mn_tau_w", law.tau_w}, {"mn_e_w", law.e_w},
+        {"mn_eta_n", law.eta_n}, {"mn_kt", law.kt}, {"mn_eta_t", law.eta_t},
+        {"mn_dt_max_verlet", mn::max_stable_dt(law, mn::Integrator::VelocityVerlet)}};
+    for (const auto &entry : published) {
+      char value[32];
+      snprintf(value, sizeof(value), "%.17g", entry.second);
+      char *args[3] = {const_cast<char *>(entry.first), const_cast<char *>("equal"), value};
+      lmp->input->variable->set(3, args);
+    }
+  }
+
   int stride = 0;
   std::vector<mn::Law> laws;
 };
