@@ -69,7 +69,7 @@ from granmn_sweep import SweepError
 from granmn_sweep import processes
 from granmn_sweep.config import expand, load_config, point_name
 from granmn_sweep.cost import CostModel, format_seconds, predicted_steps
-from granmn_sweep.decks import ROOT
+from granmn_sweep.decks import ROOT, engine
 from granmn_sweep.points import check_output, check_path, foreign, lock_output
 from granmn_sweep.schedule import check_slots, run_points
 from postprocess.rundir import completed     # scripts/postprocess links the package
@@ -109,16 +109,22 @@ def main(argv=None):
         parser.error(f"--checkpoint-interval {args.checkpoint_interval:g} must be >= 0 "
                      "(0: none)")
 
-    paths = {"lmp": args.build / "lammps" / "lmp",
+    # each engine's executable under the key of its name (decks.ENGINES)
+    paths = {"lammps": args.build / "lammps" / "lmp",
+             "liggghts": args.build / "plugin" / "liggghts" / "build" / "liggghts",
              "plugin": args.build / "plugin" / "granmnplugin.so",
              "mn_law": args.build / "plugin" / "mn-law",
              "mpiexec": shutil.which("mpirun") or "mpirun"}
     try:
-        for key in ("lmp", "plugin", "mn_law"):
-            if not paths[key].exists():
-                raise SweepError(f"{paths[key]} is missing: run ./scripts/build.sh first")
         config = load_config(args.config)
         points = expand(config, args.config)
+        engines = {engine(p) for p in points}
+        for key in sorted(engines | {"mn_law"} | ({"plugin"} if "lammps" in engines else set())):
+            if not paths[key].exists():
+                raise SweepError(f"{paths[key]} is missing: run ./scripts/build.sh first")
+        if args.partitions and engines != {"lammps"}:
+            raise SweepError("--partitions runs the points as the partitions of one lmp: the "
+                             "points of engine liggghts run as processes of their own (--jobs)")
         output = args.output or ROOT / "results" / config.get("name", Path(args.config).stem)
         for what, path in (("--output", output), ("--build", args.build), ("the checkout", ROOT)):
             check_path(what, path)

@@ -6,9 +6,13 @@ from itertools import product
 from pathlib import Path
 
 from granmn_sweep import SweepError
-from granmn_sweep.decks import RESERVED, SCENES, deck_defaults, deck_uses
+from granmn_sweep.decks import ENGINES, RESERVED, deck_defaults, deck_uses, engine, point_deck, \
+    scenes, where
 
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+# The keys of a point that the runner reads itself, not a deck: which deck (the scene, of the
+# engine) runs it. Both are part of the point's name.
+RUNNER_KEYS = {"scene", "engine"}
 
 
 def load_config(path):
@@ -60,14 +64,19 @@ def expand(config, path):
         lists = [merged[k] if isinstance(merged[k], list) else [merged[k]] for k in keys]
         for combination in product(*lists):
             point = dict(zip(keys, combination))
-            if point["scene"] not in SCENES:
-                raise SweepError(f"{path}: grid {number}: unknown scene '{point['scene']}' "
-                                 f"(expected one of {', '.join(SCENES)})")
-            defaults = deck_defaults(point["scene"])
-            unknown = sorted(set(point) - {"scene"} - set(defaults))
+            if engine(point) not in ENGINES:
+                raise SweepError(f"{path}: grid {number}: unknown engine '{engine(point)}' "
+                                 f"(expected one of {', '.join(ENGINES)})")
+            if point["scene"] not in scenes(engine(point)):
+                raise SweepError(f"{path}: grid {number}: unknown scene '{point['scene']}' of "
+                                 f"engine {engine(point)} (expected one of "
+                                 f"{', '.join(scenes(engine(point)))})")
+            deck = point_deck(point)
+            defaults = deck_defaults(deck)
+            unknown = sorted(set(point) - RUNNER_KEYS - set(defaults))
             if unknown:
                 raise SweepError(f"{path}: grid {number}: {', '.join(unknown)}: not a variable "
-                                 f"of inputs/{point['scene']}.lmp (docs/scenes.md lists them)")
+                                 f"of {where(deck)} (docs/scenes.md lists them)")
             # a deck takes a word where it expects a number without complaint (as 0)
             for name, value in point.items():
                 if name in defaults and is_number(defaults[name]):
@@ -75,11 +84,11 @@ def expand(config, path):
                         raise SweepError(f"{point['scene']} point: {name} = {value!r} is not a "
                                          "number")
                     point[name] = canonical_number(value)
-            ignored = sorted(set(point) - {"scene"} - deck_uses(point["scene"]))
+            ignored = sorted(set(point) - RUNNER_KEYS - deck_uses(deck))
             if ignored:
                 raise SweepError(f"{path}: grid {number}: {', '.join(ignored)}: "
-                                 f"inputs/{point['scene']}.lmp does not use it (every value "
-                                 "would give the same run)")
+                                 f"{where(deck)} does not use it (every value would give the "
+                                 "same run)")
             points.append(point)
     seen = set()
     for p in points:

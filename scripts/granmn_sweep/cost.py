@@ -4,8 +4,8 @@ import functools
 import math
 
 from granmn_sweep import SweepError
-from granmn_sweep.decks import deck_defaults, formula_value, scene_atoms, scene_dimension, \
-    time_step_formula
+from granmn_sweep.decks import deck_defaults, formula_value, point_deck, scene_atoms, \
+    scene_dimension, time_step_formula, where
 from mn_law import LawError, derived
 
 # Seconds per step by the scene's dimension: a fixed part and a part per atom; refined as points
@@ -27,7 +27,7 @@ def law(mn_law, kn, e, beta, shape):
 def positive(point, name):
     """A variable of a point (the deck's default where the point sets none) that must be a
     number > 0 (expand() made sure it is a number; the deck checks the rest)."""
-    value = point.get(name, deck_defaults(point["scene"]).get(name))
+    value = point.get(name, deck_defaults(point_deck(point)).get(name))
     number = float(value)
     if not (number > 0 and math.isfinite(number)):
         raise SweepError(f"{point['scene']} point: {name} = {value!r} must be > 0")
@@ -38,27 +38,27 @@ def law_numbers(point, mn_law):
     """mn-law's numbers of a point's material, as pair_style gran/mn derives them in its scene:
     of discs in 2D, of spheres in 3D."""
     return law(mn_law, positive(point, "kn"), positive(point, "e"), positive(point, "beta"),
-               "sphere" if scene_dimension(point["scene"]) == 3 else "disc")
+               "sphere" if scene_dimension(point_deck(point)) == 3 else "disc")
 
 
 def time_step(point, mn_law):
     """A point's time step as its deck computes it (decks.time_step_formula): a formula of the
     point's variables and of the numbers pair_style gran/mn publishes (v_mn_tau_c: mn-law's
     tau_c)."""
-    scene = point["scene"]
+    deck = point_deck(point)
     numbers = law_numbers(point, mn_law)
 
     def value(name):
-        if not name.startswith("mn_") and name in {**deck_defaults(scene), **point}:
+        if not name.startswith("mn_") and name in {**deck_defaults(deck), **point}:
             return positive(point, name)
         if not name.startswith("mn_"):
-            raise SweepError(f"inputs/{scene}.lmp: its time step reads v_{name}, which is no "
+            raise SweepError(f"{where(deck)}: its time step reads v_{name}, which is no "
                              "variable a point sets (-var) nor a number of pair_style gran/mn")
         if name[3:] not in numbers:
-            raise SweepError(f"inputs/{scene}.lmp: its time step reads v_{name}, which "
+            raise SweepError(f"{where(deck)}: its time step reads v_{name}, which "
                              f"mn-law does not give ({', '.join(sorted(numbers))})")
         return numbers[name[3:]]
-    return formula_value(time_step_formula(scene), value, f"inputs/{scene}.lmp: timestep")
+    return formula_value(time_step_formula(deck), value, f"{where(deck)}: timestep")
 
 
 def predicted_steps(point, mn_law):
@@ -80,7 +80,7 @@ class CostModel:
         self.factor, self.samples = 1.0, 0
 
     def predict(self, point, steps):
-        fixed, per_atom = STEP_COST[scene_dimension(point["scene"])]
+        fixed, per_atom = STEP_COST[scene_dimension(point_deck(point))]
         return steps * (fixed + per_atom * scene_atoms(point)) * self.factor
 
     def learn(self, predicted, measured):

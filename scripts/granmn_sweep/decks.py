@@ -1,6 +1,6 @@
-"""What the runner reads from the scene decks (inputs/*.lmp and the inputs/lib/ files they
-include): the scenes, the variables a deck takes and those it uses, its dimension, the atoms it
-makes, its time step's formula; the value of such a formula."""
+"""What the runner reads from the scene decks (inputs/*.lmp, LIGGGHTS's inputs/liggghts/*.lmp,
+and the inputs/lib/ files they include): the scenes, the variables a deck takes and those it
+uses, its dimension, the atoms it makes, its time step's formula; the value of such a formula."""
 import ast
 import functools
 import operator
@@ -11,9 +11,35 @@ from granmn_sweep import SweepError
 
 ROOT = Path(__file__).resolve().parents[2]
 LIB = ROOT / "inputs" / "lib"
-# The scenes are the decks that name themselves (`variable scene index NAME`).
-SCENES = tuple(sorted(deck.stem for deck in (ROOT / "inputs").glob("*.lmp")
-                      if re.search(r"^variable scene index (\w+)", deck.read_text(), re.M)))
+# The engines a point runs in (its `engine`; lammps where it names none), and the folder of
+# each one's scene decks, under inputs/.
+ENGINES = {"lammps": ".", "liggghts": "liggghts"}
+
+
+def engine(point):
+    return point.get("engine", "lammps")
+
+
+def deck_path(scene, engine_name="lammps"):
+    return ROOT / "inputs" / ENGINES[engine_name] / f"{scene}.lmp"
+
+
+def point_deck(point):
+    """The deck a point runs: its scene's, of its engine."""
+    return deck_path(point["scene"], engine(point))
+
+
+def where(deck):
+    """A deck as the runner's messages name it (inputs/chute_3d.lmp)."""
+    return str(deck.relative_to(ROOT)) if deck.is_relative_to(ROOT) else str(deck)
+
+
+def scenes(engine_name="lammps"):
+    """The scenes of an engine: its decks that name themselves (`variable scene index NAME`)."""
+    return tuple(sorted(deck.stem for deck in (ROOT / "inputs" / ENGINES[engine_name]).glob("*.lmp")
+                        if re.search(r"^variable scene index (\w+)", deck.read_text(), re.M)))
+
+
 # Deck variables the runner sets itself for every point.
 RESERVED = {"plugin", "lib", "out", "run_token", "resume", "resume_step"}
 # The operators of the decks' formulas that formula_value() reads; a comparison is 1 or 0.
@@ -24,22 +50,21 @@ COMPARISONS = {ast.Lt: operator.lt, ast.LtE: operator.le, ast.Gt: operator.gt,
 
 
 @functools.lru_cache(maxsize=None)
-def deck_defaults(scene):
+def deck_defaults(deck):
     """{name: default} of the variables a scene deck declares (`variable NAME index VALUE`, its
     own first, then the shared defaults), i.e. what -var can set."""
     defaults = {}
-    for deck in (ROOT / "inputs" / f"{scene}.lmp", LIB / "defaults.lmp"):
-        for name, value in re.findall(r"^variable (\w+) index (\S+)", deck.read_text(), re.M):
+    for path in (deck, LIB / "defaults.lmp"):
+        for name, value in re.findall(r"^variable (\w+) index (\S+)", path.read_text(), re.M):
             defaults.setdefault(name, value)
     return {name: value for name, value in defaults.items() if name not in RESERVED}
 
 
 @functools.lru_cache(maxsize=None)
-def scene_dimension(scene):
+def scene_dimension(deck):
     """2, or 3 where the scene deck says `variable scene_dimension string 3`
     (inputs/lib/begin.lmp)."""
-    found = re.search(r"^variable scene_dimension string (\d)", (ROOT / "inputs" / f"{scene}.lmp")
-                      .read_text(), re.M)
+    found = re.search(r"^variable scene_dimension string (\d)", deck.read_text(), re.M)
     return int(found.group(1)) if found else 2
 
 
@@ -58,12 +83,12 @@ def deck_commands(path):
 
 
 @functools.lru_cache(maxsize=None)
-def deck_uses(scene):
+def deck_uses(deck):
     """Names of the variables a scene deck's commands read, its checks (if ... quit), its
     declarations and its print-outs (params.txt) apart: a variable it takes but not among
     these changes nothing in the run."""
     uses = set()
-    for command in deck_commands(ROOT / "inputs" / f"{scene}.lmp"):
+    for command in deck_commands(deck):
         if re.match(r"(print\b|variable \w+ index\b)", command) or \
                 (command.startswith("if ") and re.search(r"\bquit\b", command)):
             continue
@@ -82,43 +107,41 @@ def equal_formula(commands, name, where):
 
 
 @functools.lru_cache(maxsize=None)
-def time_step_formula(scene):
-    """The formula of a scene's time step: of its deck's one `timestep` command (in
-    inputs/lib/dynamics.lmp), the value, $(FORMULA), or ${NAME} of `variable NAME equal`."""
-    where = f"inputs/{scene}.lmp"
-    commands = deck_commands(ROOT / "inputs" / f"{scene}.lmp")
+def time_step_formula(deck):
+    """The formula of a scene deck's time step: of its one `timestep` command (in
+    inputs/lib/time_step.lmp), the value, $(FORMULA), or ${NAME} of `variable NAME equal`."""
+    commands = deck_commands(deck)
     steps = [command.split(None, 1)[1] for command in commands
              if command.startswith("timestep ")]
     if len(steps) != 1:
-        raise SweepError(f"{where}: {len(steps)} timestep commands (the runner reads one)")
+        raise SweepError(f"{where(deck)}: {len(steps)} timestep commands (the runner reads one)")
     named = re.fullmatch(r"\$\{(\w+)\}", steps[0])
     if named:
-        return equal_formula(commands, named.group(1), where)
+        return equal_formula(commands, named.group(1), where(deck))
     immediate = re.fullmatch(r"\$\((.+)\)", steps[0])
     return immediate.group(1) if immediate else steps[0]
 
 
 @functools.lru_cache(maxsize=None)
-def scene_atoms_formula(scene):
+def scene_atoms_formula(deck):
     """The formula of the atoms a scene deck makes, its `variable scene_atoms equal`."""
-    return equal_formula(deck_commands(ROOT / "inputs" / f"{scene}.lmp"), "scene_atoms",
-                         f"inputs/{scene}.lmp")
+    return equal_formula(deck_commands(deck), "scene_atoms", where(deck))
 
 
 def scene_atoms(point):
     """The atoms a point's scene makes (bumps and base included), of the point's variables and
     the deck's defaults: its deck's scene_atoms, which the deck checks against the atoms it has
     made (inputs/lib/dynamics.lmp)."""
-    where = f"inputs/{point['scene']}.lmp: scene_atoms"
-    values = {**deck_defaults(point["scene"]), **point}
+    deck = point_deck(point)
+    at = f"{where(deck)}: scene_atoms"
+    values = {**deck_defaults(deck), **point}
 
     def value(name):
         try:
             return float(values[name])
         except (KeyError, ValueError):
-            raise SweepError(f"{where}: v_{name} is no number a point sets or the deck "
-                             "defaults")
-    return formula_value(scene_atoms_formula(point["scene"]), value, where)
+            raise SweepError(f"{at}: v_{name} is no number a point sets or the deck defaults")
+    return formula_value(scene_atoms_formula(deck), value, at)
 
 
 def formula_value(formula, value, where):

@@ -9,16 +9,16 @@ import sys
 
 from granmn_sweep import SweepError
 from granmn_sweep import processes
-from granmn_sweep.config import format_value
+from granmn_sweep.config import RUNNER_KEYS, format_value
 from granmn_sweep.cost import format_seconds
-from granmn_sweep.decks import LIB, ROOT
+from granmn_sweep.decks import LIB, engine, point_deck
 from granmn_sweep.points import cpu_seconds, error_lines, finish, resume_or_prepare, \
     set_aside_failed_resume, wrote_done
 from mpirun_slots import slots_problem
 
 
 def point_variables(point, directory, paths, token):
-    variables = {k: v for k, v in point.items() if k != "scene"}
+    variables = {k: v for k, v in point.items() if k not in RUNNER_KEYS}
     variables.update(plugin=paths["plugin"], lib=LIB, out=directory, run_token=token)
     return variables
 
@@ -34,8 +34,8 @@ def run_serial(point, directory, paths, env, ranks, extra, notes):
         token = secrets.token_hex(8)
         variables = resume_or_prepare(directory, point, extra, keep=directory in notes)
         mpirun = [paths["mpiexec"], "-np", str(ranks)] if ranks > 1 else []
-        command = mpirun + [str(paths["lmp"]), "-in",
-                            str(ROOT / "inputs" / f"{point['scene']}.lmp"),
+        # LIGGGHTS takes LAMMPS's command line
+        command = mpirun + [str(paths[engine(point)]), "-in", str(point_deck(point)),
                             "-log", str(directory / "log.lammps"), "-screen", "none", "-nocite"]
         for name, value in {**point_variables(point, directory, paths, token),
                             **variables}.items():
@@ -75,13 +75,13 @@ def run_partitions(batch, batch_dir, paths, env, ranks, extras, notes):
         lines += [f"variable {name} index {format_value(value)}"
                   for name, value in {**point_variables(point, directory, paths, token),
                                       **variables}.items()]
-        lines.append(f"include {ROOT / 'inputs' / (point['scene'] + '.lmp')}")
+        lines.append(f"include {point_deck(point)}")
         (directory / "settings.lmp").write_text("\n".join(lines) + "\n")
     driver = batch_dir / "driver.lmp"
     driver.write_text("variable point world " + " ".join(str(d) for d in directories) +
                       "\ninclude ${point}/settings.lmp\n")
     n = len(batch)
-    command = [paths["mpiexec"], "-np", str(n * ranks), str(paths["lmp"]), "-partition",
+    command = [paths["mpiexec"], "-np", str(n * ranks), str(paths["lammps"]), "-partition",
                f"{n}x{ranks}",
                "-in", str(driver), "-log", str(batch_dir / "log.lammps"), "-plog", "none",
                "-pscreen", "none", "-screen", "none", "-nocite"]
