@@ -2,6 +2,7 @@
         [--resolution T] [--energy-range LOW HIGH] [--min-span T] [--max-width W] [--rule R]
 python3 -m postprocess transition SWEEP_DIR [--output DIR]
 python3 -m postprocess summarize RESULTS_DIR [--to DIR] [--replace]
+python3 -m postprocess engines SWEEP_DIR [SWEEP_DIR ...] [--output DIR]
 
 Several SWEEP_DIRs are analysed as one sweep (a preset and its extension, e.g. data/chute_3d
 data/chute_3d_stiff); the output goes to the first's report/ or limit/ unless --output says.
@@ -21,6 +22,10 @@ limit       the hard-sphere-limit rule (docs/hard_sphere_limit.md) on each serie
             it applies to (the 2D frictional flow and the 3D chute; the collisional flow's
             t_w - N_w tau_w): running exponents, the fits, the verdicts, what the multiple
             contacts are made of (runs with contact rows), in DIR (default SWEEP_DIR/limit)
+engines     a scene run in two engines (a point's engine: lammps, liggghts; docs/liggghts.md):
+            per k_n, E, N_c, t_c and t_c - N_c tau_c of each engine (means over the seeds)
+            and whether they agree, in DIR (default SWEEP_DIR/engines); exit status 1 if
+            they differ on one or nothing could be compared
 summarize   one compact summary per run of RESULTS_DIR, DIR/<scene>/<point>.json (default
             DIR: data/<name of RESULTS_DIR> in the repository); report and compare take a
             directory of summaries as SWEEP_DIR as well as a results directory (docs/sweeps.md);
@@ -51,7 +56,9 @@ from .io import DataError
 from .selection import Selection
 from .study import analyse
 from .transition import analyse_transition
+from .runs import load_runs
 from .write_compare import write_compare
+from .write_engines import write_engines
 from .write_limit import write_limit
 from .write_report import write_report
 from .write_summaries import write_summaries
@@ -64,7 +71,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m postprocess", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("command", choices=("report", "compare", "transition", "limit",
-                                            "summarize"))
+                                            "summarize", "engines"))
     parser.add_argument("sweeps", type=Path, nargs="+", metavar="sweep")
     parser.add_argument("--output", type=Path)
     parser.add_argument("--to", type=Path)
@@ -117,6 +124,13 @@ def main(argv=None):
         print(f"summaries: {len(written)} runs written in {to} ({size / 1024:.0f} kB)" +
               (f", {len(kept)} kept as they were" if kept else ""))
         return 0
+    if args.command == "engines":
+        try:
+            runs = load_runs(sources, selection)
+        except DataError as error:
+            print(f"postprocess: {error}", file=sys.stderr)
+            return 2
+        return write_engines(named, runs, out)
     if args.command == "transition":
         try:
             runs, groups, left_out = analyse_transition(args.sweep)

@@ -1,0 +1,72 @@
+"""The same scene run in two engines (a sweep point's `engine`: lammps, liggghts; docs/liggghts.md):
+per scene, k_n and observable, each engine's mean over its runs (seeds) with its standard error,
+and the rule's verdict on their difference.
+
+The rule (fixed before the cross-check's runs, docs/liggghts.md): the engines agree on an
+observable at a k_n where |mean_a - mean_b| <= AGREEMENT_SIGMAS * sqrt(se_a^2 + se_b^2), se the
+standard error of the mean over the runs (s/sqrt(n), n >= 2 runs in each engine)."""
+import math
+from dataclasses import dataclass
+
+# The observables compared (postprocess/quantities.py names them).
+COMPARED = ("E_total", "N_c", "t_c", "mc_c")
+# Four combined standard errors: with four runs in each engine the errors are themselves
+# uncertain (Welch's t with about 6 degrees of freedom, |t| > 4 by chance with 0.7 %), so that
+# one of eight comparisons (two k_n, four observables) fails by chance with about 5 %.
+AGREEMENT_SIGMAS = 4.0
+ENGINE_DEFAULT = "lammps"
+
+
+@dataclass
+class Comparison:
+    scene: str
+    kn: float
+    quantity: str
+    means: dict       # engine: mean
+    errors: dict      # engine: standard error of the mean
+    counts: dict      # engine: runs
+    difference: float = math.nan
+    allowed: float = math.nan
+    verdict: str = "undecided"   # agree, differ, or undecided (fewer than two runs in one)
+
+
+def mean_and_error(values):
+    n = len(values)
+    mean = sum(values) / n
+    if n < 2:
+        return mean, math.nan
+    variance = sum((v - mean) ** 2 for v in values) / (n - 1)
+    return mean, math.sqrt(variance / n)
+
+
+def engine_of(run):
+    return (run.variables or {}).get("engine", ENGINE_DEFAULT)
+
+
+def compare_engines(runs):
+    """The comparisons of every (scene, k_n) that runs of two engines share, for COMPARED."""
+    groups = {}
+    for run in runs:
+        if not run.observables:
+            continue
+        key = (run.scene, float(run.observables["kn"]))
+        groups.setdefault(key, {}).setdefault(engine_of(run), []).append(run)
+    comparisons = []
+    for (scene, kn), by_engine in sorted(groups.items()):
+        if len(by_engine) != 2:
+            continue
+        for quantity in COMPARED:
+            stats = {engine: mean_and_error([r.observables[quantity] for r in group])
+                     for engine, group in sorted(by_engine.items())}
+            comparison = Comparison(scene, kn, quantity,
+                                    {e: m for e, (m, _) in stats.items()},
+                                    {e: s for e, (_, s) in stats.items()},
+                                    {e: len(g) for e, g in by_engine.items()})
+            (a, (mean_a, se_a)), (b, (mean_b, se_b)) = stats.items()
+            comparison.difference = mean_a - mean_b
+            if all(n >= 2 for n in comparison.counts.values()):
+                comparison.allowed = AGREEMENT_SIGMAS * math.hypot(se_a, se_b)
+                comparison.verdict = ("agree" if abs(comparison.difference) <= comparison.allowed
+                                      else "differ")
+            comparisons.append(comparison)
+    return comparisons

@@ -1,0 +1,44 @@
+"""postprocess/engines.py: the rule that compares a scene run in two engines. It must pass two
+engines that sample the same physics, fail a shift of the mean beyond its resolution (four
+combined standard errors: a wrong mass scale in one engine shifts N_c by ~10 %, many of
+them), and decide nothing from a single run."""
+import math
+from types import SimpleNamespace
+
+import numpy as np
+
+from postprocess.engines import AGREEMENT_SIGMAS, COMPARED, compare_engines
+
+
+def runs(engine, kn, values, scene="chute_3d"):
+    """Runs of one engine, the observable values of each seed (every COMPARED one the same)."""
+    return [SimpleNamespace(scene=scene, variables={"engine": engine} if engine else {},
+                            observables={"kn": kn, **{q: v for q in COMPARED}})
+            for v in values]
+
+
+def test_the_same_physics_agrees_and_a_shift_beyond_the_resolution_differs():
+    rng = np.random.default_rng(1)
+    same = runs(None, 5e4, 1 + 0.02 * rng.standard_normal(4)) + \
+        runs("liggghts", 5e4, 1 + 0.02 * rng.standard_normal(4))
+    assert {c.verdict for c in compare_engines(same)} == {"agree"}
+    # lammps, named or not, is the default engine; a shift of 6 combined errors differs
+    base = 1 + 0.02 * np.array([-1.0, -0.3, 0.4, 0.9])
+    se = np.std(base, ddof=1) / 2
+    shifted = runs("lammps", 5e4, base) + runs("liggghts", 5e4, base + 6 * math.sqrt(2) * se)
+    comparisons = compare_engines(shifted)
+    assert len(comparisons) == len(COMPARED)
+    assert {c.verdict for c in comparisons} == {"differ"}
+    assert comparisons[0].allowed == AGREEMENT_SIGMAS * math.sqrt(2) * se
+    # 3 combined errors is within the rule
+    near = runs("lammps", 5e4, base) + runs("liggghts", 5e4, base + 3 * math.sqrt(2) * se)
+    assert {c.verdict for c in compare_engines(near)} == {"agree"}
+
+
+def test_one_run_decides_nothing_and_one_engine_is_no_comparison():
+    single = runs("lammps", 8e5, [1.0, 1.1]) + runs("liggghts", 8e5, [1.05])
+    assert {c.verdict for c in compare_engines(single)} == {"undecided"}
+    assert compare_engines(runs("lammps", 8e5, [1.0, 1.1])) == []
+    # runs at other k_n are other comparisons
+    two = runs("lammps", 8e5, [1.0, 1.1]) + runs("liggghts", 5e4, [1.0, 1.1])
+    assert compare_engines(two) == []
