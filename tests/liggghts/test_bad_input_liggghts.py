@@ -12,10 +12,10 @@ pytestmark = pytest.mark.skipif(not LIGGGHTS, reason="LIGGGHTS was not built (GR
 SCENE = Scene([Particle((-0.505, 0.0, 0.6)), Particle((0.505, 0.0, 0.6))], dt=1e-5, steps=10)
 
 
-def deck(replace=(), wall=False, atom_types=1, **law):
+def deck(replace=(), wall=False, atom_types=1, dt=SCENE.dt, **law):
     """The two-sphere deck of the cross-checks, with the given text replacements, and its data
     file (with so many atom types)."""
-    scene = Scene(SCENE.particles, SCENE.dt, SCENE.steps, wall=wall, **law)
+    scene = Scene(SCENE.particles, dt, SCENE.steps, wall=wall, **law)
     text = liggghts_deck(scene)
     for old, new in replace:
         assert old in text, old
@@ -31,6 +31,9 @@ BAD = {
         deck([("fix b all property/global coefficientTangentialRestitution peratomtypepair 1 0.7\n", "")]),
         "Could not locate a fix/property storing value(s) for coefficientTangentialRestitution as requested by model mn"),
     "LIGGGHTS: e above one": (deck(e=1.2), "model mn: for atom types 1 and 1: e must lie in (0,1]"),
+    "LIGGGHTS: timestep above the stability limit": (
+        deck(dt=0.01),
+        "model mn: for atom types 1 and 1: timestep 0.01 exceeds the stability limit 0.00282"),
     "LIGGGHTS: beta zero": (deck(beta=0.0), "for atom types 1 and 1: beta must lie in (0,1]"),
     "LIGGGHTS: normalStiffnessPerMass negative": (
         deck(kn=-1.0), "for atom types 1 and 1: kn must be a finite number > 0"),

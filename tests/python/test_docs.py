@@ -6,6 +6,7 @@ from pathlib import Path
 import test_bad_input
 import test_bad_input_liggghts
 import test_checkpoint
+import test_chute
 import test_chute_3d
 import test_counters
 import test_nve_disc_mn
@@ -21,7 +22,8 @@ def test_every_bad_input_case_is_in_the_table():
     tables = [test_bad_input.ERRORS, test_counters.BAD, test_nve_disc_mn.BAD, test_scenes.BAD_VARIABLES,
               test_scenes.BAD_FRICTIONAL_VARIABLES, test_scenes.BAD_SINGLE_DISK_VARIABLES,
               test_sweep.BAD_CONFIGS, test_sweep.BAD_OUTPUTS, test_chute_3d.BAD_3D,
-              test_checkpoint.BAD_WINDOWS, test_bad_input_liggghts.BAD]
+              test_checkpoint.BAD_WINDOWS, test_bad_input_liggghts.BAD,
+              test_chute.BAD]
     for table in tables:
         for case, (_, message) in table.items():
             assert f"| {case}" in DOC and message.replace("|", "\\|") in DOC, case
