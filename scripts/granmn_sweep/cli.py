@@ -13,6 +13,8 @@ Config (TOML):
     kn = [5e4, 2e5]
     seed = [1, 2]
     integrator = ["verlet", "ab2"]
+    engine = "lammps"             # or "liggghts": the scene's deck inputs/liggghts/<scene>.lmp
+                                  # run by build/plugin/liggghts/build/liggghts (chute_3d)
 
 Any other key is passed to the deck as -var KEY VALUE (see inputs/lib/defaults.lmp); a
 variable the scene's deck takes but never uses (seed in single_disk: no random start) is
@@ -119,12 +121,12 @@ def main(argv=None):
         config = load_config(args.config)
         points = expand(config, args.config)
         engines = {engine(p) for p in points}
-        for key in sorted(engines | {"mn_law"} | ({"plugin"} if "lammps" in engines else set())):
-            if not paths[key].exists():
-                raise SweepError(f"{paths[key]} is missing: run ./scripts/build.sh first")
         if args.partitions and engines != {"lammps"}:
             raise SweepError("--partitions runs the points as the partitions of one lmp: the "
                              "points of engine liggghts run as processes of their own (--jobs)")
+        for key in sorted(engines | {"mn_law"} | ({"plugin"} if "lammps" in engines else set())):
+            if not paths[key].exists():
+                raise SweepError(f"{paths[key]} is missing: run ./scripts/build.sh first")
         output = args.output or ROOT / "results" / config.get("name", Path(args.config).stem)
         for what, path in (("--output", output), ("--build", args.build), ("the checkout", ROOT)):
             check_path(what, path)

@@ -274,6 +274,15 @@ BAD_CONFIGS = {
     # removed every point of the scene
     "a grid of the scene alone": ('[[grid]]\nscene = "single_disk"\n',
                                   "a point of scene single_disk with no variable but the scene"),
+    "unknown engine": ('[[grid]]\nscene = "single_disk"\nengine = "yade"\nkn = 2e5\n',
+                       "unknown engine 'yade' (expected one of lammps, liggghts)"),
+    "a scene the engine has no deck for": (
+        '[[grid]]\nscene = "single_disk"\nengine = "liggghts"\nkn = 2e5\n',
+        "unknown scene 'single_disk' of engine liggghts (expected one of chute_3d)"),
+    # the LIGGGHTS chute has no early stop: stop_energy only goes into its check (0 or refused)
+    "a variable the LIGGGHTS deck does not use": (
+        '[[grid]]\nscene = "chute_3d"\nengine = "liggghts"\nstop_energy = 0\n',
+        "stop_energy: inputs/liggghts/chute_3d.lmp does not use it"),
     "one value in two spellings": (
         '[[grid]]\nscene = "collisional_flow"\nrun_time = 1\naverage_start = 0.5\n'
         'seed = [1, "01"]\n', 
@@ -289,6 +298,16 @@ def test_bad_config_is_refused_with_a_message(tmp_path, case):
     proc = sweep(config, tmp_path / "out", check=False)
     assert proc.returncode == 2 and message in proc.stderr, proc.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_partitions_refuse_points_of_another_engine(tmp_path):
+    """--partitions runs points as the partitions of one lmp: a LIGGGHTS point is refused by
+    name (it would have run in lmp, with a deck lmp cannot read)."""
+    config = tmp_path / "engines.toml"
+    config.write_text('[[grid]]\nscene = "chute_3d"\nengine = "liggghts"\nseed = [1, 2]\n')
+    proc = sweep(config, tmp_path / "out", "--partitions", "2", check=False)
+    assert proc.returncode == 2 and "the points of engine liggghts run as processes of their " \
+        "own" in proc.stderr, proc.stderr
 
 
 def test_missing_config_file(tmp_path):
