@@ -185,33 +185,31 @@ inline Kinematics<DIM> kinematics(const LIGGGHTS::ContactModels::SurfacesInterse
 // `model mn` and `tangential mn` are one law: every pair style or wall that names one must name
 // the other, with neither cohesion nor rolling friction (their forces would change the
 // restitution and contact time the law is derived to keep).
+template <class Owner> void check_combination(LAMMPS_NS::LAMMPS *lmp, const std::string &owner,
+                                              Owner *models)
+{
+  const bool normal = models->contact_match("normal", "mn");
+  const bool tangential = models->contact_match("tangential", "mn");
+  std::string wrong;
+  if (normal && !tangential)
+    wrong = "model mn needs tangential mn";
+  else if (tangential && !normal)
+    wrong = "tangential mn needs model mn";
+  else if (normal && !models->contact_match("cohesion", "off"))
+    wrong = "model mn takes no cohesion model";
+  else if (normal && !models->contact_match("rolling_friction", "off"))
+    wrong = "model mn takes no rolling_friction model";
+  if (!wrong.empty()) lmp->error->all(FLERR, (owner + ": " + wrong).c_str());
+}
+
 inline void check_combination(LAMMPS_NS::LAMMPS *lmp)
 {
-  auto check = [lmp](const std::string &owner, bool normal, bool tangential, bool cohesion_off,
-                     bool rolling_off) {
-    std::string wrong;
-    if (normal && !tangential)
-      wrong = "model mn needs tangential mn";
-    else if (tangential && !normal)
-      wrong = "tangential mn needs model mn";
-    else if (normal && !cohesion_off)
-      wrong = "model mn takes no cohesion model";
-    else if (normal && !rolling_off)
-      wrong = "model mn takes no rolling_friction model";
-    if (!wrong.empty()) lmp->error->all(FLERR, (owner + ": " + wrong).c_str());
-  };
   LAMMPS_NS::Pair *pair = lmp->force->pair_match("gran", 0);
   if (auto *gran = dynamic_cast<LAMMPS_NS::PairGran *>(pair))
-    check("pair_style gran", gran->contact_match("normal", "mn"),
-          gran->contact_match("tangential", "mn"), gran->contact_match("cohesion", "off"),
-          gran->contact_match("rolling_friction", "off"));
-  for (int f = 0; f < lmp->modify->nfix; f++) {
-    auto *wall = dynamic_cast<LAMMPS_NS::FixWallGran *>(lmp->modify->fix[f]);
-    if (!wall) continue;
-    check(std::string("fix ") + wall->id + " wall/gran", wall->contact_match("normal", "mn"),
-          wall->contact_match("tangential", "mn"), wall->contact_match("cohesion", "off"),
-          wall->contact_match("rolling_friction", "off"));
-  }
+    check_combination(lmp, "pair_style gran", gran);
+  for (int f = 0; f < lmp->modify->nfix; f++)
+    if (auto *wall = dynamic_cast<LAMMPS_NS::FixWallGran *>(lmp->modify->fix[f]))
+      check_combination(lmp, std::string("fix ") + wall->id + " wall/gran", wall);
 }
 
 // LIGGGHTS evaluates the contact models' surfacesClose, where a contact's end is seen and its
