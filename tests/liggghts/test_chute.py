@@ -34,8 +34,9 @@ def run_liggghts_chute(workdir, check=True, **variables):
                str(workdir)]
     for name, value in variables.items():
         command += ["-var", name, str(value)]
+    # (LIGGGHTS's errors can end in bytes of no text: it prints the rest of a line buffer)
     proc = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                          timeout=600)
+                          errors="replace", timeout=600)
     if check and proc.returncode != 0:
         raise AssertionError(proc.stdout[-3000:])
     return proc
