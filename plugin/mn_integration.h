@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <map>
+#include <tuple>
 
 namespace mn {
 
@@ -94,7 +96,9 @@ constexpr double UNDAMPED_GROWTH_PER_CONTACT = 1e-3;
 // Adams-Bashforth 2 amplifies it a little at every step (by about (w dt)^4/4), so it has no
 // strict limit at all: there the limit is the step at which a contact (pi/w long) grows by
 // UNDAMPED_GROWTH_PER_CONTACT, and lasting contacts still gain energy (the styles warn).
-inline double max_stable_dt(Integrator integrator, double w2, double g)
+namespace detail {
+
+inline double bisect_stable_dt(Integrator integrator, double w2, double g)
 {
   const double tolerance = 1e-9;    // rounding of the eigenvalues
   const bool weakly_unstable = g == 0.0 && integrator == Integrator::AdamsBashforth2;
@@ -115,6 +119,23 @@ inline double max_stable_dt(Integrator integrator, double w2, double g)
     (stable(mid) ? lo : hi) = mid;
   }
   return lo;
+}
+
+}    // namespace detail
+
+// ... computed once per process for each (integrator, w2, g) and kept: the styles ask for it at
+// every run's init (their step check, the published v_mn_dt_max_*), a deck split into many
+// short runs asks again and again, and each bisection costs ~1e8 instructions (the spectral
+// radii of its steps).
+inline double max_stable_dt(Integrator integrator, double w2, double g)
+{
+  static std::map<std::tuple<Integrator, double, double>, double> known;
+  const auto key = std::make_tuple(integrator, w2, g);
+  const auto found = known.find(key);
+  if (found != known.end()) return found->second;
+  const double dt = detail::bisect_stable_dt(integrator, w2, g);
+  known.emplace(key, dt);
+  return dt;
 }
 
 // True if the integrator slowly amplifies one of the law's modes (AB2 with e = 1, or with

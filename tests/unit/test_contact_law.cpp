@@ -377,6 +377,22 @@ TEST(Stability, VelocityVerletUndampedLimitIsTwoOverOmega)
                 1e-6);
 }
 
+// The limit is computed once per (integrator, w2, g) and kept: asked again, each mode gets the
+// number its own bisection gives, with other modes asked in between (a store keyed on less,
+// say without g or the integrator, would hand one mode another's limit).
+TEST(Stability, KeptLimitIsEachModesOwn)
+{
+  const auto vv = mn::Integrator::VelocityVerlet, ab2 = mn::Integrator::AdamsBashforth2;
+  const double modes[][2] = {{4e5, 10.0}, {4e5, 400.0}, {1e3, 10.0}};
+  for (int round = 0; round < 2; round++)
+    for (const auto integrator : {vv, ab2})
+      for (const auto &mode : modes)
+        EXPECT_EQ(mn::max_stable_dt(integrator, mode[0], mode[1]),
+                  mn::detail::bisect_stable_dt(integrator, mode[0], mode[1]));
+  EXPECT_NE(mn::max_stable_dt(vv, 4e5, 10.0), mn::max_stable_dt(vv, 4e5, 400.0));
+  EXPECT_NE(mn::max_stable_dt(vv, 4e5, 10.0), mn::max_stable_dt(ab2, 4e5, 10.0));
+}
+
 // Independent of the eigenvalue computation: iterate the integrators on the oscillator just
 // below and just above the reported limit.
 TEST(Stability, ReportedLimitSeparatesDecayFromGrowth)
