@@ -1,0 +1,124 @@
+#!/usr/bin/python3
+"""LAMMPS's own granular benchmark, bench/in.chute (32000 spheres, a 3D chute on a frozen base),
+from the LAMMPS tree the build uses, in three variants side by side (issue 33,
+docs/performance.md):
+
+- as LAMMPS ships it: pair_style gran/hooke/history 200000 NULL 50 NULL 0.5 0;
+- with gran/mn at matched stiffness and damping: kn = 2e5 / m per unit mass scale (m = pi/6,
+  the spheres' mass: 2M = m between two of them), e from eta_n = 25 (gran/hooke's meff gamma_n
+  = m/2 x 50 = 2M x 25), beta = 1 (no tangential damping, as dampflag 0), mu = 0.5,
+  coulomb_cutback (gran/hooke/history cuts the shear back), `wall_types 2` for the frozen base
+  in place of the base's neigh_modify exclude (its contacts take m_i, as gran/hooke's meff
+  with a frozen partner);
+- with pair_style granular (hooke 2e5 50, tangential linear_history 2/7 x 2e5 0 0.5, damping
+  mass_velocity).
+
+Each variant runs STEPS steps, interleaved, best of --repeat: the loop time times LAMMPS's CPU
+share, the Pair time, LAMMPS's timer breakdown, memory per rank, and the final kinetic energy
+(the three simulate the same flow: gran/mn's k_t is (2 k_n - eta_n^2)/7 per unit mass, 0.16 %
+below gran/hooke's 2/7 k_n, so their energies agree closely, not exactly).
+
+    bench/peer_chute.py [--steps 400] [--repeat 3] [--build build]"""
+import argparse
+import math
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+from mn_law import derived    # bench/mn_law.py links scripts/mn_law.py
+
+ROOT = Path(__file__).resolve().parent.parent
+SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
+MASS = math.pi / 6           # data.chute: diameter 1, density 1
+KN, GAMMA_N, MU = 2e5, 50.0, 0.5
+
+
+def restitution_for(eta_n, kn):
+    """e whose eta_n = sqrt(2 kn ln^2 e / (pi^2 + ln^2 e)) is the given one (docs/model.md 3)."""
+    ln2 = eta_n ** 2 * math.pi ** 2 / (2 * kn - eta_n ** 2)
+    return math.exp(-math.sqrt(ln2))
+
+
+def variants(shipped, mn_law):
+    kn_mn = KN / MASS
+    e = restitution_for(GAMMA_N / 2, kn_mn)
+    # the law's own mapping (mn-law, the header's) gives back eta_n = 25 for that e
+    eta_n = derived(mn_law, kn_mn, e, 1.0, "sphere")["eta_n"]
+    assert abs(eta_n - GAMMA_N / 2) < 1e-9 * GAMMA_N, eta_n
+    mn = (f"pair_style gran/mn kn {kn_mn!r} e {e!r} beta 1 mu {MU!r} coulomb_cutback "
+          "wall_types 2")
+    granular = (f"pair_style granular\npair_coeff * * hooke {KN!r} {GAMMA_N!r} tangential "
+                f"linear_history {2 / 7 * KN!r} 0 {MU!r} damping mass_velocity")
+    pair = "pair_style\tgran/hooke/history 200000.0 NULL 50.0 NULL 0.5 0\npair_coeff\t* *\n"
+    exclude = "neigh_modify\texclude group bottom bottom\n"
+    assert pair in shipped and exclude in shipped, "bench/in.chute is not the one this reads"
+    return {"gran/hooke/history": shipped,
+            "gran/mn": shipped.replace(pair, mn + "\npair_coeff * *\n").replace(exclude, ""),
+            "granular": shipped.replace(pair, granular + "\n")}
+
+
+def run(lmp, plugin, deck, steps, work):
+    text = deck.replace("run\t\t100", f"run\t\t{steps}").replace("thermo\t\t100",
+                                                                 f"thermo\t\t{steps}")
+    (work / "in.bench").write_text(f"plugin load {plugin}\n" + text)
+    proc = subprocess.run([str(lmp), "-in", "in.bench", "-log", "log.bench", "-nocite"],
+                          cwd=work, capture_output=True, text=True, errors="replace")
+    if proc.returncode != 0:
+        raise RuntimeError(f"lmp failed:\n{proc.stdout[-2000:]}{proc.stderr[-2000:]}")
+    out = proc.stdout
+    loop = float(re.search(r"Loop time of (\S+)", out).group(1))
+    share = float(re.search(r"([\d.]+)% CPU use", out).group(1)) / 100
+    sections = {name: float(re.search(rf"^{name}\s*\|.*\|\s*(\S+)\s*$", out, re.M).group(1))
+                for name in SECTIONS}
+    memory = float(re.search(r"memory allocation.*= \S+ \| (\S+) \| \S+ Mbytes", out).group(1))
+    thermo = re.findall(rf"^\s*{steps}\s+\d+\s+(\S+)\s+(\S+)", out, re.M)
+    return {"cpu": loop * share, "pair": loop * share * sections["Pair"] / 100,
+            "sections": sections, "memory": memory, "ke": float(thermo[-1][0])}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--steps", type=int, default=400)
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--build", type=Path, default=ROOT / "build")
+    args = parser.parse_args()
+    build = args.build.resolve()
+    lmp, plugin = build / "lammps" / "lmp", build / "plugin" / "granmnplugin.so"
+    cache = (build / "CMakeCache.txt").read_text()
+    tree = Path(re.search(r"^LAMMPS_SOURCE_DIR:PATH=(.*)$", cache, re.M).group(1))
+    version = re.search(r'LAMMPS_VERSION "(.*)"', (tree / "src" / "version.h").read_text())
+    print(f"LAMMPS {version.group(1)} ({tree}); {args.steps} steps, best of {args.repeat}")
+    decks = variants((tree / "bench" / "in.chute").read_text(), build / "plugin" / "mn-law")
+    best = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        work = Path(tmp)
+        shutil.copy(tree / "bench" / "data.chute", work)
+        for _ in range(args.repeat):
+            for name, deck in decks.items():
+                try:
+                    result = run(lmp, plugin, deck, args.steps, work)
+                except RuntimeError as error:
+                    if name == "granular":    # an older LAMMPS's pair granular takes other words
+                        print(f"{name}: {str(error).splitlines()[-1]}", file=sys.stderr)
+                        continue
+                    raise
+                if name not in best or result["cpu"] < best[name]["cpu"]:
+                    best[name] = result
+    reference = best["gran/hooke/history"]
+    print(f"{'variant':<20} {'CPU s':>8} {'/hooke':>7} {'Pair s':>8} {'/hooke':>7} "
+          f"{'MB/rank':>8} {'KE':>14}  " + " ".join(f"{s:>6}" for s in SECTIONS) + "  (% loop)")
+    for name, r in best.items():
+        print(f"{name:<20} {r['cpu']:8.3f} {r['cpu'] / reference['cpu']:7.3f} {r['pair']:8.3f} "
+              f"{r['pair'] / reference['pair']:7.3f} {r['memory']:8.2f} {r['ke']:14.8g}  " +
+              " ".join(f"{r['sections'][s]:6.1f}" for s in SECTIONS))
+    if "granular" in best:
+        print(f"gran/mn / granular: CPU {best['gran/mn']['cpu'] / best['granular']['cpu']:.3f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
