@@ -230,6 +230,22 @@ inline void see_every_listed_pair(LAMMPS_NS::LAMMPS *lmp)
   if (all < 1e300) lmp->neighbor->register_contact_dist_factor(1.0 + lmp->neighbor->skin / all);
 }
 
+// What each of the two models holds of the law: the options its settings set, the laws of the
+// type pairs, and the dimension, made at each run's init (connectToProperties) after the
+// combination of models is checked.
+struct ModelLaw {
+  mn::Options options;
+  LawTable laws;
+  bool two_d = false;
+
+  void connect(LAMMPS_NS::LAMMPS *lmp, PropertyRegistry &registry, const char *model)
+  {
+    check_combination(lmp);
+    laws.derive(lmp, registry, options, model);
+    two_d = lmp->domain->dimension == 2;
+  }
+};
+
 // The fix contacts/mn of the run, if one is defined (the counters: fix_contacts_mn.h).
 inline const granmn::ContactCounter *find_counter(LAMMPS_NS::LAMMPS *lmp)
 {

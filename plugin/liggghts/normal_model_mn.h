@@ -29,16 +29,14 @@ class NormalModel<MN> : public NormalModelBase {
 
   void registerSettings(Settings &settings)
   {
-    settings.registerOnOff("limit_damping", options.limit_damping, false);
+    settings.registerOnOff("limit_damping", law.options.limit_damping, false);
   }
 
   void postSettings(IContactHistorySetup *, ContactModelBase *) {}
 
   void connectToProperties(PropertyRegistry &registry)
   {
-    granmn_liggghts::check_combination(lmp);
-    laws.derive(lmp, registry, options, "model mn");
-    two_d = domain->dimension == 2;
+    law.connect(lmp, registry, "model mn");
     counter = granmn_liggghts::find_counter(lmp);
     granmn_liggghts::see_every_listed_pair(lmp);
   }
@@ -48,17 +46,19 @@ class NormalModel<MN> : public NormalModelBase {
   void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces, ForceData &j_forces)
   {
     if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_NORMAL_MODEL;
-    const mn::Law &law = laws(sidata.itype, sidata.jtype);
-    const double scale = granmn_liggghts::mass_scale(sidata) * laws.force_per_mass_acceleration;
-    const double fn = two_d ? mn::normal_force(law, scale, granmn_liggghts::kinematics<2>(sidata))
-                            : mn::normal_force(law, scale, granmn_liggghts::kinematics<3>(sidata));
+    const mn::Law &pair_law = law.laws(sidata.itype, sidata.jtype);
+    const double scale =
+        granmn_liggghts::mass_scale(sidata) * law.laws.force_per_mass_acceleration;
+    const double fn =
+        law.two_d ? mn::normal_force(pair_law, scale, granmn_liggghts::kinematics<2>(sidata))
+                  : mn::normal_force(pair_law, scale, granmn_liggghts::kinematics<3>(sidata));
     sidata.Fn = fn;
     // the absolute coefficients of this contact, for what reads them from a normal model
     // (LIGGGHTS's timestep check, pair/gran/local)
-    sidata.kn = scale * law.material.kn;
-    sidata.gamman = scale * law.eta_n;
-    sidata.kt = scale * law.kt;
-    sidata.gammat = scale * law.eta_t;
+    sidata.kn = scale * pair_law.material.kn;
+    sidata.gamman = scale * pair_law.eta_n;
+    sidata.kt = scale * pair_law.kt;
+    sidata.gammat = scale * pair_law.eta_t;
 
     const double f = sidata.is_wall ? fn * sidata.area_ratio : fn;
     for (int c = 0; c < 3; c++) i_forces.delta_F[c] += f * sidata.en[c];
@@ -91,9 +91,7 @@ class NormalModel<MN> : public NormalModelBase {
 
   int touching_offset;
   const granmn::ContactCounter *counter = nullptr;
-  mn::Options options;
-  granmn_liggghts::LawTable laws;
-  bool two_d = false;
+  granmn_liggghts::ModelLaw law;
 };
 
 }    // namespace ContactModels

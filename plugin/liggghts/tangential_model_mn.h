@@ -31,32 +31,31 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
 
   void registerSettings(Settings &settings)
   {
-    settings.registerOnOff("coulomb_cutback", options.coulomb_cutback, false);
+    settings.registerOnOff("coulomb_cutback", law.options.coulomb_cutback, false);
   }
 
   void postSettings(IContactHistorySetup *, ContactModelBase *) {}
 
   void connectToProperties(PropertyRegistry &registry)
   {
-    granmn_liggghts::check_combination(lmp);
-    laws.derive(lmp, registry, options, "tangential mn");
-    two_d = domain->dimension == 2;
+    law.connect(lmp, registry, "tangential mn");
   }
 
   void surfacesIntersect(const SurfacesIntersectData &sidata, ForceData &i_forces,
                          ForceData &j_forces)
   {
     if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_TANGENTIAL_MODEL;
-    const mn::Law &law = laws(sidata.itype, sidata.jtype);
-    const double scale = granmn_liggghts::mass_scale(sidata) * laws.force_per_mass_acceleration;
+    const mn::Law &pair_law = law.laws(sidata.itype, sidata.jtype);
+    const double scale =
+        granmn_liggghts::mass_scale(sidata) * law.laws.force_per_mass_acceleration;
     double *ut = &sidata.contact_history[ut_offset];
     // LIGGGHTS re-evaluates forces without a step (setup) with shearupdate 0: u_t stays
     const double dt_history = sidata.computeflag && sidata.shearupdate ? update->dt : 0.0;
 
     double ft[3], torque_i[3] = {0.0, 0.0, 0.0}, torque_j[3] = {0.0, 0.0, 0.0};
-    if (two_d) {
+    if (law.two_d) {
       const mn::Kinematics k = granmn_liggghts::kinematics<2>(sidata);
-      mn::Force f = mn::tangential_force(law, scale, k, sidata.Fn, ut, dt_history,
+      mn::Force f = mn::tangential_force(pair_law, scale, k, sidata.Fn, ut, dt_history,
                                          mn::Integrator::VelocityVerlet, nullptr);
       f.fn = 0.0;    // the normal model has applied it
       const mn::Cartesian fxy = mn::cartesian(k, f);
@@ -67,7 +66,7 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
       if (!sidata.is_wall) torque_j[2] = mn::torque(f, sidata.radj);
     } else {
       const mn::Kinematics3 k = granmn_liggghts::kinematics<3>(sidata);
-      const mn::Force3 f = mn::tangential_force3(law, scale, k, sidata.Fn, ut, dt_history);
+      const mn::Force3 f = mn::tangential_force3(pair_law, scale, k, sidata.Fn, ut, dt_history);
       for (int c = 0; c < 3; c++) ft[c] = f.ft[c];
       mn::torque3(k, f, sidata.radi, torque_i);
       if (!sidata.is_wall) mn::torque3(k, f, sidata.radj, torque_j);
@@ -102,9 +101,7 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
 
  private:
   int ut_offset;
-  mn::Options options;
-  granmn_liggghts::LawTable laws;
-  bool two_d = false;
+  granmn_liggghts::ModelLaw law;
 };
 
 }    // namespace ContactModels
