@@ -30,7 +30,23 @@ def die_with(runner):
         _libc.prctl(PR_SET_PDEATHSIG, SIGTERM)
         if os.getppid() != runner:
             os._exit(1)
+        keep_niceness()
     return setup
+
+
+def keep_niceness():
+    """A run has a session of its own (start_new_session: a signal reaches all it starts).
+    Where the kernel schedules each session as a group of its own (Linux's autogroup), the
+    niceness it inherits from the runner (`nice -n 19 scripts/sweep.py`) would weigh only
+    within that group, and the run would take a full share of a core: the group is given the
+    same niceness."""
+    niceness = os.nice(0)
+    if niceness > 0:
+        try:
+            with open("/proc/self/autogroup", "w") as group:
+                group.write(str(niceness))
+        except OSError:
+            pass    # no autogroup here: the niceness already applies
 
 
 def process_fields(pid):

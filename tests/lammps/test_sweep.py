@@ -310,6 +310,24 @@ def test_partitions_refuse_points_of_another_engine(tmp_path):
         "own" in proc.stderr, proc.stderr
 
 
+def test_a_nice_runners_runs_stay_nice_in_their_own_sessions(tmp_path):
+    """Each run has a session of its own; under the kernel's autogroup scheduling each session
+    is a scheduling group, and a `nice -n 19` runner's runs took a full share of a core (the
+    runner's niceness weighed only inside each run's group): a run's group takes the runner's
+    niceness."""
+    if Path("/proc/sys/kernel/sched_autogroup_enabled").read_text().strip() != "1":
+        pytest.skip("this kernel schedules no autogroups")
+    code = ("import os, sys; sys.path.insert(0, sys.argv[1]); os.nice(7);"
+            "from granmn_sweep import processes;"
+            "p = processes.start(['sleep', '1'], sys.argv[2], dict(os.environ), []);"
+            "print(open(f'/proc/{p.pid}/autogroup').read()); processes.wait(p, [])")
+    proc = subprocess.run([sys.executable, "-c", code, str(ROOT / "scripts"),
+                           str(tmp_path / "run.out")], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split()[-1] == "7", proc.stdout
+
+
 def test_missing_config_file(tmp_path):
     proc = sweep(tmp_path / "nowhere.toml", tmp_path / "out", check=False)
     assert proc.returncode == 2 and "no such config file" in proc.stderr
