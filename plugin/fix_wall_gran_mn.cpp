@@ -210,25 +210,18 @@ template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
         n[0] = normal * x[i][0] / rho;
         n[1] = normal * x[i][1] / rho;
       }
-      const double vn = CYLINDER ? n[0] * v[i][0] + n[1] * v[i][1] : normal * v[i][axis];
       const granmn::ContactLayout &layout = layouts[side];
       double *row = history[i];
-      if (events) {
-        double &touching = row[layout.touching];
-        if (in_contact) {
-          const bool began = touching == 0.0;
-          events->update_record(row + layout.record, began, radius[i] - dist, vn);
-          touching = 1.0;
-          if (began || events->reports_every_contact()) events->boundary_touching(i, began);
-        } else if (touching != 0.0) {
-          touching = 0.0;
-          events->boundary_ended(i, row + layout.record, vn);
-        }
-      }
       double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
       double *vt_previous = layout.vt_previous >= 0 ? row + layout.vt_previous : nullptr;
       if (!in_contact) {
-        // only a contact that has just ended has any history to clear (as in the pair style)
+        // most atoms are away from the wall: the work here is only for a contact that has just
+        // ended, the observer's event and the history to clear (as in the pair style)
+        if (events && row[layout.touching] != 0.0) {
+          row[layout.touching] = 0.0;
+          const double vn = CYLINDER ? n[0] * v[i][0] + n[1] * v[i][1] : normal * v[i][axis];
+          events->boundary_ended(i, row + layout.record, vn);
+        }
         const auto clear = [&layout](double *values) {
           for (int k = 0; values && k < layout.ut_width; k++)
             if (values[k] != 0.0) values[k] = 0.0;
@@ -236,6 +229,14 @@ template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
         clear(ut);
         clear(vt_previous);
         continue;
+      }
+      if (events) {
+        const double vn = CYLINDER ? n[0] * v[i][0] + n[1] * v[i][1] : normal * v[i][axis];
+        double &touching = row[layout.touching];
+        const bool began = touching == 0.0;
+        events->update_record(row + layout.record, began, radius[i] - dist, vn);
+        touching = 1.0;
+        if (began || events->reports_every_contact()) events->boundary_touching(i, began);
       }
       if (dist <= 0.0)
         error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the {} at {} "
