@@ -49,3 +49,12 @@ def save(fig, ax, path):
     fig.savefig(path, dpi=100)
     plt.close(fig)
     print(f"figure: {path}")
+
+
+def curves_figure(path, curves, xlabel, ylabel, title, log_y=False):
+    """One curve per {label: (x, y)}, in one axes, saved to path."""
+    fig, ax = axes((6, 3.5))
+    for label, (x, y) in curves.items():
+        (ax.semilogy if log_y else ax.plot)(x, y, lw=1.2, label=label)
+    ax.set(xlabel=xlabel, ylabel=ylabel, title=title)
+    save(fig, ax, path)

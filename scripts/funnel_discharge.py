@@ -38,12 +38,9 @@ def main(argv=None):
                           for s in (2.0, 5.0, 10.0) if t.max() >= s)
         print(f"{path}: spheres out {marks}")
     if args.figure:
-        fig, ax = example_runs.axes((6, 3.5))
-        for path, (t, out) in curves.items():
-            ax.plot(t, out, lw=1.2, label=path)
-        ax.set(xlabel="time since the bottom opened (s)", ylabel="spheres out",
-               title="funnel discharge")
-        example_runs.save(fig, ax, args.figure)
+        example_runs.curves_figure(args.figure, {str(p): c for p, c in curves.items()},
+                                   "time since the bottom opened (s)", "spheres out",
+                                   "funnel discharge")
     return 0
 
 

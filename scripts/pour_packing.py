@@ -45,15 +45,14 @@ def main(argv=None):
         print(f"{path}: solid fraction {phi:.4f} +- {error:.4f} in z = {low:.2f}-{high:.2f} "
               f"(pile top {top:.2f})")
     if args.figure and args.logs:
-        fig, ax = example_runs.axes((6, 3.5))
+        curves = {}
         for path in args.logs:
             rows = example_runs.thermo(path, ("Step", "KinEng"))
             steps, ke = rows["Step"], rows["KinEng"]
             settling = (steps <= 25000) & (ke > 0)
-            ax.semilogy(steps[settling], ke[settling], lw=1.2, label=path)
-        ax.set(xlabel="step", ylabel="kinetic energy (thermo ke)",
-               title="3D pour: pouring and settling")
-        example_runs.save(fig, ax, args.figure)
+            curves[str(path)] = (steps[settling], ke[settling])
+        example_runs.curves_figure(args.figure, curves, "step", "kinetic energy (thermo ke)",
+                                   "3D pour: pouring and settling", log_y=True)
     return 0
 
 
