@@ -39,11 +39,14 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg)
   peratom_freq = 1;
 }
 
+// The per-atom counters, a property/atom that migrates with the atoms. Not in restart files:
+// the window's length is not either, and a read restart starts both anew at zero together
+// (counters of a window with a length of 0 would be nonsense).
 void FixContactsMN::post_create()
 {
   const std::string name = std::string("contacts_mn_") + id;
   const char *fixarg[9 + COLUMNS] = {name.c_str(), group->names[igroup], "property/atom",
-                                     name.c_str(), "vector", "yes", "no", "no"};
+                                     name.c_str(), "vector", "no", "no", "no"};
   for (int c = 0; c < COLUMNS; c++) fixarg[8 + c] = "0.0";
   accumulated = modify->add_fix_property_atom(8 + COLUMNS, const_cast<char **>(fixarg),
                                               style);

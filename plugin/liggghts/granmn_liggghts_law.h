@@ -182,6 +182,50 @@ inline Kinematics<DIM> kinematics(const LIGGGHTS::ContactModels::SurfacesInterse
   return mn::kinematics(mn::Dim<DIM>(), contact.delta, contact.r, contact.radsum, dv, lever);
 }
 
+// The normal model computes a contact's kinematics once and leaves them in LIGGGHTS's contact
+// data, where the tangential model (evaluated after it: the two go together) takes them: the
+// normal in en, the overlap in deltan, v_n in vn, and the law's tangential velocity in
+// vtr1..3 (its v_t, with the full radii as lever arms, in place of LIGGGHTS's; in 2D the
+// scalar v_t along t in vtr1).
+inline void keep(LIGGGHTS::ContactModels::SurfacesIntersectData &contact,
+                 const mn::Kinematics3 &k)
+{
+  for (int c = 0; c < 3; c++) contact.en[c] = k.n[c];
+  contact.deltan = k.delta;
+  contact.vn = k.vn;
+  contact.vtr1 = k.vt[0];
+  contact.vtr2 = k.vt[1];
+  contact.vtr3 = k.vt[2];
+}
+
+inline void keep(LIGGGHTS::ContactModels::SurfacesIntersectData &contact,
+                 const mn::Kinematics &k)
+{
+  contact.en[0] = k.nx;
+  contact.en[1] = k.ny;
+  contact.en[2] = 0.0;
+  contact.deltan = k.delta;
+  contact.vn = k.vn;
+  contact.vtr1 = k.vt;
+}
+
+inline mn::Kinematics3 kept3(const LIGGGHTS::ContactModels::SurfacesIntersectData &contact)
+{
+  mn::Kinematics3 k;
+  for (int c = 0; c < 3; c++) k.n[c] = contact.en[c];
+  k.delta = contact.deltan;
+  k.vn = contact.vn;
+  k.vt[0] = contact.vtr1;
+  k.vt[1] = contact.vtr2;
+  k.vt[2] = contact.vtr3;
+  return k;
+}
+
+inline mn::Kinematics kept2(const LIGGGHTS::ContactModels::SurfacesIntersectData &contact)
+{
+  return {contact.en[0], contact.en[1], contact.deltan, contact.vn, contact.vtr1};
+}
+
 // `model mn` and `tangential mn` are one law: every pair style or wall that names one must name
 // the other, with neither cohesion nor rolling friction (their forces would change the
 // restitution and contact time the law is derived to keep).

@@ -49,9 +49,16 @@ class NormalModel<MN> : public NormalModelBase {
     const mn::Law &pair_law = law.laws(sidata.itype, sidata.jtype);
     const double scale =
         granmn_liggghts::mass_scale(sidata) * law.laws.force_per_mass_acceleration;
-    const double fn =
-        law.two_d ? mn::normal_force(pair_law, scale, granmn_liggghts::kinematics<2>(sidata))
-                  : mn::normal_force(pair_law, scale, granmn_liggghts::kinematics<3>(sidata));
+    double fn;
+    if (law.two_d) {
+      const mn::Kinematics k = granmn_liggghts::kinematics<2>(sidata);
+      granmn_liggghts::keep(sidata, k);    // for tangential mn
+      fn = mn::normal_force(pair_law, scale, k);
+    } else {
+      const mn::Kinematics3 k = granmn_liggghts::kinematics<3>(sidata);
+      granmn_liggghts::keep(sidata, k);
+      fn = mn::normal_force(pair_law, scale, k);
+    }
     sidata.Fn = fn;
     // the absolute coefficients of this contact, for what reads them from a normal model
     // (LIGGGHTS's timestep check, pair/gran/local)

@@ -54,7 +54,8 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
 
     double ft[3], torque_i[3] = {0.0, 0.0, 0.0}, torque_j[3] = {0.0, 0.0, 0.0};
     if (law.two_d) {
-      const mn::Kinematics k = granmn_liggghts::kinematics<2>(sidata);
+      // the kinematics model mn computed (granmn_liggghts::keep)
+      const mn::Kinematics k = granmn_liggghts::kept2(sidata);
       mn::Force f = mn::tangential_force(pair_law, scale, k, sidata.Fn, ut, dt_history,
                                          mn::Integrator::VelocityVerlet, nullptr);
       f.fn = 0.0;    // the normal model has applied it
@@ -65,7 +66,7 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
       torque_i[2] = mn::torque(f, sidata.radi);
       if (!sidata.is_wall) torque_j[2] = mn::torque(f, sidata.radj);
     } else {
-      const mn::Kinematics3 k = granmn_liggghts::kinematics<3>(sidata);
+      const mn::Kinematics3 k = granmn_liggghts::kept3(sidata);
       const mn::Force3 f = mn::tangential_force3(pair_law, scale, k, sidata.Fn, ut, dt_history);
       for (int c = 0; c < 3; c++) ft[c] = f.ft[c];
       mn::torque3(k, f, sidata.radi, torque_i);
