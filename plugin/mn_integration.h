@@ -125,8 +125,8 @@ inline double bisect_stable_dt(Integrator integrator, double w2, double g)
 
 // ... computed once per process for each (integrator, w2, g) and kept: the styles ask for it at
 // every run's init (their step check, the published v_mn_dt_max_*), a deck split into many
-// short runs asks again and again, and each bisection costs ~1e8 instructions (the spectral
-// radii of its steps).
+// short runs asks again and again, and the bisections (the spectral radii of their steps)
+// cost ~21 ms of CPU a run (docs/performance.md).
 inline double max_stable_dt(Integrator integrator, double w2, double g)
 {
   static std::map<std::tuple<Integrator, double, double>, double> known;
