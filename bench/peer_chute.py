@@ -15,8 +15,8 @@ docs/performance.md):
 
 Each variant runs STEPS steps, interleaved, best of --repeat: the loop time times LAMMPS's CPU
 share, the Pair time, LAMMPS's timer breakdown, memory per rank, and the final kinetic energy
-(the three simulate the same flow: gran/mn's k_t is (2 k_n - eta_n^2)/7 per unit mass, 0.16 %
-below gran/hooke's 2/7 k_n, so their energies agree closely, not exactly).
+(the three simulate the same flow: gran/mn's k_t is (2 k_n - eta_n^2)/7 per unit mass, times
+m: 0.08 % below gran/hooke's 2/7 k_n, so their energies agree closely, not exactly).
 
     bench/peer_chute.py [--steps 400] [--repeat 3] [--build build]"""
 import argparse

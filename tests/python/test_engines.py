@@ -1,7 +1,7 @@
 """postprocess/engines.py: the rule that compares a scene run in two engines. It must pass two
 engines that sample the same physics, fail a shift of the mean beyond its resolution (four
-combined standard errors: a wrong mass scale in one engine shifts N_c by ~10 %, many of
-them), and decide nothing from a single run."""
+combined standard errors: here a shift of six fails, one of three passes), and decide nothing
+from a single run."""
 import math
 from types import SimpleNamespace
 
