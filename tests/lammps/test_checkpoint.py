@@ -47,30 +47,44 @@ def point_dir(output):
     return Path(glob.glob(str(output / "*" / "*"))[0])
 
 
+def signal_all(pids, number):
+    for pid in pids:
+        try:
+            os.kill(pid, number)
+        except ProcessLookupError:
+            pass
+
+
 def kill_mid_chunk(config, output, *options, after=2):
-    """Starts the sweep (with its options, e.g. --ranks 2) and kills it (kill -9, its lmp or
-    mpirun and ranks with it) once the run has written past its checkpoint number `after`; the
-    checkpoint step it can resume from."""
+    """Starts the sweep (with its options, e.g. --ranks 2) and kills it once the run has
+    written past its checkpoint number `after`; the checkpoint step it can resume from. The run
+    goes in slices of 10 ms: the sweep's processes are stopped (SIGSTOP) while the files are
+    read, so that neither a fast machine nor ranks that starve this loop end the run between two
+    looks; then the runner and its lmp, or mpirun and its ranks, get kill -9 together, as in a
+    machine's crash. (Killed alone, the runner takes its runs with it by SIGTERM, but mpirun
+    gives its ranks a second to end, which is enough for a fast machine to finish this run.)"""
     runner = subprocess.Popen(SWEEP + [str(config), "--output", str(output), "--build",
                                        str(BUILD), "--jobs", "1", *options],
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                               start_new_session=True)
     deadline = time.time() + 300
     while time.time() < deadline:
+        running = [runner.pid] + processes_mentioning(output)
+        signal_all(running, signal.SIGSTOP)
         logs = glob.glob(str(output / "*" / "*" / "checkpoint.txt"))
         lines = Path(logs[0]).read_text().splitlines() if logs else []
         if len(lines) >= after:
             step = int(lines[after - 1].split()[1])
-            energy = (Path(logs[0]).parent / "energy.txt").read_text().split()
-            if energy and energy[-1] and len([1 for line in Path(logs[0]).parent.joinpath(
-                    "energy.txt").read_text().splitlines() if line[:1].isdigit() and
-                    int(line.split()[0]) > step]) >= 3:
+            energy = (Path(logs[0]).parent / "energy.txt").read_text().splitlines()
+            if energy and energy[-1].strip() and len(
+                    [1 for line in energy if line[:1].isdigit() and
+                     int(line.split()[0]) > step]) >= 3:
                 break
-        time.sleep(0.005)
+        signal_all(running, signal.SIGCONT)
+        time.sleep(0.01)
     os.killpg(runner.pid, signal.SIGKILL)
+    signal_all(processes_mentioning(output), signal.SIGKILL)
     runner.wait()
-    # lmp, or mpirun and its ranks, get SIGTERM as the runner dies (PR_SET_PDEATHSIG): a
-    # resumed sweep refuses to start while they live
     assert wait_for(lambda: not processes_mentioning(output), 30), processes_mentioning(output)
     directory = point_dir(output)
     assert not (directory / "done.txt").exists(), "the run ended before it could be killed"
