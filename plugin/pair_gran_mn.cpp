@@ -235,6 +235,9 @@ template <int DIM> void PairGranMN::compute_loop()
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
+    // i's position in locals: the force stores below could alias x[i], and the compiler would
+    // load it again for every neighbour
+    const double xi[3] = {x[i][0], x[i][1], DIM == 3 ? x[i][2] : 0.0};
     const double radi = radius[i];
     const bool i_wall = is_wall[type[i]];
     const int *jlist = firstneigh[i];
@@ -244,16 +247,15 @@ template <int DIM> void PairGranMN::compute_loop()
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1],
-                           DIM == 3 ? x[i][2] - x[j][2] : 0.0};
+      const double d[3] = {xi[0] - x[j][0], xi[1] - x[j][1], DIM == 3 ? xi[2] - x[j][2] : 0.0};
       const double rsq = dot<DIM>(d, d);
       const double radsum = radi + radius[j];
-      double *slots = history ? &slots_all[stride * jj] : nullptr;
 
       if (rsq >= radsum * radsum) {
         // a pair that is not touching already has zero history (FixNeighHistory hands new
         // pairs zeros): only a contact that just ended has any to clear
         if (history && touch[jj]) {
+          double *slots = &slots_all[stride * jj];
           if (events) report_end<DIM>(i, j, d, rsq, slots + record_slot, tag);
           touch[jj] = 0;
           for (int k = 0; k < stride; k++) slots[k] = 0.0;
@@ -271,6 +273,7 @@ template <int DIM> void PairGranMN::compute_loop()
       const auto kin = mn::kinematics(mn::Dim<DIM>(), d, r, radsum, dv, lever);
       const bool j_wall = is_wall[type[j]];
       const bool tally_j = newton_pair || j < nlocal;
+      double *slots = history ? &slots_all[stride * jj] : nullptr;
       if (events) {
         const bool began = !touch[jj];
         events->update_record(slots + record_slot, began, kin.delta, kin.vn);
