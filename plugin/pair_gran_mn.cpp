@@ -247,14 +247,18 @@ template <int DIM> void PairGranMN::compute_loop()
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      const double d[3] = {xi[0] - x[j][0], xi[1] - x[j][1], DIM == 3 ? xi[2] - x[j][2] : 0.0};
-      const double rsq = dot<DIM>(d, d);
+      // scalars, not yet an array: an array whose address is taken below would be stored to
+      // memory for every neighbour
+      const double dx = xi[0] - x[j][0], dy = xi[1] - x[j][1];
+      const double dz = DIM == 3 ? xi[2] - x[j][2] : 0.0;
+      const double rsq = DIM == 3 ? dx * dx + dy * dy + dz * dz : dx * dx + dy * dy;
       const double radsum = radi + radius[j];
 
       if (rsq >= radsum * radsum) {
         // a pair that is not touching already has zero history (FixNeighHistory hands new
         // pairs zeros): only a contact that just ended has any to clear
         if (history && touch[jj]) {
+          const double d[3] = {dx, dy, dz};
           double *slots = &slots_all[stride * jj];
           if (events) report_end<DIM>(i, j, d, rsq, slots + record_slot, tag);
           touch[jj] = 0;
@@ -263,6 +267,7 @@ template <int DIM> void PairGranMN::compute_loop()
         continue;
       }
 
+      const double d[3] = {dx, dy, dz};
       const double r = sqrt(rsq);
       // the centre of one inside the other: as the wall fix's centre that reached its wall
       if (r <= MAX(radi, radius[j])) report_passed_through(i, j, r);
