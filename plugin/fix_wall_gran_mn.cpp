@@ -189,75 +189,84 @@ template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
   granmn::ContactObserver *const events = observer;
   double **history = state;
   const double to_force = force_per_mass_acceleration;
-  const int first_side = has_lo ? 0 : 1, last_side = has_hi ? 1 : 0;
   const mn::Integrator scheme = integrator;
   const granmn::ContactLayout layouts[2] = {side_layout[0], side_layout[1]};
   double on_walls[3] = {0.0, 0.0, 0.0};
 
+  const int wall_axis = axis;
+  const double wall_at[2] = {lo, hi};
+
+  // One wall side (0: lo, 1: hi; a constant where called) against atom i; rho is i's distance
+  // from a cylinder's axis.
+  const auto against_side = [&](int i, int side, double rho) __attribute__((always_inline)) {
+    const granmn::ContactLayout &layout = layouts[side];
+    const int ut_at = layout.ut, vt_previous_at = layout.vt_previous, width = layout.ut_width;
+    // distance from the wall to the centre, along the wall's inward normal
+    const double dist = CYLINDER ? (side == 0 ? rho - wall_at[0] : wall_at[1] - rho)
+                                 : (side == 0 ? x[i][wall_axis] - wall_at[0]
+                                              : wall_at[1] - x[i][wall_axis]);
+    const double normal = side == 0 ? 1.0 : -1.0;
+    double *row = history[i];
+    if (!(dist < radius[i])) {
+      // most atoms are away from the wall: the work here is only for a contact that has just
+      // ended, the observer's event and the history to clear (as in the pair style)
+      if (events && row[layout.touching] != 0.0) {
+        row[layout.touching] = 0.0;
+        // the inward normal's components (a cylinder's: radial, rho > 0 away from its axis)
+        const double vn = !CYLINDER ? normal * v[i][wall_axis]
+            : rho > 0.0 ? normal * x[i][0] / rho * v[i][0] + normal * x[i][1] / rho * v[i][1]
+                        : 0.0;
+        events->boundary_ended(i, row + layout.record, vn);
+      }
+      if (ut_at >= 0)
+        for (int k = 0; k < width; k++) row[ut_at + k] = 0.0;
+      if (vt_previous_at >= 0)
+        for (int k = 0; k < width; k++) row[vt_previous_at + k] = 0.0;
+      return;
+    }
+    // the inward normal's components (a cylinder's: radial, in contact rho > 0)
+    double n[3] = {0.0, 0.0, 0.0};
+    if (CYLINDER && rho > 0.0) {
+      n[0] = normal * x[i][0] / rho;
+      n[1] = normal * x[i][1] / rho;
+    }
+    double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
+    double *vt_previous = layout.vt_previous >= 0 ? row + layout.vt_previous : nullptr;
+    if (events) {
+      const double vn = CYLINDER ? n[0] * v[i][0] + n[1] * v[i][1] : normal * v[i][wall_axis];
+      double &touching = row[layout.touching];
+      const bool began = touching == 0.0;
+      events->update_record(row + layout.record, began, radius[i] - dist, vn);
+      touching = 1.0;
+      if (began || events->reports_every_contact()) events->boundary_touching(i, began);
+    }
+    if (dist <= 0.0)
+      error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the {} at {} "
+                        "(time step too large for the contact stiffness?)",
+                 atom->tag[i], CYLINDER ? "zcylinder of radius" : "wall", wall_at[side]);
+    const double d[3] = {CYLINDER ? n[0] * dist : wall_axis == 0 ? normal * dist : 0.0,
+                         CYLINDER ? n[1] * dist : wall_axis == 1 ? normal * dist : 0.0,
+                         CYLINDER ? 0.0 : wall_axis == 2 ? normal * dist : 0.0};
+    const double lever[3] = {radius[i] * omega[i][0], radius[i] * omega[i][1],
+                             radius[i] * omega[i][2]};
+    const auto kin = mn::kinematics(mn::Dim<DIM>(), d, dist, radius[i], v[i], lever);
+    const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
+    double fc_xyz[3];
+    mn::force_and_torques(contact, scale, kin, ut, dt_history, scheme, vt_previous, fc_xyz,
+                          radius[i], torque[i], 0.0, nullptr);
+    for (int c = 0; c < DIM; c++) {
+      f[i][c] += fc_xyz[c];
+      on_walls[c] -= fc_xyz[c];
+    }
+  };
+
+  // the sides as constants, each atom's lo side before its hi side as before
+  const bool lo_side = has_lo, hi_side = has_hi;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    // a cylinder's walls: the centre's distance from the axis, and the radial direction
     const double rho = CYLINDER ? std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1]) : 0.0;
-    for (int side = first_side; side <= last_side; side++) {
-      // distance from the wall to the centre, along the wall's inward normal
-      const double dist = CYLINDER ? (side == 0 ? rho - lo : hi - rho)
-                                   : (side == 0 ? x[i][axis] - lo : hi - x[i][axis]);
-      const double normal = side == 0 ? 1.0 : -1.0;
-      const bool in_contact = dist < radius[i];
-      // the inward normal's components (a cylinder's: radial, in contact rho > 0)
-      double n[3] = {0.0, 0.0, 0.0};
-      if (CYLINDER && in_contact && rho > 0.0) {
-        n[0] = normal * x[i][0] / rho;
-        n[1] = normal * x[i][1] / rho;
-      }
-      const granmn::ContactLayout &layout = layouts[side];
-      double *row = history[i];
-      double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
-      double *vt_previous = layout.vt_previous >= 0 ? row + layout.vt_previous : nullptr;
-      if (!in_contact) {
-        // most atoms are away from the wall: the work here is only for a contact that has just
-        // ended, the observer's event and the history to clear (as in the pair style)
-        if (events && row[layout.touching] != 0.0) {
-          row[layout.touching] = 0.0;
-          const double vn = CYLINDER ? n[0] * v[i][0] + n[1] * v[i][1] : normal * v[i][axis];
-          events->boundary_ended(i, row + layout.record, vn);
-        }
-        const auto clear = [&layout](double *values) {
-          for (int k = 0; values && k < layout.ut_width; k++)
-            if (values[k] != 0.0) values[k] = 0.0;
-        };
-        clear(ut);
-        clear(vt_previous);
-        continue;
-      }
-      if (events) {
-        const double vn = CYLINDER ? n[0] * v[i][0] + n[1] * v[i][1] : normal * v[i][axis];
-        double &touching = row[layout.touching];
-        const bool began = touching == 0.0;
-        events->update_record(row + layout.record, began, radius[i] - dist, vn);
-        touching = 1.0;
-        if (began || events->reports_every_contact()) events->boundary_touching(i, began);
-      }
-      if (dist <= 0.0)
-        error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the {} at {} "
-                          "(time step too large for the contact stiffness?)",
-                   atom->tag[i], CYLINDER ? "zcylinder of radius" : "wall",
-                   side == 0 ? lo : hi);
-      const double d[3] = {CYLINDER ? n[0] * dist : axis == 0 ? normal * dist : 0.0,
-                           CYLINDER ? n[1] * dist : axis == 1 ? normal * dist : 0.0,
-                           CYLINDER ? 0.0 : axis == 2 ? normal * dist : 0.0};
-      const double lever[3] = {radius[i] * omega[i][0], radius[i] * omega[i][1],
-                               radius[i] * omega[i][2]};
-      const auto kin = mn::kinematics(mn::Dim<DIM>(), d, dist, radius[i], v[i], lever);
-      const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
-      double fc_xyz[3];
-      mn::force_and_torques(contact, scale, kin, ut, dt_history, scheme, vt_previous, fc_xyz,
-                            radius[i], torque[i], 0.0, nullptr);
-      for (int c = 0; c < DIM; c++) {
-        f[i][c] += fc_xyz[c];
-        on_walls[c] -= fc_xyz[c];
-      }
-    }
+    if (lo_side) against_side(i, 0, rho);
+    if (hi_side) against_side(i, 1, rho);
   }
   for (int c = 0; c < DIM; c++) wall_force[c] = on_walls[c];
   force_reduced = false;

@@ -129,7 +129,9 @@ run {int(round(4 / dt))}
 
 def test_the_counters_count_a_cylinder_contact(tmp_path):
     """fix contacts/mn counts the radial bounce off the outer cylinder as one boundary contact
-    begun (none between disks), and writes its row."""
+    begun (none between disks), and writes its row, whose normal velocities at the start and
+    the end give the bounce's e_w (the end's was once written as 0: the cylinder's normal was
+    taken only in contact, and the contact's end is the first step out of it)."""
     dt = law(KN, E, BETA)["tau_c"] / 100
     deck = header(2) + box(2) + "create_atoms 1 single 4.49 0 0\n" + styles(2) + f"""set atom 1 vx 1.0
 fix w all wall/gran/mn zcylinder NULL 5.0
@@ -142,5 +144,13 @@ print "RESULT counters $(f_c[1]) $(f_c[2])"
 """
     run = run_lammps(deck, tmp_path, header=False)
     assert run.result("counters") == [0.0, 1.0]
-    entries = (run.workdir / "rows.txt").read_text().split("ITEM: ENTRIES")[-1].split("\n")
-    assert len([line for line in entries if line.strip()]) == 1
+    # the rows of every dump block: the lines of 8 numbers
+    rows = [line.split() for line in (run.workdir / "rows.txt").read_text().splitlines()
+            if len(line.split()) == 8 and not line.startswith("ITEM")]
+    assert len(rows) == 1
+    assert rows[0][1:3] == ["0", "2"]    # a wall (ID 0), a boundary contact
+    vn_start, vn_end = float(rows[0][5]), float(rows[0][6])
+    e_w = law(KN, E, BETA)["e_w"]
+    print(f"row: vn {vn_start:.5f} -> {vn_end:.5f}, e_w {e_w:.5f}")
+    assert vn_start == pytest.approx(-1.0, abs=1e-3)
+    assert abs(-vn_end / vn_start - e_w) <= restitution_error_bound(e_w, 1 / 100)
