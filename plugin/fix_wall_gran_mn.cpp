@@ -247,17 +247,10 @@ template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
     const double d[3] = {CYLINDER ? n[0] * dist : wall_axis == 0 ? normal * dist : 0.0,
                          CYLINDER ? n[1] * dist : wall_axis == 1 ? normal * dist : 0.0,
                          CYLINDER ? 0.0 : wall_axis == 2 ? normal * dist : 0.0};
-    const double lever[3] = {radius[i] * omega[i][0], radius[i] * omega[i][1],
-                             radius[i] * omega[i][2]};
-    const auto kin = mn::kinematics(mn::Dim<DIM>(), d, dist, radius[i], v[i], lever);
-    const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
-    double fc_xyz[3];
-    mn::force_and_torques(contact, scale, kin, ut, dt_history, scheme, vt_previous, fc_xyz,
-                          radius[i], torque[i], 0.0, nullptr);
-    for (int c = 0; c < DIM; c++) {
-      f[i][c] += fc_xyz[c];
-      on_walls[c] -= fc_xyz[c];
-    }
+    const auto kin = mn::wall_kinematics<DIM>(d, dist, radius[i], v[i], omega[i]);
+    mn::add_wall_contact<DIM>(contact, mn::boundary_mass_scale(rmass[i]) * to_force, kin, ut,
+                              dt_history, scheme, vt_previous, radius[i], f[i], torque[i],
+                              on_walls);
   };
 
   // the sides as constants, each atom's lo side before its hi side as before

@@ -246,21 +246,14 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
       const double d[3] = {face.delx, face.dely, face.delz};
       const double dv[3] = {v[i][0] - wall_velocity[0], v[i][1] - wall_velocity[1],
                             v[i][2] - wall_velocity[2]};
-      const double lever[3] = {radius[i] * omega[i][0], radius[i] * omega[i][1],
-                               radius[i] * omega[i][2]};
-      const auto kin = mn::kinematics(mn::Dim<DIM>(), d, face.r, radius[i], dv, lever);
+      const auto kin = mn::wall_kinematics<DIM>(d, face.r, radius[i], dv, omega[i]);
       if (events) {
         events->update_record(record, began, kin.delta, kin.vn);
         if (began || events->reports_every_contact()) events->boundary_touching(i, began);
       }
-      const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
-      double fc_xyz[3];
-      mn::force_and_torques(contact, scale, kin, ut, dt_history, scheme, vt_previous, fc_xyz,
-                            radius[i], torque[i], 0.0, nullptr);
-      for (int c = 0; c < DIM; c++) {
-        f[i][c] += fc_xyz[c];
-        on_walls[c] -= fc_xyz[c];
-      }
+      mn::add_wall_contact<DIM>(contact, mn::boundary_mass_scale(rmass[i]) * to_force, kin, ut,
+                                dt_history, scheme, vt_previous, radius[i], f[i], torque[i],
+                                on_walls);
     }
     row[0] = kept;
     // the faces touched at the last evaluation and not at this one: their contacts ended

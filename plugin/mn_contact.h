@@ -415,6 +415,33 @@ inline void force_and_torques(const Law &law, double force_scale, const Kinemati
   for (int c = 0; c < 3; c++) torque_j[c] += t[c];
 }
 
+// A particle of the given radius against a wall, whose own radius and spin are 0 (a plane, a
+// region's face): the contact's kinematics in dimension DIM from d (wall to centre, along the
+// wall's normal), dist = |d|, dv = v_i - the wall's velocity and the particle's spin omega.
+template <int DIM>
+inline typename std::conditional<DIM == 3, Kinematics3, Kinematics>::type wall_kinematics(const double d[3], double dist, double radius, const double dv[3],
+                            const double omega[3])
+{
+  const double lever[3] = {radius * omega[0], radius * omega[1], radius * omega[2]};
+  return kinematics(Dim<DIM>(), d, dist, radius, dv, lever);
+}
+
+// That contact's force added to the particle's force and, with the opposite sign, to on_wall
+// (DIM components each), its torque to the particle's torque; scale as for force_and_torques.
+template <int DIM, class K>
+inline void add_wall_contact(const Law &law, double scale, const K &kin, double *ut,
+                             double dt_history, Integrator integrator, double *vt_previous,
+                             double radius, double *force, double *torque, double *on_wall)
+{
+  double f[3];
+  force_and_torques(law, scale, kin, ut, dt_history, integrator, vt_previous, f, radius, torque,
+                    0.0, nullptr);
+  for (int c = 0; c < DIM; c++) {
+    force[c] += f[c];
+    on_wall[c] -= f[c];
+  }
+}
+
 }    // namespace mn
 
 #endif
