@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from test_sweep import (BUILD, ROOT, SWEEP, kill_session, processes_mentioning, sweep,
-                        wait_for)
+from test_sweep import (BUILD, ROOT, SWEEP, kill_processes_mentioning, kill_session,
+                        processes_mentioning, signal_all, sweep, wait_for)
 
 import checkpoints
 from granmn_run import PLUGIN, run_lammps
@@ -47,14 +47,6 @@ def point_dir(output):
     return Path(glob.glob(str(output / "*" / "*"))[0])
 
 
-def signal_all(pids, number):
-    for pid in pids:
-        try:
-            os.kill(pid, number)
-        except ProcessLookupError:
-            pass
-
-
 def kill_mid_chunk(config, output, *options, after=2):
     """Starts the sweep (with its options, e.g. --ranks 2) and kills it once the run has
     written past its checkpoint number `after`; the checkpoint step it can resume from. The run
@@ -83,7 +75,7 @@ def kill_mid_chunk(config, output, *options, after=2):
         signal_all(running, signal.SIGCONT)
         time.sleep(0.01)
     os.killpg(runner.pid, signal.SIGKILL)
-    signal_all(processes_mentioning(output), signal.SIGKILL)
+    kill_processes_mentioning(output)
     runner.wait()
     assert wait_for(lambda: not processes_mentioning(output), 30), processes_mentioning(output)
     directory = point_dir(output)

@@ -71,12 +71,16 @@ def processes_mentioning(path):
     return [pid for pid, (_, command) in live_processes().items() if str(path) in command]
 
 
-def kill_processes_mentioning(path):
-    for pid in processes_mentioning(path):
+def signal_all(pids, number):
+    for pid in pids:
         try:
-            os.kill(pid, signal.SIGKILL)
+            os.kill(pid, number)
         except ProcessLookupError:
             pass
+
+
+def kill_processes_mentioning(path):
+    signal_all(processes_mentioning(path), signal.SIGKILL)
 
 
 def kill_session(session):
