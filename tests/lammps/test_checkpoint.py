@@ -48,38 +48,53 @@ def point_dir(output):
 
 
 def kill_mid_chunk(config, output, *options, after=2):
-    """Starts the sweep (with its options, e.g. --ranks 2) and kills it once the run has
-    written past its checkpoint number `after`; the checkpoint step it can resume from. The run
-    goes in slices of 10 ms: the sweep's processes are stopped (SIGSTOP) while the files are
-    read, so that neither a fast machine nor ranks that starve this loop end the run between two
-    looks; then the runner and its lmp, or mpirun and its ranks, get kill -9 together, as in a
-    machine's crash. (Killed alone, the runner takes its runs with it by SIGTERM, but mpirun
-    gives its ranks a second to end, which is enough for a fast machine to finish this run.)"""
+    """Starts the sweep (with its options, e.g. --ranks 2) and kills it once checkpoint.txt
+    names `after` checkpoints or more and the run is at least 2 output lines into the chunk
+    after the newest, short of its end; the step of that newest checkpoint, which a resume
+    starts from. Short of the chunk's end: from its last output line on the run writes the
+    next checkpoint into the file of the older one, and a kill there would leave that one
+    half-written while checkpoint.txt still names it complete (the tests below damage the
+    files themselves, knowing which). The run goes in slices of a few ms: the sweep's processes
+    are stopped (SIGSTOP) while they are listed and the files read, so that neither a fast
+    machine nor ranks that starve this loop move the run on between two looks; then the runner
+    and its lmp, or mpirun and its ranks, get kill -9 together, as in a machine's crash.
+    (Killed alone, the runner takes its runs with it by SIGTERM, but mpirun gives its ranks a
+    second to end, which is enough for a fast machine to finish this run.)"""
     runner = subprocess.Popen(SWEEP + [str(config), "--output", str(output), "--build",
                                        str(BUILD), "--jobs", "1", *options],
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                               start_new_session=True)
     deadline = time.time() + 300
+    step = None
     while time.time() < deadline:
-        running = [runner.pid] + processes_mentioning(output)
-        signal_all(running, signal.SIGSTOP)
+        os.kill(runner.pid, signal.SIGSTOP)
+        running = [runner.pid]
+        while set(processes_mentioning(output)) - set(running):   # (those started meanwhile)
+            started = sorted(set(processes_mentioning(output)) - set(running))
+            signal_all(started, signal.SIGSTOP)
+            running += started
         logs = glob.glob(str(output / "*" / "*" / "checkpoint.txt"))
-        lines = Path(logs[0]).read_text().splitlines() if logs else []
-        if len(lines) >= after:
-            step = int(lines[after - 1].split()[1])
-            energy = (Path(logs[0]).parent / "energy.txt").read_text().splitlines()
-            if energy and energy[-1].strip() and len(
-                    [1 for line in energy if line[:1].isdigit() and
-                     int(line.split()[0]) > step]) >= 3:
+        named = Path(logs[0]).read_text() if logs else ""
+        # (a line being written is not judged on: its step may be cut short)
+        steps = [int(line.split()[1]) for line in named.splitlines()] \
+            if named.endswith("\n") else []
+        if len(steps) >= max(after, 2):
+            newest, chunk_steps = steps[-1], steps[-1] - steps[-2]
+            energy = (Path(logs[0]).parent / "energy.txt").read_text()
+            later = [int(line.split()[0]) for line in energy.splitlines() if line[:1].isdigit()]
+            later = [s for s in later if s > newest]
+            if energy.endswith("\n") and len(later) >= 2 and max(later) < newest + chunk_steps:
+                step = newest
                 break
         signal_all(running, signal.SIGCONT)
-        time.sleep(0.01)
+        time.sleep(0.003)
     os.killpg(runner.pid, signal.SIGKILL)
     kill_processes_mentioning(output)
     runner.wait()
     assert wait_for(lambda: not processes_mentioning(output), 30), processes_mentioning(output)
     directory = point_dir(output)
-    assert not (directory / "done.txt").exists(), "the run ended before it could be killed"
+    assert step is not None and not (directory / "done.txt").exists(), \
+        "the run ended before it could be killed"
     return directory, step
 
 
