@@ -163,6 +163,11 @@ def limit_scene_lines(name, rows, out, records, rule):
         for d in decisions:
             print(f"{scene_def.title}, {title}: {TABLE[d.quantity].label}: {d.verdict}" +
                   (f" ({d.why})" if d.why else ""))
+        for quantity, by_level in within.items():
+            applied = {n: d for n, d in by_level.items() if d.fits}
+            if applied:
+                print(f"{scene_def.title}, {title}: {TABLE[quantity].label}, within a level: " +
+                      "; ".join(f"{n} {d.verdict}" for n, d in applied.items()))
     if records:
         lines += ["## Runaway events", "",
                   f"E(t), averaged over windows of one time unit, above {limit.RUNAWAY_FACTOR:g} "

@@ -136,7 +136,17 @@ def test_limit_command_writes_the_verdicts_and_the_figure(tmp_path, capsys):
     assert "time with two or more contacts: **vanishing**" in text
     assert "### Within one energy level" in text
     assert (tmp_path / "limit" / "limit_frictional_flow_0.png").stat().st_size > 10000
-    assert "limit report:" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "limit report:" in out
+    # the verdicts within the levels on the terminal too, as limit.md's table has them
+    table = {line.split(" | ")[0].lstrip("| "): line.strip(" |").split(" | ")[1:]
+             for line in text.splitlines() if line.startswith("| t_c - N_c tau_c |")}
+    applied = [(name, verdict) for name, verdict in zip(("low", "middle", "high"),
+                                                        table["t_c - N_c tau_c"])
+               if not verdict.startswith("not applied")]
+    assert applied
+    assert "t_c - N_c tau_c, within a level: " + "; ".join(
+        f"{name} {verdict}" for name, verdict in applied) in out
 
 
 def test_limit_command_decides_the_3d_chute_without_levels(tmp_path, capsys):
