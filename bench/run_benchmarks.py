@@ -265,6 +265,11 @@ def main():
     for path in (LMP, PLUGIN, MN_LAW, REFERENCE_LOOP):
         if not path.exists():
             sys.exit(f"{path} is missing: run ./scripts/build.sh first")
+    if args.baseline:
+        for part in ("build/plugin/granmnplugin.so", "build/bench/reference-loop"):
+            if not (Path(args.baseline) / part).exists():
+                sys.exit(f"--baseline {args.baseline}: {part} is missing (the baseline "
+                         "checkout must be built: its ./scripts/build.sh)")
     with tempfile.TemporaryDirectory() as tmp:
         scene_comparison(args, Path(tmp))
     if args.scenes_only:

@@ -200,7 +200,10 @@ template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
   // from a cylinder's axis.
   const auto against_side = [&](int i, int side, double rho) __attribute__((always_inline)) {
     const granmn::ContactLayout &layout = layouts[side];
-    const int ut_at = layout.ut, vt_previous_at = layout.vt_previous, width = layout.ut_width;
+    // u_t's width as a constant (granmn::ut_width: one in 2D, three in 3D), so that clearing it
+    // is a store or three, not a call of memset
+    constexpr int width = DIM == 2 ? 1 : 3;
+    const int ut_at = layout.ut, vt_previous_at = layout.vt_previous;
     // distance from the wall to the centre, along the wall's inward normal
     const double dist = CYLINDER ? (side == 0 ? rho - wall_at[0] : wall_at[1] - rho)
                                  : (side == 0 ? x[i][wall_axis] - wall_at[0]
