@@ -81,7 +81,6 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
                                // a step after a deletion)
   bool atoms_deleted;          // since the last count (one process)
   int every;                   // the per-atom output is current at multiples of it
-  bool outputs_current;        // ... and between runs
   // The fix's own clock: the time of the current step, the sum of the time steps actually
   // taken (a timestep changed between runs counts from then on; LAMMPS's time restarts at
   // zero after read_restart in this version, this clock does not): base_time at base_step
