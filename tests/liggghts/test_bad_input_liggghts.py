@@ -70,3 +70,16 @@ def test_refused(tmp_path, case):
     status, output = run_liggghts(text, tmp_path, data, check=False)
     assert status != 0, output[-2000:]
     assert "ERROR" in output and message in output, output[-2000:]
+
+
+def test_an_error_of_one_process_reaches_the_output_and_the_log(tmp_path):
+    """LIGGGHTS's Error::one (here: `surface multicontact` without the fix that model needs)
+    wrote its message to the screen only and called MPI_Abort unflushed: to a pipe or a file,
+    or with -screen none as the sweep runner runs it, the run ended with MPI's abort notice
+    alone. plugin/liggghts/liggghts-3.8.0-errors.patch writes it to the log too, flushed; on
+    LIGGGHTS as shipped both checks below fail."""
+    text, data = deck([("model mn tangential mn", "model mn tangential mn surface multicontact")])
+    message = "ERROR on proc 0: No suitable multicontact fix found"
+    status, output = run_liggghts(text, tmp_path, data, check=False)
+    assert status != 0 and message in output, output[-2000:]
+    assert message in (tmp_path / "log.liggghts").read_text()
