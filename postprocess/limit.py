@@ -287,8 +287,13 @@ def decide(runs, quantity, min_runs=MIN_RUNS, min_kn=MIN_KN, samples=BOOTSTRAP, 
                f"{high:.3g} < {FLOOR_FRACTION:g} x {stiffest:.3g} (the stiffest value)")
     else:
         verdict = "undecided"
+        # (no finite error: the chi^2 profile's delta chi^2 = 1 interval is not closed within
+        # the exponents scanned, fit_both)
+        b_error = (f"+- {fits.b_power_error:.2g}" if np.isfinite(fits.b_power_error) else
+                   f"(no error: its delta chi2 = 1 interval is open within the scanned "
+                   f"b >= {EXPONENTS[0]:g})")
         why = (f"dAIC {fits.d_aic:.1f}, floor interval [{low:.3g}, {high:.3g}], power "
-               f"exponent {fits.b_power:.3g} +- {fits.b_power_error:.2g}, stiffest value "
+               f"exponent {fits.b_power:.3g} {b_error}, stiffest value "
                f"{stiffest:.3g}" + (f", log-log decay exponent's upper bound {decay[2]:.3g} "
                                     f">= {decay_limit:.3g} (loses more than "
                                     f"{NO_FALL_FRACTION:.0%})" if rule == 2 and
