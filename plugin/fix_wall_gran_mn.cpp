@@ -196,13 +196,26 @@ template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
   const int wall_axis = axis;
   const double wall_at[2] = {lo, hi};
 
+  // the inward normal of side `normal` (+1: lo, -1: hi; a cylinder's: radial, 0 on its axis)
+  // at atom i, rho its distance from a cylinder's axis; returns the normal velocity along it
+  const auto inward_normal = [&](int i, double normal, double rho, double n[3])
+      __attribute__((always_inline)) {
+    n[0] = n[1] = n[2] = 0.0;
+    if (!CYLINDER) {
+      n[wall_axis] = normal;
+    } else if (rho > 0.0) {
+      n[0] = normal * x[i][0] / rho;
+      n[1] = normal * x[i][1] / rho;
+    }
+    return n[0] * v[i][0] + n[1] * v[i][1] + n[2] * v[i][2];
+  };
+
   // One wall side (0: lo, 1: hi; a constant where called) against atom i; rho is i's distance
   // from a cylinder's axis.
   const auto against_side = [&](int i, int side, double rho) __attribute__((always_inline)) {
     const granmn::ContactLayout &layout = layouts[side];
-    // u_t's width as a constant (granmn::ut_width: one in 2D, three in 3D), so that clearing it
-    // is a store or three, not a call of memset
-    constexpr int width = DIM == 2 ? 1 : 3;
+    // u_t's width as a constant, so that clearing it is a store or three, not a call of memset
+    constexpr int width = granmn::ut_width(DIM);
     const int ut_at = layout.ut, vt_previous_at = layout.vt_previous;
     // distance from the wall to the centre, along the wall's inward normal
     const double dist = CYLINDER ? (side == 0 ? rho - wall_at[0] : wall_at[1] - rho)
@@ -215,11 +228,8 @@ template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
       // ended, the observer's event and the history to clear (as in the pair style)
       if (events && row[layout.touching] != 0.0) {
         row[layout.touching] = 0.0;
-        // the inward normal's components (a cylinder's: radial, rho > 0 away from its axis)
-        const double vn = !CYLINDER ? normal * v[i][wall_axis]
-            : rho > 0.0 ? normal * x[i][0] / rho * v[i][0] + normal * x[i][1] / rho * v[i][1]
-                        : 0.0;
-        events->boundary_ended(i, row + layout.record, vn);
+        double n[3];
+        events->boundary_ended(i, row + layout.record, inward_normal(i, normal, rho, n));
       }
       if (ut_at >= 0)
         for (int k = 0; k < width; k++) row[ut_at + k] = 0.0;
@@ -227,16 +237,11 @@ template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
         for (int k = 0; k < width; k++) row[vt_previous_at + k] = 0.0;
       return;
     }
-    // the inward normal's components (a cylinder's: radial, in contact rho > 0)
-    double n[3] = {0.0, 0.0, 0.0};
-    if (CYLINDER && rho > 0.0) {
-      n[0] = normal * x[i][0] / rho;
-      n[1] = normal * x[i][1] / rho;
-    }
-    double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
-    double *vt_previous = layout.vt_previous >= 0 ? row + layout.vt_previous : nullptr;
+    double n[3];
+    const double vn = inward_normal(i, normal, rho, n);
+    double *ut = ut_at >= 0 ? row + ut_at : nullptr;
+    double *vt_previous = vt_previous_at >= 0 ? row + vt_previous_at : nullptr;
     if (events) {
-      const double vn = CYLINDER ? n[0] * v[i][0] + n[1] * v[i][1] : normal * v[i][wall_axis];
       double &touching = row[layout.touching];
       const bool began = touching == 0.0;
       events->update_record(row + layout.record, began, radius[i] - dist, vn);
@@ -247,6 +252,8 @@ template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
       error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the {} at {} "
                         "(time step too large for the contact stiffness?)",
                  atom->tag[i], CYLINDER ? "zcylinder of radius" : "wall", wall_at[side]);
+    // n * dist, written out per case: as n[c] * dist the compiler's code for the whole loop
+    // costs an atom away from the wall one instruction more (callgrind, frictional scene)
     const double d[3] = {CYLINDER ? n[0] * dist : wall_axis == 0 ? normal * dist : 0.0,
                          CYLINDER ? n[1] * dist : wall_axis == 1 ? normal * dist : 0.0,
                          CYLINDER ? 0.0 : wall_axis == 2 ? normal * dist : 0.0};

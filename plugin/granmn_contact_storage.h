@@ -22,10 +22,16 @@ inline double history_dt(LAMMPS_NS::Update *update)
   return update->setupflag ? 0.0 : update->dt;
 }
 
-// u_t's components: a scalar along t in 2D, a vector in the tangent plane in 3D.
+// u_t's components: a scalar along t in 2D, a vector in the tangent plane in 3D (a constant
+// where the dimension is one, as in the styles' loops).
+constexpr int ut_width(int dimension)
+{
+  return dimension == 3 ? 3 : 1;
+}
+
 inline int ut_width(LAMMPS_NS::LAMMPS *lmp)
 {
-  return lmp->domain->dimension == 3 ? 3 : 1;
+  return ut_width(lmp->domain->dimension);
 }
 
 // Where a contact's values sit in the storage of the style that keeps it (-1: not kept),

@@ -419,8 +419,9 @@ inline void force_and_torques(const Law &law, double force_scale, const Kinemati
 // region's face): the contact's kinematics in dimension DIM from d (wall to centre, along the
 // wall's normal), dist = |d|, dv = v_i - the wall's velocity and the particle's spin omega.
 template <int DIM>
-inline typename std::conditional<DIM == 3, Kinematics3, Kinematics>::type wall_kinematics(const double d[3], double dist, double radius, const double dv[3],
-                            const double omega[3])
+inline typename std::conditional<DIM == 3, Kinematics3, Kinematics>::type
+wall_kinematics(const double d[3], double dist, double radius, const double dv[3],
+                const double omega[3])
 {
   const double lever[3] = {radius * omega[0], radius * omega[1], radius * omega[2]};
   return kinematics(Dim<DIM>(), d, dist, radius, dv, lever);
