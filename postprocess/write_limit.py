@@ -92,31 +92,6 @@ def runaway_lines(records):
     return lines + [""]
 
 
-def check_lines(name, runs, main_runs, main_name, quantities):
-    """Markdown, and the same on the terminal: a variant at too few k_n for the rule, against
-    the main series at each of its k_n: span-weighted mean and standard error over the runs of
-    each, and their difference with its error (the two errors in quadrature)."""
-    lines = [f"## variant {name}: a check at too few k_n for the rule, against the main series "
-             f"({main_name or 'no variable varies'})", "",
-             "| quantity | k_n | variant: runs, value | main series: runs, value | difference |",
-             "|---|---|---|---|---|"]
-    for quantity in quantities:
-        for k in sorted({float(r["kn"]) for r in runs}):
-            both = [[r for r in group if float(r["kn"]) == k] for group in (runs, main_runs)]
-            if len(both[0]) < 2 or len(both[1]) < 2:
-                continue
-            (v, e), (v0, e0) = (limit.weighted_mean([r[quantity] for r in group],
-                                                    [r["span"] for r in group])
-                                for group in both)
-            difference = f"{v - v0:.3g} +- {np.hypot(e, e0):.2g}"
-            lines.append(f"| {TABLE[quantity].label} | {k:.4g} | {len(both[0])}, {v:.4g} +- "
-                         f"{e:.2g} | {len(both[1])}, {v0:.4g} +- {e0:.2g} | {difference} |")
-            print(f"variant {name}, {TABLE[quantity].label} at k_n {k:.4g}: {v:.4g} +- {e:.2g} "
-                  f"({len(both[0])} runs) against the main series' {v0:.4g} +- {e0:.2g} "
-                  f"({len(both[1])} runs): difference {difference}")
-    return lines + [""]
-
-
 def write_limit(sweep, scenes, out, selection, completed, rule=limit.RULE):
     """The limit command: limit.md and a figure per series in out, for each scene the rule
     applies to (Scene.decides_limit): its main series first, then each variant with enough
@@ -150,13 +125,9 @@ def limit_scene_lines(name, rows, out, records, rule):
     for number, series_label in enumerate(labels):
         runs = [run for o in rows if o["label"] == series_label for run in o.get("runs", [o])]
         decisions = [limit.decide(runs, q, rule=rule) for q in scene_def.limit_quantities]
-        if number == 0:
-            main_runs = runs
-        elif all(d.verdict.startswith("not applied") for d in decisions):
-            # a variant at too few k_n for the rule: a check (of the step, say) at its k_n
-            lines += check_lines(series_label, runs, main_runs, main[0]["label"],
-                                 scene_def.limit_quantities)
-            continue
+        if number and all(d.verdict.startswith("not applied") for d in decisions):
+            continue    # a variant at too few k_n (a check of the step at one k_n: the report's
+                        # variant table compares it with the main series)
         within = {q: limit.decide_within_levels(runs, q, levels, rule=rule)
                   for q in scene_def.limit_quantities}
         title = (f"{'main series' if number == 0 else 'variant'} "

@@ -331,28 +331,3 @@ def test_a_kn_whose_runs_all_measure_zero_is_named_and_leaves_the_others_errors_
     assert d.verdict == (f"not applied: at k_n = {KN[2]:g} its {RUNS} runs all measure 0 "
                          "exactly (no error to weigh it by)")
 
-
-def test_limit_command_compares_a_variant_at_one_kn_with_the_main_series(tmp_path, capsys):
-    """A variant at too few k_n for the rule (the step's check at the stiffest k_n) is not
-    dropped: limit.md and the terminal give it against the main series at its k_n. Here the
-    variant's runs are the main series' at 1.2 times their value: the difference printed is
-    that 20 %, its error the two standard errors in quadrature; a variant left out, or compared
-    at another k_n, gives no such line."""
-    from postprocess.write_limit import write_limit
-    from postprocess.selection import Selection
-    runs = synthetic_runs(floor, 0.15)
-    for r in runs:
-        r.update(mc_w=r["mc_c"], t_multiple=r["mc_c"])
-    stiffest = max(r["kn"] for r in runs)
-    variant = [dict(r, mc_c=1.2 * r["mc_c"]) for r in runs if r["kn"] == stiffest]
-    rows = rows_of_runs(runs) + [{"kn": stiffest, "label": "dt_fraction 0.025", "runs": variant}]
-    assert write_limit(tmp_path, {"frictional_flow": rows}, tmp_path / "limit", Selection(),
-                       {}) == 0
-    main = [r["mc_c"] for r in runs if r["kn"] == stiffest]
-    mean, error = np.mean(main), np.std(main, ddof=1) / np.sqrt(len(main))
-    out = capsys.readouterr().out
-    line = next(l for l in out.splitlines()
-                if l.startswith("variant dt_fraction 0.025, t_c - N_c tau_c"))
-    assert f"at k_n {stiffest:.4g}:" in line
-    assert f"difference {0.2 * mean:.3g} +- {np.hypot(1.2 * error, error):.2g}" in line
-    assert "## variant dt_fraction 0.025: a check" in (tmp_path / "limit" / "limit.md").read_text()
