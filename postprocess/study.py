@@ -44,19 +44,25 @@ def frictional_run(record, selection, resolutions):
     kept = record.kept(selection, resolutions)
     return {"point": record.point, "kn": record.params["kn"], "seed": record.params["seed"],
             "state": record.ended, "stopped_at": record.stopped_at, "kept": kept,
-            "selected": kept[selection.resolution] > 0, "variables": record.variables}
+            "selected": kept[selection.resolution] > 0, "variables": record.variables,
+            "cpu_seconds": record.cpu_seconds}
 
 
 def run_summary(runs):
     """Per (kn, other variables than the seed): runs, flowing to the end, stopped, selected,
-    the median stop time, and the steady parts kept at each resolution, summed over the runs."""
+    the median stop time, the steady parts kept at each resolution, summed over the runs, and
+    their CPU time (cpu_seconds: the sum over the runs that recorded one; timed: how many)."""
     table = {}
     for r in runs:
         row = table.setdefault((r["kn"], r["label"]),
                                {"runs": 0, "flowing": 0, "stopped": 0, "selected": 0,
-                                "stop_times": [], "kept": {k: 0 for k in r["kept"]}})
+                                "stop_times": [], "kept": {k: 0 for k in r["kept"]},
+                                "cpu_seconds": 0.0, "timed": 0})
         if r["stopped_at"] is not None:
             row["stop_times"].append(r["stopped_at"])
+        if r.get("cpu_seconds") is not None:
+            row["cpu_seconds"] += r["cpu_seconds"]
+            row["timed"] += 1
         row["runs"] += 1
         row[r["state"]] += 1
         row["selected"] += r["selected"]

@@ -151,15 +151,24 @@ def run_table(runs, selection):
     lines = [f"Runs per point (each run: `runs.csv`): flowing to the end, stopped (the pile came to rest and the run "
              f"ended early; median time of the stop), selected (at least one steady part kept "
              f"at resolution {selection.resolution:g}), and the steady parts kept in all when E(t) is "
-             "averaged over windows of each resolution (time units):", "",
+             "averaged over windows of each resolution (time units), and the runs' CPU time "
+             "(timing.json, kept in the summaries; `n timed` where only n of the runs have one):",
+             "",
              "| k_n | other variables | runs | flowing | stopped (median t) | selected | " +
-             " | ".join(f"parts kept at {r:g}" for r in resolutions) + " |",
-             "|---|---|---|---|---|---|" + "---|" * len(resolutions)]
+             " | ".join(f"parts kept at {r:g}" for r in resolutions) + " | CPU-s |",
+             "|---|---|---|---|---|---|" + "---|" * len(resolutions) + "---|"]
     for (kn, label), row in summary.items():
         when = f" ({np.median(row['stop_times']):.0f})" if row["stop_times"] else ""
+        timed = "" if row["timed"] == row["runs"] else f" ({row['timed']} timed)"
         lines.append(f"| {kn:g} | {label or '-'} | {row['runs']} | {row['flowing']} | "
                      f"{row['stopped']}{when} | {row['selected']} | " +
-                     " | ".join(str(row["kept"][r]) for r in resolutions) + " |")
+                     " | ".join(str(row["kept"][r]) for r in resolutions) +
+                     f" | {row['cpu_seconds']:.0f}{timed} |")
+    total = sum(row["cpu_seconds"] for row in summary.values())
+    timed = sum(row["timed"] for row in summary.values())
+    runs_in_all = sum(row["runs"] for row in summary.values())
+    lines += ["", f"CPU time of the {timed} timed runs of {runs_in_all}: {total / 3600:.3g} "
+                  "CPU-hours."]
     return lines + [""]
 
 

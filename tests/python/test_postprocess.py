@@ -382,16 +382,19 @@ def test_a_wider_energy_range_keeps_a_flow_the_papers_range_refuses(tmp_path):
 def test_run_summary_counts_flowing_stopped_and_selected():
     from postprocess.study import run_summary
     runs = [dict(kn=1e5, label="", state="flowing", stopped_at=None, selected=True,
-                 kept={0.1: 0, 1.0: 2, 5.0: 2}),
+                 kept={0.1: 0, 1.0: 2, 5.0: 2}, cpu_seconds=30.0),
             dict(kn=1e5, label="", state="stopped", stopped_at=300.0, selected=False,
-                 kept={0.1: 0, 1.0: 0, 5.0: 1}),
+                 kept={0.1: 0, 1.0: 0, 5.0: 1}, cpu_seconds=4.5),
             dict(kn=2e5, label="", state="flowing", stopped_at=None, selected=False,
-                 kept={0.1: 0, 1.0: 0, 5.0: 0})]
+                 kept={0.1: 0, 1.0: 0, 5.0: 0}, cpu_seconds=None)]
     summary = run_summary(runs)
     assert list(summary) == [(1e5, ""), (2e5, "")]
     row = summary[(1e5, "")]
     assert (row["runs"], row["flowing"], row["stopped"], row["selected"]) == (2, 1, 1, 1)
     assert row["kept"] == {0.1: 0, 1.0: 2, 5.0: 3} and row["stop_times"] == [300.0]
+    # the CPU time summed over the runs that have one; a run without it is counted as untimed
+    assert (row["cpu_seconds"], row["timed"]) == (34.5, 2)
+    assert (summary[(2e5, "")]["cpu_seconds"], summary[(2e5, "")]["timed"]) == (0.0, 0)
 
 
 # ---- sweeps that are empty, or hold what no sweep writes
