@@ -69,8 +69,8 @@ def kill_mid_chunk(config, output, *options, after=2):
     while time.time() < deadline:
         os.kill(runner.pid, signal.SIGSTOP)
         running = [runner.pid]
-        while set(processes_mentioning(output)) - set(running):   # (those started meanwhile)
-            started = sorted(set(processes_mentioning(output)) - set(running))
+        # (again until no new one: a process started between the listing and its stop)
+        while started := sorted(set(processes_mentioning(output)) - set(running)):
             signal_all(started, signal.SIGSTOP)
             running += started
         logs = glob.glob(str(output / "*" / "*" / "checkpoint.txt"))
