@@ -8,14 +8,15 @@
 set -eu
 pristine=$1 tree=$2 project=$3
 here=$project/plugin/liggghts
-patches="$here/liggghts-3.8.0-gcc12.patch $here/liggghts-3.8.0-errors.patch"
-# .prepared holds the patches' checksums: a tree made with other patches is made again (its
-# unchanged files then come from ccache)
-prepared=$(cat $patches | cksum)
+set -- "$here/liggghts-3.8.0-gcc12.patch" "$here/liggghts-3.8.0-errors.patch"    # the patches
+# .prepared holds the patches' checksum: a tree made with other patches is made again (the copy
+# keeps the pristine files' times, and the files that the patches' headers touch recompile
+# mostly from ccache)
+prepared=$(cat "$@" | cksum)
 if [ "$(cat "$tree/.prepared" 2>/dev/null)" != "$prepared" ]; then
   rm -rf "$tree"
   cp -a "$pristine" "$tree"
-  for patch in $patches; do patch -s -d "$tree" -p1 < "$patch"; done
+  for patch in "$@"; do patch -s -d "$tree" -p1 < "$patch"; done
   # VTK output needs VTK's headers (libvtk9-dev: ~1 GB with what it pulls in), and this file,
   # unlike LIGGGHTS's other VTK dumps, is not guarded by LAMMPS_VTK: left out
   rm -f "$tree/src/dump_mesh_vtk.cpp" "$tree/src/dump_mesh_vtk.h"
