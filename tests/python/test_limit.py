@@ -331,3 +331,14 @@ def test_a_kn_whose_runs_all_measure_zero_is_named_and_leaves_the_others_errors_
     assert d.verdict == (f"not applied: at k_n = {KN[2]:g} its {RUNS} runs all measure 0 "
                          "exactly (no error to weigh it by)")
 
+
+
+def test_an_undecided_verdict_says_why_its_exponent_has_no_error():
+    """A flat series scattered by 40 % over three runs a k_n: rule 1's profile of the power-law
+    exponent has its delta chi^2 = 1 interval open at the scan's lower edge, so the exponent has
+    no error; the verdict says so in words rather than printing '+- inf'."""
+    d = limit.decide(synthetic_runs(lambda k: 0.05, 0.4, runs=3), "mc_c")
+    assert d.verdict == "undecided" and not np.isfinite(d.fits.b_power_error)
+    assert "inf" not in d.why
+    assert f"(no error: its delta chi2 = 1 interval is open within the scanned b >= " \
+           f"{limit.EXPONENTS[0]:g})" in d.why
