@@ -18,7 +18,7 @@ share, the Pair time, LAMMPS's timer breakdown, memory per rank, and the final k
 (the three simulate the same flow: gran/mn's k_t is (2 k_n - eta_n^2)/7 per unit mass, times
 m: 0.08 % below gran/hooke's 2/7 k_n, so their energies agree closely, not exactly).
 
-    bench/peer_chute.py [--steps 400] [--repeat 3] [--build build]"""
+    bench/peer_chute.py [--steps 400] [--repeat 3] [--build build] [--decks DIR]"""
 import argparse
 import math
 import re
@@ -60,10 +60,15 @@ def variants(shipped, mn_law):
             "granular": shipped.replace(pair, granular + "\n")}
 
 
-def run(lmp, plugin, deck, steps, work):
+def deck_text(plugin, deck, steps):
+    """A variant's deck as run: the plugin loaded, `steps` steps, thermo at the last."""
     text = deck.replace("run\t\t100", f"run\t\t{steps}").replace("thermo\t\t100",
                                                                  f"thermo\t\t{steps}")
-    (work / "in.bench").write_text(f"plugin load {plugin}\n" + text)
+    return f"plugin load {plugin}\n" + text
+
+
+def run(lmp, plugin, deck, steps, work):
+    (work / "in.bench").write_text(deck_text(plugin, deck, steps))
     proc = subprocess.run([str(lmp), "-in", "in.bench", "-log", "log.bench", "-nocite"],
                           cwd=work, capture_output=True, text=True, errors="replace")
     if proc.returncode != 0:
@@ -85,14 +90,27 @@ def main():
     parser.add_argument("--steps", type=int, default=400)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--build", type=Path, default=ROOT / "build")
+    parser.add_argument("--decks", type=Path, metavar="DIR",
+                        help="write the three decks (in.<variant>, STEPS steps) and data.chute "
+                             "into DIR and run nothing: for callgrind (docs/performance.md)")
     args = parser.parse_args()
     build = args.build.resolve()
     lmp, plugin = build / "lammps" / "lmp", build / "plugin" / "granmnplugin.so"
     cache = (build / "CMakeCache.txt").read_text()
     tree = Path(re.search(r"^LAMMPS_SOURCE_DIR:PATH=(.*)$", cache, re.M).group(1))
     version = re.search(r'LAMMPS_VERSION "(.*)"', (tree / "src" / "version.h").read_text())
-    print(f"LAMMPS {version.group(1)} ({tree}); {args.steps} steps, best of {args.repeat}")
+    print(f"LAMMPS {version.group(1)} ({tree}); {args.steps} steps" +
+          ("" if args.decks else f", best of {args.repeat}"))
     decks = variants((tree / "bench" / "in.chute").read_text(), build / "plugin" / "mn-law")
+    if args.decks:
+        args.decks.mkdir(parents=True, exist_ok=True)
+        shutil.copy(tree / "bench" / "data.chute", args.decks)
+        for name, deck in decks.items():
+            (args.decks / f"in.{name.replace('/', '_')}").write_text(
+                deck_text(plugin, deck, args.steps))
+        print(f"decks: {', '.join(sorted(p.name for p in args.decks.glob('in.*')))} in "
+              f"{args.decks}")
+        return 0
     best = {}
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
