@@ -173,12 +173,22 @@ void PairGranMN::report_passed_through(int i, int j, double r)
 void PairGranMN::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (domain->dimension == 3) {
-    compute_loop<3>();
-  } else {
-    if (neighbor->ago == 0) check_in_plane();
-    compute_loop<2>();
-  }
+  if (domain->dimension == 2 && neighbor->ago == 0) check_in_plane();
+  const bool friction = layout.ut >= 0, observed = observer != nullptr;
+  if (domain->dimension == 3)
+    compute_for<3>(friction, observed);
+  else
+    compute_for<2>(friction, observed);
+}
+
+// The loop compiled for what the run needs: a law without friction keeps no u_t, a run
+// without fix contacts/mn reports no contacts, and neither pays a test per contact for it.
+template <int DIM> void PairGranMN::compute_for(bool friction, bool observed)
+{
+  if (friction)
+    observed ? compute_loop<DIM, true, true>() : compute_loop<DIM, true, false>();
+  else
+    observed ? compute_loop<DIM, false, true>() : compute_loop<DIM, false, false>();
 }
 
 // In 2D the law measures distances in the plane, the neighbor list in 3D: an atom off z = 0
@@ -199,7 +209,9 @@ void PairGranMN::check_in_plane()
 // The force loop in dimension DIM: 2, disks (u_t a scalar; torques about z); 3, spheres (u_t a
 // vector; forces and torques in three components). The overloads of mn::kinematics and
 // mn::force_and_torques (mn_contact.h) take each contact through the dimension's law.
-template <int DIM> void PairGranMN::compute_loop()
+// FRICTION: the law keeps u_t (mu > 0); OBSERVED: a contact observer (fix contacts/mn) is
+// told of contacts. A pair keeps history if either holds.
+template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
 {
   const double dt_history = granmn::history_dt(update);
 
@@ -217,7 +229,7 @@ template <int DIM> void PairGranMN::compute_loop()
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  const bool history = layout.size > 0;
+  constexpr bool history = FRICTION || OBSERVED;
   int **firsttouch = history ? fix_history->firstflag : nullptr;
   double **firstslots = history ? fix_history->firstvalue : nullptr;
   const int *type = atom->type;
@@ -228,7 +240,7 @@ template <int DIM> void PairGranMN::compute_loop()
   const mn::Law contact = law;
   const char *is_wall = is_wall_type.data();
   const double to_force = force_per_mass_acceleration;
-  granmn::ContactObserver *const events = observer;
+  granmn::ContactObserver *const events = observer;    // read only where OBSERVED
   const int stride = layout.size, ut_slot = layout.ut, record_slot = layout.record;
   const int vt_previous_slot = layout.vt_previous;
   const mn::Integrator scheme = integrator;
@@ -262,7 +274,7 @@ template <int DIM> void PairGranMN::compute_loop()
         if (history && touch[jj]) {
           const double d[3] = {dx, dy, dz};
           double *slots = &slots_all[stride * jj];
-          if (events) report_end<DIM>(i, j, d, rsq, slots + record_slot, tag);
+          if (OBSERVED) report_end<DIM>(i, j, d, rsq, slots + record_slot, tag);
           touch[jj] = 0;
           for (int k = 0; k < stride; k++) slots[k] = 0.0;
         }
@@ -282,7 +294,7 @@ template <int DIM> void PairGranMN::compute_loop()
       const bool i_wall = is_wall[type[i]], j_wall = is_wall[type[j]];
       const bool tally_j = newton_pair || j < nlocal;
       double *slots = history ? &slots_all[stride * jj] : nullptr;
-      if (events) {
+      if (OBSERVED) {
         const bool began = !touch[jj];
         events->update_record(slots + record_slot, began, kin.delta, kin.vn);
         if (const granmn::ContactTallies *step = events->pair_tallies()) {
@@ -293,13 +305,13 @@ template <int DIM> void PairGranMN::compute_loop()
         }
       }
       if (history) touch[jj] = 1;
-      double *ut = ut_slot >= 0 ? slots + ut_slot : nullptr;
+      double *ut = FRICTION ? slots + ut_slot : nullptr;
       // the law gives mass x acceleration; LAMMPS turns force back into it with ftm2v
       const double scale = contact_mass_scale(i_wall, j_wall, rmass[i], rmass[j]) * to_force;
 
       double fc_xyz[3];
-      mn::force_and_torques(contact, scale, kin, ut, dt_history, scheme,
-                            vt_previous_slot >= 0 ? slots + vt_previous_slot : nullptr, fc_xyz,
+      double *vt_previous = FRICTION && vt_previous_slot >= 0 ? slots + vt_previous_slot : nullptr;
+      mn::force_and_torques(contact, scale, kin, ut, dt_history, scheme, vt_previous, fc_xyz,
                             radi, torque[i], radius[j], tally_j ? torque[j] : nullptr);
       for (int c = 0; c < DIM; c++) f[i][c] += fc_xyz[c];
       if (tally_j)

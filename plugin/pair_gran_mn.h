@@ -69,7 +69,8 @@ class PairGranMN : public Pair {
   void report_passed_through(int, int, double);
   template <int DIM> void report_end(int, int, const double *, double, const double *,
                                      const tagint *);
-  template <int DIM> void compute_loop();
+  template <int DIM> void compute_for(bool friction, bool observed);
+  template <int DIM, bool FRICTION, bool OBSERVED> void compute_loop();
   template <int DIM> double single_contact(int, int, double, double &);
 };
 
