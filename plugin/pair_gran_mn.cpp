@@ -26,6 +26,7 @@
 #include "variable.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -215,17 +216,23 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
 {
   const double dt_history = granmn::history_dt(update);
 
-  double **x = atom->x;
-  double **v = atom->v;
-  double **f = atom->f;
-  double **omega = atom->omega;
-  double **torque = atom->torque;
+  const int inum = list->inum;
+  if (inum == 0) return;
+  // The per-atom vectors as flat arrays (LAMMPS allocates each contiguously; its OPT styles
+  // read them so): atom j's position is at x + 3 j, found without loading the row pointer
+  // x[j] first, for each neighbour and each vector of a contact. The offsets 3 j are taken in
+  // the width of a pointer (row()), where an int's would be widened at every use.
+  const auto row = [](int k) { return 3 * static_cast<std::ptrdiff_t>(k); };
+  const double *x = atom->x[0];
+  const double *v = atom->v[0];
+  double *f = atom->f[0];
+  const double *omega = atom->omega[0];
+  double *torque = atom->torque[0];
   const double *radius = atom->radius;
   const double *rmass = atom->rmass;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
 
-  const int inum = list->inum;
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
@@ -253,7 +260,7 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
     if (__builtin_expect(jnum == 0, 0)) continue;
     // i's position in locals: the force stores below could alias x[i], and the compiler would
     // load it again for every neighbour
-    const double xi[3] = {x[i][0], x[i][1], DIM == 3 ? x[i][2] : 0.0};
+    const double xi[3] = {x[row(i)], x[row(i) + 1], DIM == 3 ? x[row(i) + 2] : 0.0};
     const double radi = radius[i];
     const int *jlist = firstneigh[i];
     int *touch = history ? firsttouch[i] : nullptr;
@@ -263,8 +270,9 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
       const int j = jlist[jj] & NEIGHMASK;
       // scalars, not yet an array: an array whose address is taken below would be stored to
       // memory for every neighbour
-      const double dx = xi[0] - x[j][0], dy = xi[1] - x[j][1];
-      const double dz = DIM == 3 ? xi[2] - x[j][2] : 0.0;
+      const double *xj = x + row(j);
+      const double dx = xi[0] - xj[0], dy = xi[1] - xj[1];
+      const double dz = DIM == 3 ? xi[2] - xj[2] : 0.0;
       const double rsq = DIM == 3 ? dx * dx + dy * dy + dz * dz : dx * dx + dy * dy;
       const double radsum = radi + radius[j];
 
@@ -285,10 +293,11 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
       const double r = sqrt(rsq);
       // the centre of one inside the other: as the wall fix's centre that reached its wall
       if (r <= MAX(radi, radius[j])) report_passed_through(i, j, r);
-      const double dv[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
-      const double lever[3] = {radi * omega[i][0] + radius[j] * omega[j][0],
-                               radi * omega[i][1] + radius[j] * omega[j][1],
-                               radi * omega[i][2] + radius[j] * omega[j][2]};
+      const double *vi = v + row(i), *vj = v + row(j);
+      const double *wi = omega + row(i), *wj = omega + row(j);
+      const double dv[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
+      const double lever[3] = {radi * wi[0] + radius[j] * wj[0], radi * wi[1] + radius[j] * wj[1],
+                               radi * wi[2] + radius[j] * wj[2]};
       const auto kin = mn::kinematics(mn::Dim<DIM>(), d, r, radsum, dv, lever);
       // looked up per contact, not per atom: most atoms of a dilute flow touch nothing
       const bool i_wall = is_wall[type[i]], j_wall = is_wall[type[j]];
@@ -312,10 +321,10 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
       double fc_xyz[3];
       double *vt_previous = FRICTION && vt_previous_slot >= 0 ? slots + vt_previous_slot : nullptr;
       mn::force_and_torques(contact, scale, kin, ut, dt_history, scheme, vt_previous, fc_xyz,
-                            radi, torque[i], radius[j], tally_j ? torque[j] : nullptr);
-      for (int c = 0; c < DIM; c++) f[i][c] += fc_xyz[c];
+                            radi, torque + row(i), radius[j], tally_j ? torque + row(j) : nullptr);
+      for (int c = 0; c < DIM; c++) f[row(i) + c] += fc_xyz[c];
       if (tally_j)
-        for (int c = 0; c < DIM; c++) f[j][c] -= fc_xyz[c];
+        for (int c = 0; c < DIM; c++) f[row(j) + c] -= fc_xyz[c];
       if (evflag)
         ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fc_xyz[0], fc_xyz[1], fc_xyz[2], d[0],
                      d[1], d[2]);
