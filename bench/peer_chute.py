@@ -17,11 +17,15 @@ Each variant runs STEPS steps, interleaved, best of --repeat: the loop time time
 share, the Pair time, LAMMPS's timer breakdown, memory per rank, and the final kinetic energy
 (the three simulate the same flow: gran/mn's k_t is (2 k_n - eta_n^2)/7 per unit mass, times
 m: 0.08 % below gran/hooke's 2/7 k_n, so their energies agree closely, not exactly).
+Then each variant's CPU and Pair time against gran/hooke/history's of the same round, the
+median over the rounds with their range: on a machine whose speed drifts (a shared one: its
+best-of times can come from rounds of different speed) the paired ratio is the steadier one.
 
     bench/peer_chute.py [--steps 400] [--repeat 3] [--build build] [--decks DIR]"""
 import argparse
 import math
 import re
+import statistics
 import shutil
 import subprocess
 import sys
@@ -111,11 +115,12 @@ def main():
         print(f"decks: {', '.join(sorted(p.name for p in args.decks.glob('in.*')))} in "
               f"{args.decks}")
         return 0
-    best = {}
+    best, rounds = {}, []
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
         shutil.copy(tree / "bench" / "data.chute", work)
         for _ in range(args.repeat):
+            rounds.append({})
             for name, deck in decks.items():
                 try:
                     result = run(lmp, plugin, deck, args.steps, work)
@@ -124,6 +129,7 @@ def main():
                         print(f"{name}: {str(error).splitlines()[-1]}", file=sys.stderr)
                         continue
                     raise
+                rounds[-1][name] = result
                 if name not in best or result["cpu"] < best[name]["cpu"]:
                     best[name] = result
     reference = best["gran/hooke/history"]
@@ -135,6 +141,15 @@ def main():
               " ".join(f"{r['sections'][s]:6.1f}" for s in SECTIONS))
     if "granular" in best:
         print(f"gran/mn / granular: CPU {best['gran/mn']['cpu'] / best['granular']['cpu']:.3f}")
+    print(f"paired with gran/hooke/history in each of the {len(rounds)} rounds: median (min-max)")
+    for name in (name for name in best if name != "gran/hooke/history"):
+        line = f"{name:<20}"
+        for key in ("cpu", "pair"):
+            ratios = sorted(r[name][key] / r["gran/hooke/history"][key] for r in rounds
+                            if name in r)
+            line += (f" {key.upper() if key == 'cpu' else 'Pair'} {statistics.median(ratios):.3f}"
+                     f" ({ratios[0]:.3f}-{ratios[-1]:.3f})")
+        print(line)
     return 0
 
 
