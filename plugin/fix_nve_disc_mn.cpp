@@ -18,9 +18,11 @@
 #include "force.h"
 #include "granmn_compat.h"
 #include "granmn_run_checks.h"
+#include "group.h"
 #include "neighbor.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -148,7 +150,8 @@ void FixNVEDiscMN::init()
     if (after_this && (fix->setmask() & POST_FORCE)) gravity_at_setup = false;
     if (fix == this) after_this = true;
   }
-  factors_every_step = !granmn::fixes_by_style(modify, "^adapt").empty();
+  factors_every_step =
+      !granmn::fixes_by_style(modify, "^adapt").empty() || group->dynamic[igroup];
   dtv = update->dt;
   dtf = 0.5 * update->dt * force->ftm2v;
 }
@@ -193,13 +196,10 @@ void FixNVEDiscMN::post_run()
 void FixNVEDiscMN::add_gravity()
 {
   double **f = atom->f;
-  const int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++)
-    if (mask[i] & groupbit) {
-      f[i][0] += factors[i].weight_x;
-      f[i][1] += factors[i].weight_y;
-    }
+  for (const int i : members) {
+    f[i][0] += factors[i].weight_x;
+    f[i][1] += factors[i].weight_y;
+  }
 }
 
 // The positions at the last build, as LAMMPS holds them (x is unchanged from the build to
@@ -229,7 +229,11 @@ void FixNVEDiscMN::compute_factors()
   const int nlocal = atom->nlocal;
   const double *rmass = atom->rmass;
   const double *radius = atom->radius;
+  const int *mask = atom->mask;
   factors.resize(nlocal);
+  members.clear();
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit) members.push_back(i);
   const bool verlet = integrator == mn::Integrator::VelocityVerlet;
   const double scale = verlet ? dtf : force->ftm2v;
   // fix nve/sphere disc's operations: (dtf / inertia) / (r^2 m), inertia = 1/2
@@ -321,32 +325,30 @@ void FixNVEDiscMN::initial_integrate(int)
   double **f = atom->f;
   double **omega = atom->omega;
   double **torque = atom->torque;
-  const int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
   const Factors *c = factors.data();
 
   const int ago = neigh_check ? build_due() : 0;    // > 0: LAMMPS would decide at this step
   const bool check = ago > 0 && neighbor->dist_check;
   const double *hold = held.data();
-  const double trigger = trigger_sq;
-  bool moved = false;
+  // the largest squared displacement since the build, compared with the trigger once after
+  // the pass: a flag set in the pass was kept on the stack, its store and reload a chain
+  // through every disk's step (the same decision: max(d^2) > trigger iff some d^2 > trigger)
+  double farthest = 0.0;
 
   if (integrator == mn::Integrator::VelocityVerlet) {
-    for (int i = 0; i < nlocal; i++) {
-      if (!(mask[i] & groupbit)) continue;
+    for (const int i : members) {
       half_kick(c[i], f[i], torque[i], v[i], omega[i]);
       x[i][0] += dtv * v[i][0];
       x[i][1] += dtv * v[i][1];
       if (check) {
         const double dx = x[i][0] - hold[2 * i], dy = x[i][1] - hold[2 * i + 1];
-        if (dx * dx + dy * dy > trigger) moved = true;
+        farthest = std::max(farthest, dx * dx + dy * dy);
       }
     }
-    if (ago) request_build(moved, ago);
+    if (ago) request_build(farthest > trigger_sq, ago);
     return;
   }
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
+  for (const int i : members) {
     double *previous = state[i];
     const double a[3] = {f[i][0] * c[i].per_mass, f[i][1] * c[i].per_mass,
                          torque[i][2] * c[i].per_inertia};
@@ -364,10 +366,10 @@ void FixNVEDiscMN::initial_integrate(int)
     for (int k = 0; k < 3; k++) previous[k] = a[k];
     if (check) {
       const double dx = x[i][0] - hold[2 * i], dy = x[i][1] - hold[2 * i + 1];
-      if (dx * dx + dy * dy > trigger) moved = true;
+      farthest = std::max(farthest, dx * dx + dy * dy);
     }
   }
-  if (ago) request_build(moved, ago);
+  if (ago) request_build(farthest > trigger_sq, ago);
 }
 
 // The end of a step: m g into the step's forces; under velocity Verlet the second half kick in
@@ -383,20 +385,16 @@ void FixNVEDiscMN::final_integrate()
   double **f = atom->f;
   double **omega = atom->omega;
   double **torque = atom->torque;
-  const int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
   const Factors *c = factors.data();
   if (has_gravity) {
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) final_kick_with_gravity(c[i], f[i], torque[i], v[i], omega[i]);
+    for (const int i : members) final_kick_with_gravity(c[i], f[i], torque[i], v[i], omega[i]);
   } else {
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) half_kick(c[i], f[i], torque[i], v[i], omega[i]);
+    for (const int i : members) half_kick(c[i], f[i], torque[i], v[i], omega[i]);
   }
 }
 
 double FixNVEDiscMN::memory_usage()
 {
   return FixPerAtomState::memory_usage() + (double) factors.capacity() * sizeof(Factors) +
-      (double) held.capacity() * sizeof(double);
+      (double) members.capacity() * sizeof(int) + (double) held.capacity() * sizeof(double);
 }

@@ -47,11 +47,16 @@ class FixNVEDiscMN : public FixPerAtomState {
   // velocity Verlet: dt/2 / m and dt/2 / (m r^2/2) (times ftm2v), as fix nve/sphere disc;
   // Adams-Bashforth 2: 1/m and 1/(m r^2/2) (times ftm2v); and the body force m g.
   std::vector<Factors> factors;
+  // The group's local atoms in index order, listed with the factors: the passes go over them
+  // with no test of each atom's mask, whose branch a group of disks among bumps (the
+  // collisional scene, its atoms sorted in space) mispredicts at every other atom.
+  std::vector<int> members;
   mn::Integrator integrator;
   bool has_gravity;
   double gravity[2];          // the acceleration, as fix gravity's vector style makes it
   double dtv, dtf;
-  bool factors_every_step;    // a fix adapt may change masses or radii at any step
+  bool factors_every_step;    // a fix adapt may change masses or radii at any step, a
+                              // dynamic group its atoms
   bool factors_stale;         // a run ended since they were computed
   bigint factors_lastcall;    // the neighbour-list build the factors were computed after
   // m g is added to f after every other force, as by a fix gravity defined last: at each step
