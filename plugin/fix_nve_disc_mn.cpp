@@ -18,7 +18,6 @@
 #include "force.h"
 #include "granmn_compat.h"
 #include "granmn_run_checks.h"
-#include "group.h"
 #include "neighbor.h"
 #include "update.h"
 
@@ -150,8 +149,7 @@ void FixNVEDiscMN::init()
     if (after_this && (fix->setmask() & POST_FORCE)) gravity_at_setup = false;
     if (fix == this) after_this = true;
   }
-  factors_every_step =
-      !granmn::fixes_by_style(modify, "^adapt").empty() || group->dynamic[igroup];
+  factors_every_step = !granmn::fixes_by_style(modify, "^adapt").empty();
   dtv = update->dt;
   dtf = 0.5 * update->dt * force->ftm2v;
 }

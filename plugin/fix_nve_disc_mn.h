@@ -49,14 +49,14 @@ class FixNVEDiscMN : public FixPerAtomState {
   std::vector<Factors> factors;
   // The group's local atoms in index order, listed with the factors: the passes go over them
   // with no test of each atom's mask, whose branch a group of disks among bumps (the
-  // collisional scene, its atoms sorted in space) mispredicts at every other atom.
+  // collisional scene, its atoms sorted in space) mispredicts at every other atom. The group
+  // is not dynamic (LAMMPS refuses a dynamic group for a fix that does not allow one).
   std::vector<int> members;
   mn::Integrator integrator;
   bool has_gravity;
   double gravity[2];          // the acceleration, as fix gravity's vector style makes it
   double dtv, dtf;
-  bool factors_every_step;    // a fix adapt may change masses or radii at any step, a
-                              // dynamic group its atoms
+  bool factors_every_step;    // a fix adapt may change masses or radii at any step
   bool factors_stale;         // a run ended since they were computed
   bigint factors_lastcall;    // the neighbour-list build the factors were computed after
   // m g is added to f after every other force, as by a fix gravity defined last: at each step
