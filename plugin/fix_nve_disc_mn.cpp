@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -244,6 +245,12 @@ void FixNVEDiscMN::compute_factors()
   factors_stale = false;
 }
 
+// A per-atom vector's first row, where the rest follow (nullptr when there are no atoms).
+static inline double *rows(double **vector)
+{
+  return vector ? vector[0] : nullptr;
+}
+
 // Velocity Verlet's half step of one disk's velocity and spin under the force f, which holds
 // m g (the final kick puts it there). The new values are computed into locals first: v, f and
 // omega could alias for the compiler, which would store and reload.
@@ -334,12 +341,20 @@ void FixNVEDiscMN::initial_integrate(int)
   double farthest = 0.0;
 
   if (integrator == mn::Integrator::VelocityVerlet) {
+    // the vectors as the flat arrays LAMMPS allocates (atom i's at 3 i), and the step in a
+    // local: the stores to x could alias the member for the compiler, which would reload it
+    double *const xs = rows(atom->x), *const vs = rows(atom->v);
+    const double *const fs = rows(atom->f), *const ts = rows(atom->torque);
+    double *const ws = rows(atom->omega);
+    const double step = dtv;
     for (const int i : members) {
-      half_kick(c[i], f[i], torque[i], v[i], omega[i]);
-      x[i][0] += dtv * v[i][0];
-      x[i][1] += dtv * v[i][1];
+      const std::ptrdiff_t k = 3 * static_cast<std::ptrdiff_t>(i);
+      half_kick(c[i], fs + k, ts + k, vs + k, ws + k);
+      const double xi = xs[k] + step * vs[k], yi = xs[k + 1] + step * vs[k + 1];
+      xs[k] = xi;
+      xs[k + 1] = yi;
       if (check) {
-        const double dx = x[i][0] - hold[2 * i], dy = x[i][1] - hold[2 * i + 1];
+        const double dx = xi - hold[2 * i], dy = yi - hold[2 * i + 1];
         farthest = std::max(farthest, dx * dx + dy * dy);
       }
     }
@@ -379,15 +394,20 @@ void FixNVEDiscMN::final_integrate()
     add_gravity();
     return;
   }
-  double **v = atom->v;
-  double **f = atom->f;
-  double **omega = atom->omega;
-  double **torque = atom->torque;
+  // flat arrays, as in initial_integrate
+  double *const vs = rows(atom->v), *const fs = rows(atom->f), *const ws = rows(atom->omega);
+  const double *const ts = rows(atom->torque);
   const Factors *c = factors.data();
   if (has_gravity) {
-    for (const int i : members) final_kick_with_gravity(c[i], f[i], torque[i], v[i], omega[i]);
+    for (const int i : members) {
+      const std::ptrdiff_t k = 3 * static_cast<std::ptrdiff_t>(i);
+      final_kick_with_gravity(c[i], fs + k, ts + k, vs + k, ws + k);
+    }
   } else {
-    for (const int i : members) half_kick(c[i], f[i], torque[i], v[i], omega[i]);
+    for (const int i : members) {
+      const std::ptrdiff_t k = 3 * static_cast<std::ptrdiff_t>(i);
+      half_kick(c[i], fs + k, ts + k, vs + k, ws + k);
+    }
   }
 }
 
