@@ -17,13 +17,13 @@
 #include "error.h"
 #include "force.h"
 #include "granmn_compat.h"
+#include "granmn_flat_arrays.h"
 #include "granmn_run_checks.h"
 #include "neighbor.h"
 #include "update.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstddef>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -245,12 +245,6 @@ void FixNVEDiscMN::compute_factors()
   factors_stale = false;
 }
 
-// A per-atom vector's first row, where the rest follow (nullptr when there are no atoms).
-static inline double *rows(double **vector)
-{
-  return vector ? vector[0] : nullptr;
-}
-
 // Velocity Verlet's half step of one disk's velocity and spin under the force f, which holds
 // m g (the final kick puts it there). The new values are computed into locals first: v, f and
 // omega could alias for the compiler, which would store and reload.
@@ -341,14 +335,14 @@ void FixNVEDiscMN::initial_integrate(int)
   double farthest = 0.0;
 
   if (integrator == mn::Integrator::VelocityVerlet) {
-    // the vectors as the flat arrays LAMMPS allocates (atom i's at 3 i), and the step in a
-    // local: the stores to x could alias the member for the compiler, which would reload it
-    double *const xs = rows(atom->x), *const vs = rows(atom->v);
-    const double *const fs = rows(atom->f), *const ts = rows(atom->torque);
-    double *const ws = rows(atom->omega);
+    // the vectors as flat arrays (granmn_flat_arrays.h), and the step in a local: the stores
+    // to x could alias the member for the compiler, which would reload it
+    double *const xs = granmn::rows(atom->x), *const vs = granmn::rows(atom->v);
+    const double *const fs = granmn::rows(atom->f), *const ts = granmn::rows(atom->torque);
+    double *const ws = granmn::rows(atom->omega);
     const double step = dtv;
     for (const int i : members) {
-      const std::ptrdiff_t k = 3 * static_cast<std::ptrdiff_t>(i);
+      const std::ptrdiff_t k = granmn::row_start(i, 3);
       half_kick(c[i], fs + k, ts + k, vs + k, ws + k);
       const double xi = xs[k] + step * vs[k], yi = xs[k + 1] + step * vs[k + 1];
       xs[k] = xi;
@@ -395,17 +389,18 @@ void FixNVEDiscMN::final_integrate()
     return;
   }
   // flat arrays, as in initial_integrate
-  double *const vs = rows(atom->v), *const fs = rows(atom->f), *const ws = rows(atom->omega);
-  const double *const ts = rows(atom->torque);
+  double *const vs = granmn::rows(atom->v), *const fs = granmn::rows(atom->f);
+  double *const ws = granmn::rows(atom->omega);
+  const double *const ts = granmn::rows(atom->torque);
   const Factors *c = factors.data();
   if (has_gravity) {
     for (const int i : members) {
-      const std::ptrdiff_t k = 3 * static_cast<std::ptrdiff_t>(i);
+      const std::ptrdiff_t k = granmn::row_start(i, 3);
       final_kick_with_gravity(c[i], fs + k, ts + k, vs + k, ws + k);
     }
   } else {
     for (const int i : members) {
-      const std::ptrdiff_t k = 3 * static_cast<std::ptrdiff_t>(i);
+      const std::ptrdiff_t k = granmn::row_start(i, 3);
       half_kick(c[i], fs + k, ts + k, vs + k, ws + k);
     }
   }

@@ -14,6 +14,7 @@
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "granmn_compat.h"
+#include "granmn_flat_arrays.h"
 #include "granmn_law_arguments.h"
 #include "granmn_run_checks.h"
 #include "input.h"
@@ -26,7 +27,6 @@
 #include "variable.h"
 
 #include <cmath>
-#include <cstddef>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -216,23 +216,21 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
 {
   const double dt_history = granmn::history_dt(update);
 
-  const int inum = list->inum;
-  if (inum == 0) return;
-  // The per-atom vectors as flat arrays (LAMMPS allocates each contiguously; its OPT styles
-  // read them so): atom j's position is at x + 3 j, found without loading the row pointer
-  // x[j] first, for each neighbour and each vector of a contact. The offsets 3 j are taken in
-  // the width of a pointer (row()), where an int's would be widened at every use.
-  const auto row = [](int k) { return 3 * static_cast<std::ptrdiff_t>(k); };
-  const double *x = atom->x[0];
-  const double *v = atom->v[0];
-  double *f = atom->f[0];
-  const double *omega = atom->omega[0];
-  double *torque = atom->torque[0];
+  // The per-atom vectors as flat arrays (granmn_flat_arrays.h): atom j's position is at
+  // x + 3 j, found without loading the row pointer x[j] first, for each neighbour and each
+  // vector of a contact.
+  const auto row = [](int k) { return granmn::row_start(k, 3); };
+  const double *x = granmn::rows(atom->x);
+  const double *v = granmn::rows(atom->v);
+  double *f = granmn::rows(atom->f);
+  const double *omega = granmn::rows(atom->omega);
+  double *torque = granmn::rows(atom->torque);
   const double *radius = atom->radius;
   const double *rmass = atom->rmass;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
 
+  const int inum = list->inum;
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
