@@ -16,11 +16,13 @@
                             [--warmup 10] [--span 10] [--baseline SOURCE_TREE]
 
 Each figure is the best of --repeat runs, the variants interleaved so that drifts in the
-machine's load hit all of them."""
+machine's load hit all of them; the scenes' ratios to the reference loop are also given paired
+round by round (median and range over the rounds)."""
 import argparse
 import os
 import re
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -183,7 +185,9 @@ def reference_run(scene, dt_fraction, warmup, span, loop=REFERENCE_LOOP):
 
 def scene_comparison(args, work):
     """Each scene in LAMMPS (counters on, off; the baseline's) against the reference loop,
-    the variants interleaved, best of --repeat."""
+    the variants interleaved, best of --repeat; then each variant against the reference loop
+    of the same round, the median over the rounds with their range (the machine's speed drifts
+    between rounds: a best-of time and the loop's can come from rounds of different speed)."""
     # The decks run LAMMPS's timer at `loop` (the total only); the breakdown comes from the same
     # run with the timer at `normal`, which costs a few % more.
     # (source, counters, timer, integration); None: the deck's default
@@ -200,11 +204,13 @@ def scene_comparison(args, work):
     print(f"{'scene':<17} {'variant':<34} {'us/step':>8} {'vs reference':>13} {'E/disk':>7}  "
           + " ".join(f"{name:>6}" for name in TIMER_SECTIONS) + "  (% of the loop)")
     for scene in SCENES:
-        best = {}
+        best, rounds = {}, []
         for _ in range(args.repeat):
+            rounds.append({})
             for name, (source, counters, timer, integration) in variants.items():
                 result = scene_run(source, scene, counters, timer, integration, args.dt_fraction,
                                    args.warmup, args.span, work)
+                rounds[-1][name] = result[0]
                 if name not in best or result[0] < best[name][0]:
                     best[name] = result
             loops = {"reference": REFERENCE_LOOP}
@@ -212,6 +218,7 @@ def scene_comparison(args, work):
                 loops["baseline reference"] = baseline / "build" / "bench" / "reference-loop"
             for key, loop in loops.items():
                 reference = reference_run(scene, args.dt_fraction, args.warmup, args.span, loop)
+                rounds[-1][key] = reference[0]
                 if key not in best or reference[0] < best[key][0]:
                     best[key] = reference
         base, ref_energy, ref_contacts = best.pop("reference")
@@ -230,6 +237,13 @@ def scene_comparison(args, work):
                   f"{best['baseline, counters + outputs'][0] / old_base:.2f}, counters off "
                   f"{best['baseline, counters off'][0] / old_base:.2f}; baseline / this tree: "
                   f"{best['baseline, counters + outputs'][0] / best['LAMMPS, counters + outputs'][0]:.2f}")
+        paired = []
+        for name in ("LAMMPS, counters + outputs", "LAMMPS, counters off"):
+            ratios = sorted(r[name] / r["reference"] for r in rounds)
+            paired.append(f"{name.split(', ', 1)[1]} {statistics.median(ratios):.2f} "
+                          f"({ratios[0]:.2f}-{ratios[-1]:.2f})")
+        print(f"{scene:<17} against the reference loop of the same round, median of "
+              f"{len(rounds)} (range): " + ", ".join(paired))
 
 
 def sweep_comparison(work):
