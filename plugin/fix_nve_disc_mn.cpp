@@ -319,11 +319,6 @@ void FixNVEDiscMN::initial_integrate(int)
     add_gravity();
     gravity_pending = false;
   }
-  double **x = atom->x;
-  double **v = atom->v;
-  double **f = atom->f;
-  double **omega = atom->omega;
-  double **torque = atom->torque;
   const Factors *c = factors.data();
 
   const int ago = neigh_check ? build_due() : 0;    // > 0: LAMMPS would decide at this step
@@ -355,6 +350,11 @@ void FixNVEDiscMN::initial_integrate(int)
     if (ago) request_build(farthest > trigger_sq, ago);
     return;
   }
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
   for (const int i : members) {
     double *previous = state[i];
     const double a[3] = {f[i][0] * c[i].per_mass, f[i][1] * c[i].per_mass,

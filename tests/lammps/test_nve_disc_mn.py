@@ -163,6 +163,25 @@ def test_a_mass_set_between_runs_is_followed_without_a_setup(tmp_path):
     assert np.array_equal(separate, fused), np.abs(separate - fused).max()
 
 
+def test_atoms_added_to_the_group_between_runs_are_integrated_without_a_setup(tmp_path):
+    """The pile's first 24 disks integrated for 500 steps (the others held where they are),
+    then `group` adds the other 24 and the second run ... pre no (no setup) integrates all:
+    the fused fix's list of its group's atoms is made again at the first step after a run,
+    so the state is nve/sphere disc + fix gravity's (which test each atom's group at every
+    step) to the bit. A list kept from the first run would leave the added disks where they
+    were, which changes the state at once."""
+    def state(name, integration):
+        deck = pile_deck(integration, 500, True).replace(
+            "fix integrate mobile", "group first id <= 24\nfix integrate first").replace(
+            "fix gravity mobile", "fix gravity first").replace(
+            "run 500\n", "run 500\ngroup first type 1\nrun 500 pre no\n")
+        a = run_lammps(deck, tmp_path / name).atoms()
+        return np.column_stack([a[k] for k in ("x", "y", "vx", "vy", "omegaz")])
+    separate = state("separate", ("nve/sphere disc", "gravity"))
+    fused = state("fused", (f"nve/disc/mn {GRAVITY}",))
+    assert np.array_equal(separate, fused), np.abs(separate - fused).max()
+
+
 def forces(tmp_path, name, integration, integrator_last=False):
     """The pile's dumped forces every 100 steps (500 steps; fix `integrate` defined first, or
     after the wall): {step: array of (id, type, mass, fx, fy)}."""
