@@ -12,8 +12,11 @@ COUNTS = "id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]"
 SUMS = "$(f_c[1]) $(f_c[2]) $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6]) $(f_c[7]) $(f_c[8])"
 
 
-def test_binary_collision_is_one_contact_per_disk_lasting_tau_c(tmp_path):
-    material = (2e5, 0.7, 0.7, 0.5)
+@pytest.mark.parametrize("mu", [0.5, 0.0])
+def test_binary_collision_is_one_contact_per_disk_lasting_tau_c(tmp_path, mu):
+    """Also with mu = 0, where the pair style keeps no u_t and its loop for a frictionless law
+    with a contact observer runs (a head-on collision: the same contact either way)."""
+    material = (2e5, 0.7, 0.7, mu)
     tau = law(*material[:3])["tau_c"]
     dt = tau / 100
     deck, _ = two_disks(material, dt)
