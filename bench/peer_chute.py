@@ -11,7 +11,9 @@ docs/performance.md):
   in place of the base's neigh_modify exclude (its contacts take m_i, as gran/hooke's meff
   with a frozen partner);
 - with pair_style granular (hooke 2e5 50, tangential linear_history 2/7 x 2e5 0 0.5, damping
-  mass_velocity).
+  mass_velocity);
+- with --baseline-plugin PLUGIN, the gran/mn deck again with another build's plugin (built
+  against the same LAMMPS): a change of the plugin against the code before it.
 
 Each variant runs STEPS steps, interleaved, best of --repeat: the loop time times LAMMPS's CPU
 share, the Pair time, LAMMPS's timer breakdown, memory per rank, and the final kinetic energy
@@ -21,11 +23,11 @@ Then each variant's CPU and Pair time against gran/hooke/history's of the same r
 median over the rounds with their range: on a machine whose speed drifts (a shared one: its
 best-of times can come from rounds of different speed) the paired ratio is the steadier one.
 
-    bench/peer_chute.py [--steps 400] [--repeat 3] [--build build] [--decks DIR]"""
+    bench/peer_chute.py [--steps 400] [--repeat 3] [--build build] [--decks DIR]
+                        [--baseline-plugin PLUGIN]"""
 import argparse
 import math
 import re
-import statistics
 import shutil
 import subprocess
 import sys
@@ -33,11 +35,13 @@ import tempfile
 from pathlib import Path
 
 from mn_law import derived    # bench/mn_law.py links scripts/mn_law.py
+from paired import median_and_range, paired_ratios
 
 ROOT = Path(__file__).resolve().parent.parent
 SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
 MASS = math.pi / 6           # data.chute: diameter 1, density 1
 KN, GAMMA_N, MU = 2e5, 50.0, 0.5
+BASELINE = "gran/mn, baseline"    # the variant of --baseline-plugin
 
 
 def restitution_for(eta_n, kn):
@@ -94,6 +98,9 @@ def main():
     parser.add_argument("--steps", type=int, default=400)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--build", type=Path, default=ROOT / "build")
+    parser.add_argument("--baseline-plugin", type=Path, metavar="PLUGIN",
+                        help="also the gran/mn deck with this granmnplugin.so (another build "
+                             "of the plugin against the same LAMMPS), paired with gran/mn")
     parser.add_argument("--decks", type=Path, metavar="DIR",
                         help="write the three decks (in.<variant>, STEPS steps) and data.chute "
                              "into DIR and run nothing: for callgrind (docs/performance.md)")
@@ -106,12 +113,18 @@ def main():
     print(f"LAMMPS {version.group(1)} ({tree}); {args.steps} steps" +
           ("" if args.decks else f", best of {args.repeat}"))
     decks = variants((tree / "bench" / "in.chute").read_text(), build / "plugin" / "mn-law")
+    plugins = {name: plugin for name in decks}
+    if args.baseline_plugin:
+        if not args.baseline_plugin.is_file():
+            sys.exit(f"--baseline-plugin {args.baseline_plugin}: no such file")
+        decks[BASELINE] = decks["gran/mn"]
+        plugins[BASELINE] = args.baseline_plugin.resolve()
     if args.decks:
         args.decks.mkdir(parents=True, exist_ok=True)
         shutil.copy(tree / "bench" / "data.chute", args.decks)
         for name, deck in decks.items():
-            (args.decks / f"in.{name.replace('/', '_')}").write_text(
-                deck_text(plugin, deck, args.steps))
+            (args.decks / f"in.{re.sub(r'[/, ]+', '_', name)}").write_text(
+                deck_text(plugins[name], deck, args.steps))
         print(f"decks: {', '.join(sorted(p.name for p in args.decks.glob('in.*')))} in "
               f"{args.decks}")
         return 0
@@ -123,7 +136,7 @@ def main():
             rounds.append({})
             for name, deck in decks.items():
                 try:
-                    result = run(lmp, plugin, deck, args.steps, work)
+                    result = run(lmp, plugins[name], deck, args.steps, work)
                 except RuntimeError as error:
                     if name == "granular":    # an older LAMMPS's pair granular takes other words
                         print(f"{name}: {str(error).splitlines()[-1]}", file=sys.stderr)
@@ -142,14 +155,15 @@ def main():
     if "granular" in best:
         print(f"gran/mn / granular: CPU {best['gran/mn']['cpu'] / best['granular']['cpu']:.3f}")
     print(f"paired with gran/hooke/history in each of the {len(rounds)} rounds: median (min-max)")
-    for name in (name for name in best if name != "gran/hooke/history"):
-        line = f"{name:<20}"
-        for key in ("cpu", "pair"):
-            ratios = sorted(r[name][key] / r["gran/hooke/history"][key] for r in rounds
-                            if name in r)
-            line += (f" {key.upper() if key == 'cpu' else 'Pair'} {statistics.median(ratios):.3f}"
-                     f" ({ratios[0]:.3f}-{ratios[-1]:.3f})")
-        print(line)
+    pairs = [(name, "gran/hooke/history") for name in best if name != "gran/hooke/history"]
+    if BASELINE in best:
+        pairs.append(("gran/mn", BASELINE))
+    for name, against in pairs:
+        label = name if against == "gran/hooke/history" else f"{name} / {against}"
+        print(f"{label:<28}" + "".join(
+            f" {key} " + median_and_range(paired_ratios(rounds, name, against,
+                                                        lambda result: result[field]))
+            for key, field in (("CPU", "cpu"), ("Pair", "pair"))))
     return 0
 
 

@@ -22,7 +22,6 @@ import argparse
 import os
 import re
 import shutil
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -31,6 +30,7 @@ from pathlib import Path
 
 from equivalent_laws import LIGGGHTS_FLOOR, hooke_history_contacts, liggghts_contacts
 from mn_law import derived    # bench/mn_law.py links scripts/mn_law.py
+from paired import median_and_range, paired_ratios
 
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = ROOT / "build"
@@ -237,11 +237,9 @@ def scene_comparison(args, work):
                   f"{best['baseline, counters + outputs'][0] / old_base:.2f}, counters off "
                   f"{best['baseline, counters off'][0] / old_base:.2f}; baseline / this tree: "
                   f"{best['baseline, counters + outputs'][0] / best['LAMMPS, counters + outputs'][0]:.2f}")
-        paired = []
-        for name in ("LAMMPS, counters + outputs", "LAMMPS, counters off"):
-            ratios = sorted(r[name] / r["reference"] for r in rounds)
-            paired.append(f"{name.split(', ', 1)[1]} {statistics.median(ratios):.2f} "
-                          f"({ratios[0]:.2f}-{ratios[-1]:.2f})")
+        paired = [f"{name.split(', ', 1)[1]} "
+                  + median_and_range(paired_ratios(rounds, name, "reference"), digits=2)
+                  for name in ("LAMMPS, counters + outputs", "LAMMPS, counters off")]
         print(f"{scene:<17} against the reference loop of the same round, median of "
               f"{len(rounds)} (range): " + ", ".join(paired))
 

@@ -332,7 +332,6 @@ def test_a_kn_whose_runs_all_measure_zero_is_named_and_leaves_the_others_errors_
                          "exactly (no error to weigh it by)")
 
 
-
 def test_an_undecided_verdict_says_why_its_exponent_has_no_error():
     """A flat series scattered by 40 % over three runs a k_n: rule 1's profile of the power-law
     exponent has its delta chi^2 = 1 interval open at the scan's lower edge, so the exponent has
