@@ -6,6 +6,7 @@ Rule 1 (fixed before the first stiff series) says "finite" only for a decay onto
 (fixed before the confirmatory series) keeps its branches and also says "finite" for a series
 that does not fall (a non-inferiority test on the log-log slope)."""
 from dataclasses import dataclass, field
+from math import comb
 
 import numpy as np
 
@@ -347,3 +348,21 @@ def runaway_events(t, energy, factor=RUNAWAY_FACTOR, settled=SETTLED):
     above = (means > factor * np.median(means)) & (means > RUNAWAY_ENERGY)
     rising = above & ~np.concatenate([[False], above[:-1]])
     return [float(s) for s in starts[rising]]
+
+
+def fisher_exact(hits_a, runs_a, hits_b, runs_b):
+    """Fisher's exact test of two series' counts of runs with an event (hits_a of runs_a, hits_b
+    of runs_b), the margins fixed: were the events as likely in both, the hits would fall on the
+    two sides as a hypergeometric draw. Returns (one-sided p, two-sided p): the probability of
+    a split at least as uneven in the direction seen, and of a split as likely as the one seen
+    or less, either way."""
+    hits, total = hits_a + hits_b, runs_a + runs_b
+    probability = {k: comb(runs_a, k) * comb(runs_b, hits - k) / comb(total, hits)
+                   for k in range(max(0, hits - runs_b), min(hits, runs_a) + 1)}
+    seen = probability[hits_a]
+    expected = hits * runs_a / total
+    one_sided = sum(p for k, p in probability.items()
+                    if (k >= hits_a if hits_a >= expected else k <= hits_a))
+    # as likely or less: with a relative margin for the rounding of equal probabilities
+    two_sided = sum(p for p in probability.values() if p <= seen * (1 + 1e-9))
+    return min(one_sided, 1.0), min(two_sided, 1.0)

@@ -89,6 +89,25 @@ def runaway_lines(records):
              "|---|---|---|---|---|"]
     for (name, kn), (runs, hit, times) in sorted(table.items()):
         lines.append(f"| {name or '-'} | {kn:.4g} | {runs} | {hit} | {', '.join(times)} |")
+    totals = {}
+    for (name, _), (runs, hit, _) in table.items():
+        total = totals.setdefault(name, [0, 0])
+        total[0] += runs
+        total[1] += hit
+    if len(totals) < 2:
+        return lines + [""]
+    main = main_series([{"label": name} for name, _ in table])[0]["label"]
+    lines += ["", f"Each series against the main one ({main or '-'}), all its k_n together: "
+              "Fisher's exact test of the counts (the chance of a split of the runs with a "
+              "runaway as uneven as this, were the events as likely in both; one-sided: in the "
+              "direction seen):", "",
+              "| series | completed runs | runs with a runaway | p, one-sided | p, two-sided |",
+              "|---|---|---|---|---|"]
+    main_runs, main_hit = totals[main]
+    for name, (runs, hit) in sorted(totals.items()):
+        tests = ("- | -" if name == main else
+                 "{:.2g} | {:.2g}".format(*limit.fisher_exact(hit, runs, main_hit, main_runs)))
+        lines.append(f"| {name or '-'} | {runs} | {hit} | {tests} |")
     return lines + [""]
 
 

@@ -221,6 +221,45 @@ def test_runaway_events_are_found_and_level_changes_are_not():
     assert limit.runaway_events(t, e) == [62.0, 300.0]
 
 
+def test_fisher_exact_gives_the_textbook_values():
+    """Fisher's lady tasting tea (3 of 4 cups told right each way): one-sided p 17/70, two-sided
+    34/70. All 11 events in one series of 124 against none of 120: one-sided p is the chance
+    that 11 draws from the 244 runs all come from the 124, C(124, 11)/C(244, 11), and the
+    two-sided p adds the tables on the other side that are as unlikely (11 of the 120 without
+    any of the 124 is not: p two-sided < 2 x one-sided). A wrong tail or margin fails these."""
+    from math import comb
+    assert limit.fisher_exact(3, 4, 1, 4) == pytest.approx((17 / 70, 34 / 70), rel=1e-12)
+    one, two = limit.fisher_exact(11, 124, 0, 120)
+    assert one == pytest.approx(comb(124, 11) / comb(244, 11), rel=1e-12)
+    assert one < two < 2 * one
+    assert limit.fisher_exact(0, 120, 11, 124) == pytest.approx((one, two), rel=1e-12)
+    # no difference at all: two-sided 1; one-sided P(X >= 5), the median draw's upper tail
+    one, two = limit.fisher_exact(5, 50, 5, 50)
+    assert two == pytest.approx(1.0) and 0.5 < one < 1.0
+
+
+def test_runaway_table_tests_each_series_against_the_main_one():
+    """limit.md's runaway table: per series and k_n, then each series' totals against the main
+    series (the one at the most k_n) by Fisher's exact test."""
+    from types import SimpleNamespace
+    from postprocess.write_limit import runaway_lines
+    t = np.arange(0.0, 400.0, 0.5)
+
+    def record(kn, tangential, runaway):
+        e = np.full(len(t), 0.6)
+        if runaway:
+            e[(t >= 100) & (t < 103)] = 20.0
+        return SimpleNamespace(energy={"t0": 0.0, "window": 0.5, "E": e}, params={"kn": kn},
+                               variables={"kn": kn, "tangential": tangential})
+    records = ([record(kn, "literal", k < 3) for kn in (1e6, 4e6, 1.6e7) for k in range(10)] +
+               [record(kn, "cutback", False) for kn in (1e6, 4e6) for k in range(10)])
+    lines = runaway_lines(records)
+    assert "| tangential literal | 1e+06 | 10 | 3 | 100, 100, 100 |" in lines
+    one, two = limit.fisher_exact(0, 20, 9, 30)
+    assert f"| tangential cutback | 20 | 0 | {one:.2g} | {two:.2g} |" in lines
+    assert "| tangential literal | 30 | 9 | - | - |" in lines
+
+
 # ---- rule 2: rule 1's branches, and "finite" for a series shown not to fall
 
 def flat(k):
