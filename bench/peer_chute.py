@@ -141,7 +141,8 @@ def main():
                     if name == "granular":    # an older LAMMPS's pair granular takes other words
                         print(f"{name}: {str(error).splitlines()[-1]}", file=sys.stderr)
                         continue
-                    raise
+                    # e.g. a --baseline-plugin built against another LAMMPS: lmp's words
+                    sys.exit(f"peer_chute.py: the {name} variant ({plugins[name]}): {error}")
                 rounds[-1][name] = result
                 if name not in best or result["cpu"] < best[name]["cpu"]:
                     best[name] = result
