@@ -36,8 +36,10 @@ write_dump all custom final.txt id x y vx vy omegaz modify sort id format float 
 GRAVITY = f"gravity 1.0 {TILT[0]} {TILT[1]}"
 
 
-def final_state(tmp_path, name, integration, steps=3000, wall_first=True):
-    run = run_lammps(pile_deck(integration, steps, wall_first), tmp_path / name)
+def final_state(tmp_path, name, integration, steps=3000, wall_first=True, edit=lambda d: d):
+    """The pile's final state (x, y, vx, vy, omegaz) under `integration`, its deck changed by
+    edit(deck)."""
+    run = run_lammps(edit(pile_deck(integration, steps, wall_first)), tmp_path / name)
     a = run.atoms()
     return np.column_stack([a[k] for k in ("x", "y", "vx", "vy", "omegaz")])
 
@@ -153,13 +155,11 @@ def test_a_mass_set_between_runs_is_followed_without_a_setup(tmp_path):
     first step after a run) the same final state to the bit as nve/sphere disc + fix gravity,
     both with m g of the old mass in the forces of the first step (fix gravity added it at the
     last step of the first run)."""
-    def state(name, integration):
-        deck = pile_deck(integration, 500, True).replace(
+    def edit(deck):
+        return deck.replace(
             "run 500\n", "run 500\nset group mobile density/disc 2.5\nrun 500 pre no\n")
-        a = run_lammps(deck, tmp_path / name).atoms()
-        return np.column_stack([a[k] for k in ("x", "y", "vx", "vy", "omegaz")])
-    separate = state("separate", ("nve/sphere disc", "gravity"))
-    fused = state("fused", (f"nve/disc/mn {GRAVITY}",))
+    separate = final_state(tmp_path, "separate", ("nve/sphere disc", "gravity"), 500, edit=edit)
+    fused = final_state(tmp_path, "fused", (f"nve/disc/mn {GRAVITY}",), 500, edit=edit)
     assert np.array_equal(separate, fused), np.abs(separate - fused).max()
 
 
@@ -170,15 +170,13 @@ def test_atoms_added_to_the_group_between_runs_are_integrated_without_a_setup(tm
     so the state is nve/sphere disc + fix gravity's (which test each atom's group at every
     step) to the bit. A list kept from the first run would leave the added disks where they
     were, which changes the state at once."""
-    def state(name, integration):
-        deck = pile_deck(integration, 500, True).replace(
+    def edit(deck):
+        return deck.replace(
             "fix integrate mobile", "group first id <= 24\nfix integrate first").replace(
             "fix gravity mobile", "fix gravity first").replace(
             "run 500\n", "run 500\ngroup first type 1\nrun 500 pre no\n")
-        a = run_lammps(deck, tmp_path / name).atoms()
-        return np.column_stack([a[k] for k in ("x", "y", "vx", "vy", "omegaz")])
-    separate = state("separate", ("nve/sphere disc", "gravity"))
-    fused = state("fused", (f"nve/disc/mn {GRAVITY}",))
+    separate = final_state(tmp_path, "separate", ("nve/sphere disc", "gravity"), 500, edit=edit)
+    fused = final_state(tmp_path, "fused", (f"nve/disc/mn {GRAVITY}",), 500, edit=edit)
     assert np.array_equal(separate, fused), np.abs(separate - fused).max()
 
 
