@@ -207,29 +207,64 @@ void PairGranMN::check_in_plane()
                  atom->tag[i], x[i][2]);
 }
 
+// What the force loop reads, gathered once per force evaluation: the neighbour scan keeps
+// only its own few values in registers, and a contact's work reads the rest from here.
+struct PairGranMN::LoopData {
+  const double *x, *v, *omega, *radius, *rmass;    // x, v, omega as flat arrays
+  double *f, *torque;
+  const int *type;
+  const tagint *tag;
+  int nlocal, newton_pair;
+  mn::Law contact;
+  const char *is_wall;
+  double to_force, dt_history;
+  granmn::ContactObserver *events;    // read only where OBSERVED
+  int ut_slot, record_slot, vt_previous_slot;
+  mn::Integrator scheme;
+};
+
 // The force loop in dimension DIM: 2, disks (u_t a scalar; torques about z); 3, spheres (u_t a
 // vector; forces and torques in three components). The overloads of mn::kinematics and
 // mn::force_and_torques (mn_contact.h) take each contact through the dimension's law.
 // FRICTION: the law keeps u_t (mu > 0); OBSERVED: a contact observer (fix contacts/mn) is
 // told of contacts. A pair keeps history if either holds.
+// Most neighbours do not touch (in a dense 2D flow four in five): the scan over them is kept
+// small, and a contact's work is a call (touching_pair, ended_pair). With that work inlined the
+// scan had the registers of both and reloaded its own values from the stack: 40 instructions
+// a neighbour that does not touch (callgrind, the 2D frictional scene).
 template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
 {
-  const double dt_history = granmn::history_dt(update);
-
   // The per-atom vectors as flat arrays (granmn_flat_arrays.h): atom j's position is at
   // x + 3 j, found without loading the row pointer x[j] first, for each neighbour and each
   // vector of a contact.
   const auto row = [](int k) { return granmn::row_start(k, 3); };
-  const double *x = granmn::rows(atom->x);
-  const double *v = granmn::rows(atom->v);
-  double *f = granmn::rows(atom->f);
-  const double *omega = granmn::rows(atom->omega);
-  double *torque = granmn::rows(atom->torque);
-  const double *radius = atom->radius;
-  const double *rmass = atom->rmass;
-  const int nlocal = atom->nlocal;
-  const int newton_pair = force->newton_pair;
+  LoopData data;
+  data.x = granmn::rows(atom->x);
+  data.v = granmn::rows(atom->v);
+  data.f = granmn::rows(atom->f);
+  data.omega = granmn::rows(atom->omega);
+  data.torque = granmn::rows(atom->torque);
+  data.radius = atom->radius;
+  data.rmass = atom->rmass;
+  data.type = atom->type;
+  data.tag = atom->tag;
+  data.nlocal = atom->nlocal;
+  data.newton_pair = force->newton_pair;
+  data.contact = law;
+  data.is_wall = is_wall_type.data();
+  data.to_force = force_per_mass_acceleration;
+  data.dt_history = granmn::history_dt(update);
+  data.events = observer;
+  data.ut_slot = layout.ut;
+  data.record_slot = layout.record;
+  data.vt_previous_slot = layout.vt_previous;
+  data.scheme = integrator;
 
+  // Locals, not members: the force stores of a contact could alias them, and the compiler
+  // would reload them for every neighbour.
+  const double *x = data.x;
+  const double *radius = data.radius;
+  const int stride = layout.size;
   const int inum = list->inum;
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
@@ -237,18 +272,6 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
   constexpr bool history = FRICTION || OBSERVED;
   int **firsttouch = history ? fix_history->firstflag : nullptr;
   double **firstslots = history ? fix_history->firstvalue : nullptr;
-  const int *type = atom->type;
-  const tagint *tag = atom->tag;
-
-  // Locals, not members: the force stores below could alias them, and the compiler would
-  // reload them for every neighbour.
-  const mn::Law contact = law;
-  const char *is_wall = is_wall_type.data();
-  const double to_force = force_per_mass_acceleration;
-  granmn::ContactObserver *const events = observer;    // read only where OBSERVED
-  const int stride = layout.size, ut_slot = layout.ut, record_slot = layout.record;
-  const int vt_previous_slot = layout.vt_previous;
-  const mn::Integrator scheme = integrator;
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
@@ -256,8 +279,6 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
     // an atom without neighbours (most of a dilute flow's) has nothing to do; marked unlikely,
     // which keeps a dense flow's loop as it was within 1 % of its instructions
     if (__builtin_expect(jnum == 0, 0)) continue;
-    // i's position in locals: the force stores below could alias x[i], and the compiler would
-    // load it again for every neighbour
     const double xi[3] = {x[row(i)], x[row(i) + 1], DIM == 3 ? x[row(i) + 2] : 0.0};
     const double radi = radius[i];
     const int *jlist = firstneigh[i];
@@ -266,68 +287,91 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      // scalars, not yet an array: an array whose address is taken below would be stored to
-      // memory for every neighbour
       const double *xj = x + row(j);
-      const double dx = xi[0] - xj[0], dy = xi[1] - xj[1];
-      const double dz = DIM == 3 ? xi[2] - xj[2] : 0.0;
-      const double rsq = DIM == 3 ? dx * dx + dy * dy + dz * dz : dx * dx + dy * dy;
+      const double d[3] = {xi[0] - xj[0], xi[1] - xj[1], DIM == 3 ? xi[2] - xj[2] : 0.0};
+      const double rsq = dot<DIM>(d, d);
       const double radsum = radi + radius[j];
-
+      double *slots = history ? slots_all + stride * jj : nullptr;
       if (rsq >= radsum * radsum) {
         // a pair that is not touching already has zero history (FixNeighHistory hands new
         // pairs zeros): only a contact that just ended has any to clear
-        if (history && touch[jj]) {
-          const double d[3] = {dx, dy, dz};
-          double *slots = &slots_all[stride * jj];
-          if (OBSERVED) report_end<DIM>(i, j, d, rsq, slots + record_slot, tag);
-          touch[jj] = 0;
-          for (int k = 0; k < stride; k++) slots[k] = 0.0;
-        }
-        continue;
+        if (history && __builtin_expect(touch[jj] != 0, 0))
+          ended_pair<DIM, OBSERVED>(i, j, d[0], d[1], d[2], rsq, touch + jj, slots, stride,
+                                    data.record_slot);
+      } else {
+        touching_pair<DIM, FRICTION, OBSERVED>(data, i, j, d[0], d[1], d[2], rsq, radsum,
+                                               history ? touch + jj : nullptr, slots);
       }
-
-      const double d[3] = {dx, dy, dz};
-      const double r = sqrt(rsq);
-      // the centre of one inside the other: as the wall fix's centre that reached its wall
-      if (r <= MAX(radi, radius[j])) report_passed_through(i, j, r);
-      const double *vi = v + row(i), *vj = v + row(j);
-      const double *wi = omega + row(i), *wj = omega + row(j);
-      const double dv[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
-      const double lever[3] = {radi * wi[0] + radius[j] * wj[0], radi * wi[1] + radius[j] * wj[1],
-                               radi * wi[2] + radius[j] * wj[2]};
-      const auto kin = mn::kinematics(mn::Dim<DIM>(), d, r, radsum, dv, lever);
-      // looked up per contact, not per atom: most atoms of a dilute flow touch nothing
-      const bool i_wall = is_wall[type[i]], j_wall = is_wall[type[j]];
-      const bool tally_j = newton_pair || j < nlocal;
-      double *slots = history ? &slots_all[stride * jj] : nullptr;
-      if (OBSERVED) {
-        const bool began = !touch[jj];
-        events->update_record(slots + record_slot, began, kin.delta, kin.vn);
-        if (const granmn::ContactTallies *step = events->pair_tallies()) {
-          step->add(i, j_wall, began);
-          if (tally_j) step->add(j, i_wall, began);
-        } else if (began || events->reports_every_contact()) {
-          events->pair_touching(i, j, j_wall, i_wall, began, tally_j);
-        }
-      }
-      if (history) touch[jj] = 1;
-      double *ut = FRICTION ? slots + ut_slot : nullptr;
-      // the law gives mass x acceleration; LAMMPS turns force back into it with ftm2v
-      const double scale = contact_mass_scale(i_wall, j_wall, rmass[i], rmass[j]) * to_force;
-
-      double fc_xyz[3];
-      double *vt_previous = FRICTION && vt_previous_slot >= 0 ? slots + vt_previous_slot : nullptr;
-      mn::force_and_torques(contact, scale, kin, ut, dt_history, scheme, vt_previous, fc_xyz,
-                            radi, torque + row(i), radius[j], tally_j ? torque + row(j) : nullptr);
-      for (int c = 0; c < DIM; c++) f[row(i) + c] += fc_xyz[c];
-      if (tally_j)
-        for (int c = 0; c < DIM; c++) f[row(j) + c] -= fc_xyz[c];
-      if (evflag)
-        ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fc_xyz[0], fc_xyz[1], fc_xyz[2], d[0],
-                     d[1], d[2]);
     }
   }
+}
+
+// A contact that has just ended: the observer's row, and its history cleared.
+template <int DIM, bool OBSERVED>
+void PairGranMN::ended_pair(int i, int j, double dx, double dy, double dz, double rsq, int *touch,
+                            double *slots, int stride, int record_slot)
+{
+  const double d[3] = {dx, dy, dz};
+  if (OBSERVED) report_end<DIM>(i, j, d, rsq, slots + record_slot, atom->tag);
+  *touch = 0;
+  for (int k = 0; k < stride; k++) slots[k] = 0.0;
+}
+
+// One pair in contact (rsq < radsum^2; (dx, dy, dz) = x_i - x_j): the law's force and torques,
+// tallied to i and, where this process tallies it, to j. touch and slots: the pair's flag and
+// history (nullptr where the run keeps none). The components come by value: an array's address
+// would have the scan store it for every neighbour.
+template <int DIM, bool FRICTION, bool OBSERVED>
+void PairGranMN::touching_pair(const LoopData &data, int i, int j, double dx, double dy,
+                               double dz, double rsq, double radsum, int *touch, double *slots)
+{
+  const double d[3] = {dx, dy, dz};
+  const auto row = [](int k) { return granmn::row_start(k, 3); };
+  const double *radius = data.radius;
+  const double radi = radius[i], radj = radius[j];
+  const double r = sqrt(rsq);
+  // the centre of one inside the other: as the wall fix's centre that reached its wall
+  if (r <= MAX(radi, radj)) report_passed_through(i, j, r);
+  const double *vi = data.v + row(i), *vj = data.v + row(j);
+  const double *wi = data.omega + row(i), *wj = data.omega + row(j);
+  const double dv[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
+  const double lever[3] = {radi * wi[0] + radj * wj[0], radi * wi[1] + radj * wj[1],
+                           radi * wi[2] + radj * wj[2]};
+  const auto kin = mn::kinematics(mn::Dim<DIM>(), d, r, radsum, dv, lever);
+  // looked up per contact, not per atom: most atoms of a dilute flow touch nothing
+  const bool i_wall = data.is_wall[data.type[i]], j_wall = data.is_wall[data.type[j]];
+  const bool tally_j = data.newton_pair || j < data.nlocal;
+  if (OBSERVED) {
+    granmn::ContactObserver *const events = data.events;
+    const bool began = !*touch;
+    events->update_record(slots + data.record_slot, began, kin.delta, kin.vn);
+    if (const granmn::ContactTallies *step = events->pair_tallies()) {
+      step->add(i, j_wall, began);
+      if (tally_j) step->add(j, i_wall, began);
+    } else if (began || events->reports_every_contact()) {
+      events->pair_touching(i, j, j_wall, i_wall, began, tally_j);
+    }
+  }
+  if (FRICTION || OBSERVED) *touch = 1;
+  double *ut = FRICTION ? slots + data.ut_slot : nullptr;
+  // the law gives mass x acceleration; LAMMPS turns force back into it with ftm2v
+  const double scale =
+      contact_mass_scale(i_wall, j_wall, data.rmass[i], data.rmass[j]) * data.to_force;
+
+  double fc_xyz[3];
+  double *vt_previous =
+      FRICTION && data.vt_previous_slot >= 0 ? slots + data.vt_previous_slot : nullptr;
+  double *torque = data.torque;
+  mn::force_and_torques(data.contact, scale, kin, ut, data.dt_history, data.scheme, vt_previous,
+                        fc_xyz, radi, torque + row(i), radj,
+                        tally_j ? torque + row(j) : nullptr);
+  double *f = data.f;
+  for (int c = 0; c < DIM; c++) f[row(i) + c] += fc_xyz[c];
+  if (tally_j)
+    for (int c = 0; c < DIM; c++) f[row(j) + c] -= fc_xyz[c];
+  if (evflag)
+    ev_tally_xyz(i, j, data.nlocal, data.newton_pair, 0.0, 0.0, fc_xyz[0], fc_xyz[1], fc_xyz[2],
+                 d[0], d[1], d[2]);
 }
 
 /* ---------------------------------------------------------------------- */

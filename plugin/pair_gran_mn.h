@@ -70,7 +70,16 @@ class PairGranMN : public Pair {
   template <int DIM> void report_end(int, int, const double *, double, const double *,
                                      const tagint *);
   template <int DIM> void compute_for(bool friction, bool observed);
+  struct LoopData;
   template <int DIM, bool FRICTION, bool OBSERVED> void compute_loop();
+  // called from compute_loop only: hidden, so that the call is direct, not through the PLT
+  template <int DIM, bool FRICTION, bool OBSERVED>
+  __attribute__((noinline, visibility("hidden"))) void
+  touching_pair(const LoopData &, int, int, double, double, double, double, double, int *,
+                double *);
+  template <int DIM, bool OBSERVED>
+  __attribute__((noinline, visibility("hidden"))) void
+  ended_pair(int, int, double, double, double, double, int *, double *, int, int);
   template <int DIM> double single_contact(int, int, double, double &);
 };
 
