@@ -161,54 +161,60 @@ void FixWallGranMN::setup(int vflag)
 
 void FixWallGranMN::post_force(int)
 {
-  const bool cylinder = axis == ZCYLINDER;
+  const bool cylinder = axis == ZCYLINDER, observed = observer != nullptr;
   if (domain->dimension == 3)
-    cylinder ? post_force_loop<3, true>() : post_force_loop<3, false>();
+    post_force_for<3>(cylinder, observed);
   else
-    cylinder ? post_force_loop<2, true>() : post_force_loop<2, false>();
+    post_force_for<2>(cylinder, observed);
+}
+
+// The loop compiled for the wall's kind and for a contact observer or not: a run without fix
+// contacts/mn pays no test of each atom for it.
+template <int DIM> void FixWallGranMN::post_force_for(bool cylinder, bool observed)
+{
+  if (cylinder)
+    observed ? post_force_loop<DIM, true, true>() : post_force_loop<DIM, true, false>();
+  else
+    observed ? post_force_loop<DIM, false, true>() : post_force_loop<DIM, false, false>();
+}
+
+// The inward normal of side `normal` (+1: lo, -1: hi; a cylinder's: radial, 0 on its axis) at
+// atom i, rho its distance from a cylinder's axis; returns the normal velocity along it.
+template <bool CYLINDER>
+static inline double inward_normal(double **x, double **v, int i, int wall_axis, double normal,
+                                   double rho, double n[3])
+{
+  n[0] = n[1] = n[2] = 0.0;
+  if (!CYLINDER) {
+    n[wall_axis] = normal;
+  } else if (rho > 0.0) {
+    n[0] = normal * x[i][0] / rho;
+    n[1] = normal * x[i][1] / rho;
+  }
+  return n[0] * v[i][0] + n[1] * v[i][1] + n[2] * v[i][2];
 }
 
 // The force loop in dimension DIM: 2, disks against lines or circles (u_t a scalar); 3,
 // spheres against planes normal to x, y or z or cylinders about z (u_t a vector); CYLINDER:
 // the zcylinder's two walls, side 0 the inner one (the atoms outside it), side 1 the outer
-// one. Each contact as in the pair style's loop.
-template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
+// one; OBSERVED: a contact observer (fix contacts/mn) is told of contacts. Each contact as in
+// the pair style's loop. Most atoms are away from the wall: the scan over them is kept small,
+// and a contact's work is a call (touching_side, side_ended). With that work inlined the scan
+// reloaded its own values from the stack: 37 instructions an atom away from a wall
+// (callgrind, the 2D frictional scene).
+template <int DIM, bool CYLINDER, bool OBSERVED> void FixWallGranMN::post_force_loop()
 {
   const double dt_history = granmn::history_dt(update);
   double **x = atom->x;
-  double **v = atom->v;
-  double **f = atom->f;
-  double **omega = atom->omega;
-  double **torque = atom->torque;
   const double *radius = atom->radius;
-  const double *rmass = atom->rmass;
   const int *mask = atom->mask;
+  const int group = groupbit;    // a local: the force stores could alias the member
   const int nlocal = atom->nlocal;
-  // locals, not members: the force stores below could alias them
-  const mn::Law contact = law;
-  granmn::ContactObserver *const events = observer;
   double **history = state;
-  const double to_force = force_per_mass_acceleration;
-  const mn::Integrator scheme = integrator;
   const granmn::ContactLayout layouts[2] = {side_layout[0], side_layout[1]};
   double on_walls[3] = {0.0, 0.0, 0.0};
-
   const int wall_axis = axis;
   const double wall_at[2] = {lo, hi};
-
-  // the inward normal of side `normal` (+1: lo, -1: hi; a cylinder's: radial, 0 on its axis)
-  // at atom i, rho its distance from a cylinder's axis; returns the normal velocity along it
-  const auto inward_normal = [&](int i, double normal, double rho, double n[3])
-      __attribute__((always_inline)) {
-    n[0] = n[1] = n[2] = 0.0;
-    if (!CYLINDER) {
-      n[wall_axis] = normal;
-    } else if (rho > 0.0) {
-      n[0] = normal * x[i][0] / rho;
-      n[1] = normal * x[i][1] / rho;
-    }
-    return n[0] * v[i][0] + n[1] * v[i][1] + n[2] * v[i][2];
-  };
 
   // One wall side (0: lo, 1: hi; a constant where called) against atom i; rho is i's distance
   // from a cylinder's axis.
@@ -221,58 +227,79 @@ template <int DIM, bool CYLINDER> void FixWallGranMN::post_force_loop()
     const double dist = CYLINDER ? (side == 0 ? rho - wall_at[0] : wall_at[1] - rho)
                                  : (side == 0 ? x[i][wall_axis] - wall_at[0]
                                               : wall_at[1] - x[i][wall_axis]);
-    const double normal = side == 0 ? 1.0 : -1.0;
     double *row = history[i];
     if (!(dist < radius[i])) {
-      // most atoms are away from the wall: the work here is only for a contact that has just
-      // ended, the observer's event and the history to clear (as in the pair style)
-      if (events && row[layout.touching] != 0.0) {
-        row[layout.touching] = 0.0;
-        double n[3];
-        events->boundary_ended(i, row + layout.record, inward_normal(i, normal, rho, n));
-      }
+      // the work here is only for a contact that has just ended, the observer's event and the
+      // history to clear (as in the pair style)
+      if (OBSERVED && __builtin_expect(row[layout.touching] != 0.0, 0))
+        side_ended<CYLINDER>(i, side, rho);
       if (ut_at >= 0)
         for (int k = 0; k < width; k++) row[ut_at + k] = 0.0;
       if (vt_previous_at >= 0)
         for (int k = 0; k < width; k++) row[vt_previous_at + k] = 0.0;
       return;
     }
-    double n[3];
-    const double vn = inward_normal(i, normal, rho, n);
-    double *ut = ut_at >= 0 ? row + ut_at : nullptr;
-    double *vt_previous = vt_previous_at >= 0 ? row + vt_previous_at : nullptr;
-    if (events) {
-      double &touching = row[layout.touching];
-      const bool began = touching == 0.0;
-      events->update_record(row + layout.record, began, radius[i] - dist, vn);
-      touching = 1.0;
-      if (began || events->reports_every_contact()) events->boundary_touching(i, began);
-    }
-    if (dist <= 0.0)
-      error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the {} at {} "
-                        "(time step too large for the contact stiffness?)",
-                 atom->tag[i], CYLINDER ? "zcylinder of radius" : "wall", wall_at[side]);
-    // n * dist, written out per case: as n[c] * dist the compiler's code for the whole loop
-    // costs an atom away from the wall one instruction more (callgrind, frictional scene)
-    const double d[3] = {CYLINDER ? n[0] * dist : wall_axis == 0 ? normal * dist : 0.0,
-                         CYLINDER ? n[1] * dist : wall_axis == 1 ? normal * dist : 0.0,
-                         CYLINDER ? 0.0 : wall_axis == 2 ? normal * dist : 0.0};
-    const auto kin = mn::wall_kinematics<DIM>(d, dist, radius[i], v[i], omega[i]);
-    mn::add_wall_contact<DIM>(contact, mn::boundary_mass_scale(rmass[i]) * to_force, kin, ut,
-                              dt_history, scheme, vt_previous, radius[i], f[i], torque[i],
-                              on_walls);
+    touching_side<DIM, CYLINDER, OBSERVED>(i, side, dist, rho, dt_history, on_walls);
   };
 
   // the sides as constants, each atom's lo side before its hi side as before
   const bool lo_side = has_lo, hi_side = has_hi;
   for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
+    if (!(mask[i] & group)) continue;
     const double rho = CYLINDER ? std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1]) : 0.0;
     if (lo_side) against_side(i, 0, rho);
     if (hi_side) against_side(i, 1, rho);
   }
   for (int c = 0; c < DIM; c++) wall_force[c] = on_walls[c];
   force_reduced = false;
+}
+
+// Side `side` of the wall has just stopped touching atom i: the observer's event, the flag
+// cleared.
+template <bool CYLINDER> void FixWallGranMN::side_ended(int i, int side, double rho)
+{
+  const granmn::ContactLayout &layout = side_layout[side];
+  double *row = state[i];
+  row[layout.touching] = 0.0;
+  double n[3];
+  observer->boundary_ended(i, row + layout.record,
+                           inward_normal<CYLINDER>(atom->x, atom->v, i, axis,
+                                                   side == 0 ? 1.0 : -1.0, rho, n));
+}
+
+// Side `side` of the wall touches atom i, whose centre is at dist from it (rho: from a
+// cylinder's axis): the law's force and torque on i, the force on the wall into on_walls.
+template <int DIM, bool CYLINDER, bool OBSERVED>
+void FixWallGranMN::touching_side(int i, int side, double dist, double rho, double dt_history,
+                                  double *on_walls)
+{
+  const granmn::ContactLayout &layout = side_layout[side];
+  double **x = atom->x, **v = atom->v;
+  const double *radius = atom->radius;
+  const double normal = side == 0 ? 1.0 : -1.0;
+  double *row = state[i];
+  double n[3];
+  const double vn = inward_normal<CYLINDER>(x, v, i, axis, normal, rho, n);
+  double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
+  double *vt_previous = layout.vt_previous >= 0 ? row + layout.vt_previous : nullptr;
+  if (OBSERVED) {
+    granmn::ContactObserver *const events = observer;
+    double &touching = row[layout.touching];
+    const bool began = touching == 0.0;
+    events->update_record(row + layout.record, began, radius[i] - dist, vn);
+    touching = 1.0;
+    if (began || events->reports_every_contact()) events->boundary_touching(i, began);
+  }
+  if (dist <= 0.0)
+    error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the {} at {} "
+                      "(time step too large for the contact stiffness?)",
+               atom->tag[i], CYLINDER ? "zcylinder of radius" : "wall", side == 0 ? lo : hi);
+  const double d[3] = {n[0] * dist, n[1] * dist, n[2] * dist};    // dist > 0 here
+  const auto kin = mn::wall_kinematics<DIM>(d, dist, radius[i], v[i], atom->omega[i]);
+  mn::add_wall_contact<DIM>(law, mn::boundary_mass_scale(atom->rmass[i]) *
+                                     force_per_mass_acceleration,
+                            kin, ut, dt_history, integrator, vt_previous, radius[i], atom->f[i],
+                            atom->torque[i], on_walls);
 }
 
 double FixWallGranMN::compute_vector(int n)

@@ -46,7 +46,14 @@ class FixWallGranMN : public FixPerAtomState, public granmn::HeldContacts {
   bool force_reduced;
 
   void resolve_law();
-  template <int DIM, bool CYLINDER> void post_force_loop();
+  template <int DIM> void post_force_for(bool cylinder, bool observed);
+  template <int DIM, bool CYLINDER, bool OBSERVED> void post_force_loop();
+  // called from post_force_loop only: hidden, so that the call is direct, not through the PLT
+  template <int DIM, bool CYLINDER, bool OBSERVED>
+  __attribute__((noinline, visibility("hidden"))) void
+  touching_side(int i, int side, double dist, double rho, double dt_history, double *on_walls);
+  template <bool CYLINDER>
+  __attribute__((noinline, visibility("hidden"))) void side_ended(int i, int side, double rho);
 };
 
 }    // namespace LAMMPS_NS
