@@ -2,8 +2,8 @@
 """Instructions per step of the two flowing 2D scenes, as the study runs them (counters and
 outputs on), and in the hand-written reference loop (bench/reference_loop.cpp), counted by
 callgrind (Debian's valgrind): the steady side of bench/run_benchmarks.py's timed comparison.
-On a shared machine the same binary's time per step moves by up to 2x between runs; the counts
-repeat to 0.1 %.
+On a shared machine the same binary's time per step moves by up to 2x between runs; a run's
+counts do not depend on the machine's load.
 
 Each figure is the difference of two runs that share their warm-up (WARMUP + SPAN1 and
 WARMUP + SPAN2 time units), divided by the steps between them: the set-up, the warm-up and the
@@ -35,8 +35,11 @@ MEMSET = "memset"     # in the name of glibc's memset variants
 
 def callgrind(command, out_file, cwd):
     """Runs command under callgrind; its functions' self counts {name: instructions}."""
-    subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out_file}"] + command,
-                   cwd=cwd, check=True, capture_output=True)
+    proc = subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out_file}"]
+                          + command, cwd=cwd, capture_output=True, text=True, errors="replace")
+    if proc.returncode != 0:
+        sys.exit(f"{' '.join(command)} failed under callgrind (exit {proc.returncode}):\n"
+                 f"{proc.stdout[-2000:]}{proc.stderr[-2000:]}")
     listing = subprocess.run(["callgrind_annotate", "--show-percs=no", "--threshold=100",
                               str(out_file)], check=True, capture_output=True, text=True).stdout
     counts = {}
