@@ -260,8 +260,8 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
   data.vt_previous_slot = layout.vt_previous;
   data.scheme = integrator;
 
-  // Locals, not members: the force stores of a contact could alias them, and the compiler
-  // would reload them for every neighbour.
+  // Locals, not members: a member would be loaded again after every call of a contact's work,
+  // which may have changed it for all the compiler knows.
   const double *x = data.x;
   const double *radius = data.radius;
   const int stride = layout.size;
