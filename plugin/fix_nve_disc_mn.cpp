@@ -195,22 +195,22 @@ void FixNVEDiscMN::post_run()
 void FixNVEDiscMN::add_gravity()
 {
   double **f = atom->f;
-  for (const int i : members) {
-    f[i][0] += factors[i].weight_x;
-    f[i][1] += factors[i].weight_y;
+  for (const Member &m : members) {
+    f[m.atom][0] += m.weight_x;
+    f[m.atom][1] += m.weight_y;
   }
 }
 
 // The positions at the last build, as LAMMPS holds them (x is unchanged from the build to
-// this fix's next pass).
+// this fix's next pass), at x's row stride; the third of each row is not read.
 void FixNVEDiscMN::hold_positions()
 {
   double **x = atom->x;
   const int nlocal = atom->nlocal;
-  held.resize(2 * nlocal);
+  held.resize(granmn::row_start(nlocal, 3));
   for (int i = 0; i < nlocal; i++) {
-    held[2 * i] = x[i][0];
-    held[2 * i + 1] = x[i][1];
+    held[granmn::row_start(i, 3)] = x[i][0];
+    held[granmn::row_start(i, 3) + 1] = x[i][1];
   }
   held_lastcall = neighbor->lastcall;
 }
@@ -229,50 +229,19 @@ void FixNVEDiscMN::compute_factors()
   const double *rmass = atom->rmass;
   const double *radius = atom->radius;
   const int *mask = atom->mask;
-  factors.resize(nlocal);
   members.clear();
-  for (int i = 0; i < nlocal; i++)
-    if (mask[i] & groupbit) members.push_back(i);
   const bool verlet = integrator == mn::Integrator::VelocityVerlet;
   const double scale = verlet ? dtf : force->ftm2v;
   // fix nve/sphere disc's operations: (dtf / inertia) / (r^2 m), inertia = 1/2
   const double scale_rotation = scale / 0.5;
   for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
     const double m = rmass[i], r = radius[i];
-    factors[i] = {scale / m, scale_rotation / (r * r * m), m * gravity[0], m * gravity[1]};
+    members.push_back({granmn::row_start(i, 3), i, scale / m, scale_rotation / (r * r * m),
+                       m * gravity[0], m * gravity[1]});
   }
   factors_lastcall = neighbor->lastcall;
   factors_stale = false;
-}
-
-// Velocity Verlet's half step of one disk's velocity and spin under the force f, which holds
-// m g (the final kick puts it there). The new values are computed into locals first: v, f and
-// omega could alias for the compiler, which would store and reload.
-static inline void half_kick(const FixNVEDiscMN::Factors &c, const double *f,
-                             const double *torque, double *v, double *omega)
-{
-  const double vx = v[0] + c.per_mass * f[0];
-  const double vy = v[1] + c.per_mass * f[1];
-  const double wz = omega[2] + c.per_inertia * torque[2];
-  v[0] = vx;
-  v[1] = vy;
-  omega[2] = wz;
-}
-
-// The second half step, m g first added to the step's force sum (after every other force).
-static inline void final_kick_with_gravity(const FixNVEDiscMN::Factors &c, double *f,
-                                           const double *torque, double *v, double *omega)
-{
-  const double fx = f[0] + c.weight_x;
-  const double fy = f[1] + c.weight_y;
-  const double vx = v[0] + c.per_mass * fx;
-  const double vy = v[1] + c.per_mass * fy;
-  const double wz = omega[2] + c.per_inertia * torque[2];
-  f[0] = fx;
-  f[1] = fy;
-  v[0] = vx;
-  v[1] = vy;
-  omega[2] = wz;
 }
 
 // The factors follow the atoms: recomputed after a neighbour-list build (atoms re-sorted or
@@ -319,8 +288,6 @@ void FixNVEDiscMN::initial_integrate(int)
     add_gravity();
     gravity_pending = false;
   }
-  const Factors *c = factors.data();
-
   const int ago = neigh_check ? build_due() : 0;    // > 0: LAMMPS would decide at this step
   const bool check = ago > 0 && neighbor->dist_check;
   const double *hold = held.data();
@@ -331,19 +298,25 @@ void FixNVEDiscMN::initial_integrate(int)
 
   if (integrator == mn::Integrator::VelocityVerlet) {
     // the vectors as flat arrays (granmn_flat_arrays.h), and the step in a local: the stores
-    // to x could alias the member for the compiler, which would reload it
+    // to x could alias the member for the compiler, which would reload it. The new values are
+    // computed into locals before any store: v, f, x and omega could alias for the compiler,
+    // which would store and reload.
     double *const xs = granmn::rows(atom->x), *const vs = granmn::rows(atom->v);
     const double *const fs = granmn::rows(atom->f), *const ts = granmn::rows(atom->torque);
     double *const ws = granmn::rows(atom->omega);
     const double step = dtv;
-    for (const int i : members) {
-      const std::ptrdiff_t k = granmn::row_start(i, 3);
-      half_kick(c[i], fs + k, ts + k, vs + k, ws + k);
-      const double xi = xs[k] + step * vs[k], yi = xs[k + 1] + step * vs[k + 1];
+    for (const Member &m : members) {
+      const std::ptrdiff_t k = m.row;
+      const double vx = vs[k] + m.per_mass * fs[k], vy = vs[k + 1] + m.per_mass * fs[k + 1];
+      const double wz = ws[k + 2] + m.per_inertia * ts[k + 2];
+      const double xi = xs[k] + step * vx, yi = xs[k + 1] + step * vy;
+      vs[k] = vx;
+      vs[k + 1] = vy;
+      ws[k + 2] = wz;
       xs[k] = xi;
       xs[k + 1] = yi;
       if (check) {
-        const double dx = xi - hold[2 * i], dy = yi - hold[2 * i + 1];
+        const double dx = xi - hold[k], dy = yi - hold[k + 1];
         farthest = std::max(farthest, dx * dx + dy * dy);
       }
     }
@@ -355,10 +328,11 @@ void FixNVEDiscMN::initial_integrate(int)
   double **f = atom->f;
   double **omega = atom->omega;
   double **torque = atom->torque;
-  for (const int i : members) {
+  for (const Member &m : members) {
+    const int i = m.atom;
     double *previous = state[i];
-    const double a[3] = {f[i][0] * c[i].per_mass, f[i][1] * c[i].per_mass,
-                         torque[i][2] * c[i].per_inertia};
+    const double a[3] = {f[i][0] * m.per_mass, f[i][1] * m.per_mass,
+                         torque[i][2] * m.per_inertia};
     // The first step has no previous acceleration: it takes a(t - dt) = a(t), an Euler step.
     if (previous[HAS_PREVIOUS] == 0.0) {
       for (int k = 0; k < 3; k++) previous[k] = a[k];
@@ -372,7 +346,7 @@ void FixNVEDiscMN::initial_integrate(int)
     omega[i][2] = mn::ab2_velocity(omega[i][2], a[2], previous[ALPHA], dtv);
     for (int k = 0; k < 3; k++) previous[k] = a[k];
     if (check) {
-      const double dx = x[i][0] - hold[2 * i], dy = x[i][1] - hold[2 * i + 1];
+      const double dx = x[i][0] - hold[m.row], dy = x[i][1] - hold[m.row + 1];
       farthest = std::max(farthest, dx * dx + dy * dy);
     }
   }
@@ -388,26 +362,37 @@ void FixNVEDiscMN::final_integrate()
     add_gravity();
     return;
   }
-  // flat arrays, as in initial_integrate
+  // flat arrays and the new values in locals, as in initial_integrate
   double *const vs = granmn::rows(atom->v), *const fs = granmn::rows(atom->f);
   double *const ws = granmn::rows(atom->omega);
   const double *const ts = granmn::rows(atom->torque);
-  const Factors *c = factors.data();
   if (has_gravity) {
-    for (const int i : members) {
-      const std::ptrdiff_t k = granmn::row_start(i, 3);
-      final_kick_with_gravity(c[i], fs + k, ts + k, vs + k, ws + k);
+    // m g first added to the step's force sum (after every other force)
+    for (const Member &m : members) {
+      const std::ptrdiff_t k = m.row;
+      const double fx = fs[k] + m.weight_x, fy = fs[k + 1] + m.weight_y;
+      const double vx = vs[k] + m.per_mass * fx, vy = vs[k + 1] + m.per_mass * fy;
+      const double wz = ws[k + 2] + m.per_inertia * ts[k + 2];
+      fs[k] = fx;
+      fs[k + 1] = fy;
+      vs[k] = vx;
+      vs[k + 1] = vy;
+      ws[k + 2] = wz;
     }
   } else {
-    for (const int i : members) {
-      const std::ptrdiff_t k = granmn::row_start(i, 3);
-      half_kick(c[i], fs + k, ts + k, vs + k, ws + k);
+    for (const Member &m : members) {
+      const std::ptrdiff_t k = m.row;
+      const double vx = vs[k] + m.per_mass * fs[k], vy = vs[k + 1] + m.per_mass * fs[k + 1];
+      const double wz = ws[k + 2] + m.per_inertia * ts[k + 2];
+      vs[k] = vx;
+      vs[k + 1] = vy;
+      ws[k + 2] = wz;
     }
   }
 }
 
 double FixNVEDiscMN::memory_usage()
 {
-  return FixPerAtomState::memory_usage() + (double) factors.capacity() * sizeof(Factors) +
-      (double) members.capacity() * sizeof(int) + (double) held.capacity() * sizeof(double);
+  return FixPerAtomState::memory_usage() + (double) members.capacity() * sizeof(Member) +
+      (double) held.capacity() * sizeof(double);
 }

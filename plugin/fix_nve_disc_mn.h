@@ -12,6 +12,7 @@
 
 #include "mn_integration.h"
 
+#include <cstddef>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -31,8 +32,11 @@ class FixNVEDiscMN : public FixPerAtomState {
   // Its scheme and neigh_check, for the styles' run checks (granmn_run_checks.h names them).
   void *extract(const char *, int &) override;
 
-  // one atom's factors (the member factors below says what they are)
-  struct Factors {
+  // One atom of the group, in the order of the passes, with its factors (the member `members`
+  // below says what they are).
+  struct Member {
+    std::ptrdiff_t row;    // its rows' start in the flat per-atom arrays (granmn_flat_arrays.h)
+    int atom;              // its local index
     double per_mass, per_inertia, weight_x, weight_y;
   };
 
@@ -40,18 +44,17 @@ class FixNVEDiscMN : public FixPerAtomState {
   // Adams-Bashforth 2, per atom: the accelerations of the previous step (a_x, a_y, alpha_z),
   // and 1 once they exist.
   enum { AX, AY, ALPHA, HAS_PREVIOUS, NSTATE };
-  // Per local atom, from its mass and radius, recomputed only when they may have changed (a run's
-  // setup, a new dt, atoms re-sorted at a neighbour-list build, the first step after another
-  // run (run ... pre no skips the setup: a set command may have come between), a fix adapt in
-  // the run):
+  // The group's local atoms in index order, each with its factors from its mass and radius,
+  // listed again only when they may have changed (a run's setup, a new dt, atoms re-sorted at a
+  // neighbour-list build, the first step after another run (run ... pre no skips the setup: a
+  // set command may have come between), a fix adapt in the run):
   // velocity Verlet: dt/2 / m and dt/2 / (m r^2/2) (times ftm2v), as fix nve/sphere disc;
   // Adams-Bashforth 2: 1/m and 1/(m r^2/2) (times ftm2v); and the body force m g.
-  std::vector<Factors> factors;
-  // The group's local atoms in index order, listed with the factors: the passes go over them
-  // with no test of each atom's mask, whose branch a group of disks among bumps (the
-  // collisional scene, its atoms sorted in space) mispredicts at every other atom. The group
-  // is not dynamic (LAMMPS refuses a dynamic group for a fix that does not allow one).
-  std::vector<int> members;
+  // The passes read the list in order, one entry a disk, with no test of each atom's mask, whose
+  // branch a group of disks among bumps (the collisional scene, its atoms sorted in space)
+  // mispredicts at every other atom, and no per-atom array of factors to index. The group is not
+  // dynamic (LAMMPS refuses a dynamic group for a fix that does not allow one).
+  std::vector<Member> members;
   mn::Integrator integrator;
   bool has_gravity;
   double gravity[2];          // the acceleration, as fix gravity's vector style makes it
@@ -70,7 +73,9 @@ class FixNVEDiscMN : public FixPerAtomState {
   // (next_reneighbor); with neigh_modify once yes LAMMPS does not decide again
   bool neigh_check;
   double trigger_sq;          // (skin/2)^2, as LAMMPS computes it
-  std::vector<double> held;   // x, y of each local atom at the last build
+  // x, y of each local atom at the last build, at x's row stride (3): a disk's test takes
+  // its row offset from its member entry
+  std::vector<double> held;
   bigint held_lastcall;
 
   void hold_positions();
