@@ -13,6 +13,7 @@
 #include "granmn_compat.h"
 #include "granmn_run_checks.h"
 #include "modify.h"
+#include "neighbor.h"
 #include "update.h"
 
 #include <cmath>
@@ -84,7 +85,7 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
 
 int FixWallGranMN::setmask()
 {
-  return POST_FORCE;
+  return POST_FORCE | PRE_NEIGHBOR;
 }
 
 // Material from the fix line where given, else from pair_style gran/mn.
@@ -154,9 +155,48 @@ int FixWallGranMN::contacts_held(int i) const
   return sides;
 }
 
+// Listed here as well as at each build: a run with `pre no` has no build before its first step.
 void FixWallGranMN::setup(int vflag)
 {
+  list_near_wall();
   post_force(vflag);
+}
+
+void FixWallGranMN::pre_neighbor()
+{
+  list_near_wall();
+}
+
+// whether atom i's row holds any side's touching flag, u_t or previous v_t
+bool FixWallGranMN::holds_state(int i) const
+{
+  for (const granmn::ContactLayout &side : side_layout) {
+    if (side.touching >= 0 && state[i][side.touching] != 0.0) return true;
+    for (int k = 0; k < side.ut_width; k++)
+      if ((side.ut >= 0 && state[i][side.ut + k] != 0.0) ||
+          (side.vt_previous >= 0 && state[i][side.vt_previous + k] != 0.0))
+        return true;
+  }
+  return false;
+}
+
+void FixWallGranMN::list_near_wall()
+{
+  double **x = atom->x;
+  const double *radius = atom->radius;
+  const int nlocal = atom->nlocal;
+  const double skin = neighbor->skin;
+  near_wall.clear();
+  // every atom, in the group or not: a dynamic group can change between builds
+  for (int i = 0; i < nlocal; i++) {
+    const double at = axis == ZCYLINDER ? std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1])
+                                        : x[i][axis];
+    const bool near =
+        (has_lo && at - lo < radius[i] + skin) || (has_hi && hi - at < radius[i] + skin);
+    // an atom beyond the skin that still holds a contact's state (it moved that far in one
+    // step, or came so from another processor) stays listed until the contact has ended
+    if (near || holds_state(i)) near_wall.push_back(i);
+  }
 }
 
 void FixWallGranMN::post_force(int)
@@ -198,10 +238,10 @@ static inline double inward_normal(double **x, double **v, int i, int wall_axis,
 // spheres against planes normal to x, y or z or cylinders about z (u_t a vector); CYLINDER:
 // the zcylinder's two walls, side 0 the inner one (the atoms outside it), side 1 the outer
 // one; OBSERVED: a contact observer (fix contacts/mn) is told of contacts. Each contact as in
-// the pair style's loop. Most atoms are away from the wall: the scan over them is kept small,
-// and a contact's work is a call (touching_side, side_ended). With that work inlined the scan
-// reloaded its own values from the stack: 37 instructions an atom away from a wall
-// (callgrind, the 2D frictional scene).
+// the pair style's loop. Only the atoms near a wall are visited (near_wall); of those most do
+// not touch it: the scan over them is kept small, and a contact's work is a call
+// (touching_side, side_ended). With that work inlined the scan reloaded its own values from
+// the stack: 37 instructions an atom away from a wall (callgrind, the 2D frictional scene).
 template <int DIM, bool CYLINDER, bool OBSERVED> void FixWallGranMN::post_force_loop()
 {
   const double dt_history = granmn::history_dt(update);
@@ -209,7 +249,6 @@ template <int DIM, bool CYLINDER, bool OBSERVED> void FixWallGranMN::post_force_
   const double *radius = atom->radius;
   const int *mask = atom->mask;
   const int group = groupbit;    // a local: the force stores could alias the member
-  const int nlocal = atom->nlocal;
   double **history = state;
   const granmn::ContactLayout layouts[2] = {side_layout[0], side_layout[1]};
   double on_walls[3] = {0.0, 0.0, 0.0};
@@ -244,7 +283,7 @@ template <int DIM, bool CYLINDER, bool OBSERVED> void FixWallGranMN::post_force_
 
   // the sides as constants, each atom's lo side before its hi side as before
   const bool lo_side = has_lo, hi_side = has_hi;
-  for (int i = 0; i < nlocal; i++) {
+  for (const int i : near_wall) {
     if (!(mask[i] & group)) continue;
     const double rho = CYLINDER ? std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1]) : 0.0;
     if (lo_side) against_side(i, 0, rho);

@@ -13,6 +13,8 @@
 #include "mn_contact_events.h"
 #include "mn_integration.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class FixWallGranMN : public FixPerAtomState, public granmn::HeldContacts {
@@ -21,6 +23,7 @@ class FixWallGranMN : public FixPerAtomState, public granmn::HeldContacts {
   int setmask() override;
   void init() override;
   void setup(int) override;
+  void pre_neighbor() override;
   void post_force(int) override;
   double compute_vector(int) override;
   // With a contact observer (fix contacts/mn): the wall sides atom i touches (as of this fix's
@@ -44,8 +47,15 @@ class FixWallGranMN : public FixPerAtomState, public granmn::HeldContacts {
   double wall_force[3], wall_force_all[3];    // x, y (and z in dimension 3)
   double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units
   bool force_reduced;
+  // The atoms that can touch a side before the next neighbour-list build, in index
+  // order: those within the neighbour skin of a side at the last build, and any still holding
+  // a contact's state. Between builds an atom moves less than the skin (LAMMPS's trigger is
+  // half of it) and keeps its index; an atom left out holds no state.
+  std::vector<int> near_wall;
 
   void resolve_law();
+  void list_near_wall();
+  bool holds_state(int i) const;
   template <int DIM> void post_force_for(bool cylinder, bool observed);
   template <int DIM, bool CYLINDER, bool OBSERVED> void post_force_loop();
   // called from post_force_loop only: hidden, so that the call is direct, not through the PLT

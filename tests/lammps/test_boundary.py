@@ -4,6 +4,7 @@ lasts tau_w and has restitution e_w."""
 import numpy as np
 import pytest
 
+import test_cylinder_wall as walls
 from collision_decks import contact_interval, disk_on_boundary
 from granmn_run import (ORDER_RATIO, ab2_error_bound, convergence_ratio, law,
                         restitution_error_bound, run_lammps)
@@ -196,3 +197,44 @@ run 0
     assert ut == pytest.approx(ut_expected, rel=1e-12)
     assert ft == pytest.approx(ft_expected, rel=1e-9)
     assert run.result("fy")[0] == pytest.approx(ft, rel=1e-12)
+
+
+@pytest.mark.parametrize("wall,start,velocity", [
+    ("yplane 0.0 NULL", "0 3.0 0", "vy -1.0"),       # the floor, from above
+    ("yplane NULL 5.0", "0 2.0 0", "vy 1.0"),        # the ceiling, from below
+    ("zcylinder NULL 5.0", "2.0 0 0", "vx 1.0"),     # the outer circle, from inside
+    ("zcylinder 1.0 NULL", "4.0 0 0", "vx -1.0"),    # the inner circle, from outside
+])
+def test_a_wall_reached_from_beyond_the_neighbour_skin(tmp_path, wall, start, velocity):
+    """fix wall/gran/mn visits only the atoms within the neighbour skin of a side at the last
+    neighbour-list build (and those still holding a contact's state). A disk that starts 2.5
+    from contact (25 skins of 0.1) and moves onto the wall at 1 is taken in only by the builds
+    on its way: its bounce is bitwise the one of the same run with a skin of 3, where it is
+    listed from the start (one disk: the skin changes nothing else), and it comes back at e_w.
+    A list made only at the run's start would let the disk through the wall; one that took in
+    only the atoms already in contact at a build would find the contact up to half a skin late
+    (with the skin of 3, after the disk has passed through the wall)."""
+    kn, e, beta = walls.KN, walls.E, walls.BETA
+    dt = law(kn, e, beta)["tau_c"] / 100
+
+    def bounce(skin):
+        deck = (walls.header(2).replace("neighbor 0.1 bin", f"neighbor {skin} bin") +
+                walls.box(2) + f"create_atoms 1 single {start}\n" + walls.styles(2) +
+                f"""set atom 1 {velocity}
+fix w all wall/gran/mn {wall}
+timestep {dt!r}
+thermo 0
+run {int(round(3.0 / dt))}
+""" + walls.FINAL)
+        return run_lammps(deck, tmp_path / f"skin{skin}", header=False)
+
+    near = bounce(3.0)
+    assert "neighbor 3.0 bin" in (near.workdir / "in.deck").read_text()
+    far = bounce(0.1)
+    assert (far.workdir / "final.txt").read_text() == (near.workdir / "final.txt").read_text()
+    atoms = far.atoms()
+    component, speed = velocity.split()
+    rebound = -atoms[component][0] / float(speed)
+    e_w = law(kn, e, beta)["e_w"]
+    print(f"{wall}: rebound {rebound:.5f}, e_w {e_w:.5f}")
+    assert abs(rebound - e_w) <= restitution_error_bound(e_w, 1 / 100)
