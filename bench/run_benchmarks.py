@@ -4,7 +4,9 @@
 - the per-step cost of the paper's flowing scenes (inputs/frictional_flow.lmp and
   inputs/collisional_flow.lmp) as the study runs them (counters and outputs on), with the
   counters off, and in the hand-written reference loop of the same law (bench/reference_loop.cpp),
-  with LAMMPS's timer breakdown; --baseline compares with another checkout's decks and plugin;
+  with LAMMPS's timer breakdown, and with glibc's memset kept from `rep stosb` (VECTOR_MEMSET:
+  what that choice costs LAMMPS's force clear); --baseline compares with another checkout's
+  decks and plugin;
 - per-step cost of pair_style gran/mn against LAMMPS's gran/hooke/history on the same dense
   monodisperse flow, parameters matched so that both laws agree while contacts stick,
   with fix contacts/mn off and on;
@@ -42,6 +44,11 @@ SCENES = {"frictional_flow": "frictional", "collisional_flow": "collisional"}
 TIMER_SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
 KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+# glibc's memset switches to `rep stosb` from 2 kB up; LAMMPS's force clear (f and torque of the
+# atoms and ghosts, 2.5-3 kB each in the scenes) falls just above. A variant of the scenes runs
+# with the switch moved out of the way, the rest unchanged (the same zeros, the same outputs),
+# to show what that choice costs on the machine at hand.
+VECTOR_MEMSET = {"GLIBC_TUNABLES": "glibc.cpu.x86_rep_stosb_threshold=1048576"}
 
 
 def law():
@@ -132,11 +139,13 @@ def run(command, deck, work):
     return loop, (float(memory.group(1)) if memory else float("nan")), wall
 
 
-def scene_run(source, scene, counters, timer, integration, dt_fraction, warmup, span, work):
-    """One scene deck of `source` (a checkout with build/plugin): CPU us/step over the span after
-    the warm-up (the deck's second run), its timer breakdown (% of the loop; None unless the
-    deck's timer is normal or full), mean E per disk over the span."""
-    out = work / f"{scene}-{counters}-{timer}-{integration}"
+def scene_run(source, scene, counters, timer, integration, environment, dt_fraction, warmup,
+              span, work):
+    """One scene deck of `source` (a checkout with build/plugin), with `environment` added to
+    lmp's (or nothing): CPU us/step over the span after the warm-up (the deck's second run), its
+    timer breakdown (% of the loop; None unless the deck's timer is normal or full), mean E per
+    disk over the span."""
+    out = work / f"{scene}-{counters}-{timer}-{integration}-{bool(environment)}"
     out.mkdir(exist_ok=True)
     command = [str(LMP), "-in", str(source / "inputs" / f"{scene}.lmp"), "-log", "none",
                "-var", "plugin", str(source / "build" / "plugin" / "granmnplugin.so"),
@@ -151,7 +160,7 @@ def scene_run(source, scene, counters, timer, integration, dt_fraction, warmup, 
     if integration is not None:
         command += ["-var", "integration", integration]
     proc = subprocess.run(command, cwd=work, capture_output=True, text=True, errors="replace",
-                          env=ENV)
+                          env=dict(ENV, **(environment or {})))
     if proc.returncode != 0:
         raise RuntimeError(f"{scene} failed:\n{proc.stdout[-2000:]}{proc.stderr[-2000:]}")
     loops = re.findall(r"Loop time of (\S+) on \d+ procs for (\d+) steps", proc.stdout)
@@ -190,15 +199,16 @@ def scene_comparison(args, work):
     between rounds: a best-of time and the loop's can come from rounds of different speed)."""
     # The decks run LAMMPS's timer at `loop` (the total only); the breakdown comes from the same
     # run with the timer at `normal`, which costs a few % more.
-    # (source, counters, timer, integration); None: the deck's default
-    variants = {"LAMMPS, counters + outputs": (ROOT, "yes", None, None),
-                "LAMMPS, counters off": (ROOT, "no", None, None),
-                "LAMMPS, counters + outputs, timer": (ROOT, "yes", "normal", None),
-                "LAMMPS, fix nve/sphere + gravity": (ROOT, "yes", None, "separate")}
+    # (source, counters, timer, integration, environment); None: the deck's default
+    variants = {"LAMMPS, counters + outputs": (ROOT, "yes", None, None, None),
+                "LAMMPS, counters off": (ROOT, "no", None, None, None),
+                "LAMMPS, counters + outputs, timer": (ROOT, "yes", "normal", None, None),
+                "LAMMPS, fix nve/sphere + gravity": (ROOT, "yes", None, "separate", None),
+                "LAMMPS, memset by vector stores": (ROOT, "yes", None, None, VECTOR_MEMSET)}
     if args.baseline:
         baseline = Path(args.baseline).resolve()
-        variants["baseline, counters + outputs"] = (baseline, None, None, None)
-        variants["baseline, counters off"] = (baseline, "no", None, None)
+        variants["baseline, counters + outputs"] = (baseline, None, None, None, None)
+        variants["baseline, counters off"] = (baseline, "no", None, None, None)
     print(f"Scenes at kn = {KN:g}, dt = tau_c x {args.dt_fraction:g}, {args.span:g} time units "
           f"after a {args.warmup:g} warm-up, best of {args.repeat}; CPU us per step:")
     print(f"{'scene':<17} {'variant':<34} {'us/step':>8} {'vs reference':>13} {'E/disk':>7}  "
@@ -207,9 +217,9 @@ def scene_comparison(args, work):
         best, rounds = {}, []
         for _ in range(args.repeat):
             rounds.append({})
-            for name, (source, counters, timer, integration) in variants.items():
-                result = scene_run(source, scene, counters, timer, integration, args.dt_fraction,
-                                   args.warmup, args.span, work)
+            for name, (source, counters, timer, integration, environment) in variants.items():
+                result = scene_run(source, scene, counters, timer, integration, environment,
+                                   args.dt_fraction, args.warmup, args.span, work)
                 rounds[-1][name] = result[0]
                 if name not in best or result[0] < best[name][0]:
                     best[name] = result
@@ -239,7 +249,8 @@ def scene_comparison(args, work):
                   f"{best['baseline, counters + outputs'][0] / best['LAMMPS, counters + outputs'][0]:.2f}")
         paired = [f"{name.split(', ', 1)[1]} "
                   + median_and_range(paired_ratios(rounds, name, "reference"), digits=2)
-                  for name in ("LAMMPS, counters + outputs", "LAMMPS, counters off")]
+                  for name in ("LAMMPS, counters + outputs", "LAMMPS, counters off",
+                               "LAMMPS, memset by vector stores")]
         print(f"{scene:<17} against the reference loop of the same round, median of "
               f"{len(rounds)} (range): " + ", ".join(paired))
 
