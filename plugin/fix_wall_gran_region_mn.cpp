@@ -14,6 +14,7 @@
 #include "granmn_compat.h"
 #include "granmn_run_checks.h"
 #include "modify.h"
+#include "neighbor.h"
 #include "region.h"
 #include "update.h"
 
@@ -65,7 +66,7 @@ FixWallGranRegionMN::FixWallGranRegionMN(LAMMPS *lmp, int narg, char **arg) :
 
 int FixWallGranRegionMN::setmask()
 {
-  return POST_FORCE;
+  return POST_FORCE | PRE_NEIGHBOR;
 }
 
 void FixWallGranRegionMN::find_region()
@@ -152,9 +153,38 @@ int FixWallGranRegionMN::contacts_held(int i) const
   return static_cast<int>(state[i][0]);
 }
 
+// Listed here as well as at each build: a run with `pre no` has no build before its first step.
 void FixWallGranRegionMN::setup(int vflag)
 {
+  list_near_surface();
   post_force(vflag);
+}
+
+void FixWallGranRegionMN::pre_neighbor()
+{
+  list_near_surface();
+}
+
+void FixWallGranRegionMN::list_near_surface()
+{
+  near_surface.clear();
+  if (region->dynamic_check()) return;
+  double **x = atom->x;
+  const double *radius = atom->radius;
+  const double skin = neighbor->skin;
+  const bool planar = domain->dimension == 2;
+  // a face within the skin of atom i; in 2D not one normal to z (no wall: the disks lie in
+  // the plane, and a slab's faces at z = +-0.5 are within the skin of every disk)
+  const auto near_a_face = [&](int i) {
+    if (!region->match(x[i][0], x[i][1], x[i][2])) return false;
+    const int nc = region->surface(x[i][0], x[i][1], x[i][2], radius[i] + skin);
+    for (int ic = 0; ic < nc; ic++)
+      if (!planar || region->contact[ic].delz == 0.0) return true;
+    return false;
+  };
+  // every atom, in the group or not: a dynamic group can change between builds
+  for (int i = 0; i < atom->nlocal; i++)
+    if (state[i][0] > 0.0 || near_a_face(i)) near_surface.push_back(i);
 }
 
 void FixWallGranRegionMN::post_force(int)
@@ -196,7 +226,10 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
     region->prematch();
     track_motion();
   }
-  for (int i = 0; i < nlocal; i++) {
+  // a region at rest: only the atoms near its surface (near_surface); a moving one: every atom
+  const int visited = moving ? nlocal : static_cast<int>(near_surface.size());
+  for (int n = 0; n < visited; n++) {
+    const int i = moving ? n : near_surface[n];
     if (!(mask[i] & groupbit)) continue;
     double *row = state[i];
     const int touching_before = static_cast<int>(row[0]);

@@ -14,6 +14,7 @@
 #include "mn_integration.h"
 
 #include <string>
+#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -23,6 +24,7 @@ class FixWallGranRegionMN : public FixPerAtomState, public granmn::HeldContacts 
   int setmask() override;
   void init() override;
   void setup(int) override;
+  void pre_neighbor() override;
   void post_force(int) override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;
@@ -59,8 +61,14 @@ class FixWallGranRegionMN : public FixPerAtomState, public granmn::HeldContacts 
   double wall_force[3], wall_force_all[3];
   double force_per_mass_acceleration;
   bool force_reduced;
+  // A region at rest: the atoms that can touch its surface before the next neighbour-list
+  // build, in index order (those inside it within the neighbour skin of a face at the last
+  // build, and any still touching a face), as fix wall/gran/mn's near_wall. A moving region's
+  // step visits every atom.
+  std::vector<int> near_surface;
 
   void find_region();
+  void list_near_surface();
   void resolve_law();
   void track_motion();
   double ended_normal_velocity(int i, int face);

@@ -407,3 +407,57 @@ run {int(round(5 / dt))}
     slope = np.polyfit(t[late], vx[late], 1)[0]
     print(f"a = {slope:.6f}, 2/3 g sin theta = {2 / 3 * g * sin_theta:.6f}")
     assert abs(slope - 2 / 3 * g * sin_theta) < 0.005 * 2 / 3 * g * sin_theta
+
+
+@pytest.mark.parametrize("dimension,shape", [(2, "block"), (3, "block"), (2, "cylinder")])
+def test_a_face_reached_from_beyond_the_neighbour_skin(tmp_path, dimension, shape):
+    """At rest a region's faces are visited only for the atoms within the neighbour skin of
+    them at the last neighbour-list build (and those still touching one), as fix wall/gran/mn's
+    planes. A disk or sphere inside the region, 2.5 from contact (25 skins of 0.1), moving onto
+    its floor (a block's bottom face, with a sideways velocity; in 2D also a circle's rim) at 1
+    with a spin, is taken in only by the builds on its way: its bounce is bitwise the one of the same
+    run with a skin of 3, which lists it from the start (one atom: the skin changes nothing
+    else). A list made only at the run's start would let it through the face; one of the atoms
+    already touching at a build would find the contact up to half a skin late."""
+    dt = law(KN, E, BETA)["tau_c"] / 100
+    if dimension == 3:
+        box = "boundary p p f\nregion box block -6 6 -6 6 -1 10\n"
+        start, motion = "0 0 3.0", "vx 0.4 vy -0.2 vz -1.0 omega 1.5 0.8 -2.0"
+        cup = "region cup block -5 5 -5 5 0 9 units box"
+        density, integrator, header = SPHERE_DENSITY, "nve/sphere", HEADER_3D
+    else:
+        box = "boundary f f p\nregion box block -6 6 -6 6 -0.5 0.5\n"
+        # on the circle's rim no sideways velocity: the normal stays y's, the rebound vy
+        start = "0 -2.0 0"
+        motion = ("vx 0.4 vy -1.0 omega 0 0 -2.0" if shape == "block"
+                  else "vy -1.0 omega 0 0 -2.0")
+        cup = ("region cup block -5 5 -5 5 -0.5 0.5 units box" if shape == "block" else
+               "region cup cylinder z 0 0 5.0 -0.5 0.5 units box")
+        density, integrator = 4 / np.pi, "nve/sphere disc"
+        header = HEADER.format(plugin=PLUGIN)
+
+    def bounce(skin):
+        deck = header.replace("boundary p p p\n", "") + f"""neighbor {skin} bin
+{box}create_box 1 box
+create_atoms 1 single {start}
+set atom 1 diameter 1.0 density {density!r}
+set atom 1 {motion}
+pair_style gran/mn kn {KN} e {E} beta {BETA} mu 0.5
+pair_coeff * *
+fix integrate all {integrator}
+{cup}
+fix w all wall/gran/region/mn cup
+timestep {dt!r}
+thermo 0
+run {int(round(3.0 / dt))}
+""" + FINAL
+        return run_lammps(deck, tmp_path / f"skin{skin}", header=False)
+
+    near, far = bounce(3.0), bounce(0.1)
+    assert (far.workdir / "final.txt").read_text() == (near.workdir / "final.txt").read_text()
+    atoms = far.atoms()
+    normal = "vz" if dimension == 3 else "vy"
+    rebound = atoms[normal][0]
+    e_w = law(KN, E, BETA)["e_w"]
+    print(f"{dimension}D {shape}: rebound {rebound:.5f}, e_w {e_w:.5f}")
+    assert abs(rebound - e_w) <= restitution_error_bound(e_w, 1 / 100)
