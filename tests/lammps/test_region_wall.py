@@ -15,6 +15,27 @@ FINAL = ("write_dump all custom final.txt id x y z vx vy vz omegax omegay omegaz
          "modify sort id format float %.17g\n")
 
 
+def one_atom(dimension, box, start, motion, walls, dt, skin=""):
+    """The deck of one disk or sphere (unit diameter) at `start` given `motion`, in the law's
+    pair style, integrated, with `walls`, up to its run; `skin`: a neighbor command's."""
+    header = HEADER_3D if dimension == 3 else HEADER.format(plugin=PLUGIN)
+    density = SPHERE_DENSITY if dimension == 3 else 4 / np.pi
+    integrator = "nve/sphere" if dimension == 3 else "nve/sphere disc"
+    neighbor = f"neighbor {skin} bin\n" if skin else ""
+    return header.replace("boundary p p p\n", "") + neighbor + f"""
+{box}create_box 1 box
+create_atoms 1 single {start}
+set atom 1 diameter 1.0 density {density!r}
+set atom 1 {motion}
+pair_style gran/mn kn {KN} e {E} beta {BETA} mu 0.5
+pair_coeff * *
+fix integrate all {integrator}
+{walls}
+timestep {dt!r}
+thermo 0
+"""
+
+
 def oblique_drop(dimension, wall, counters=False):
     """A disk or sphere falling at normal speed 1 with a sideways velocity and a spin onto
     the floor at 0: a plane (fix wall/gran/mn) or the bottom face of a block region around
@@ -25,28 +46,13 @@ def oblique_drop(dimension, wall, counters=False):
         box = "boundary p p f\nregion box block -5 5 -5 5 -1 10\n"
         start, cup = "0 0 0.505", "region cup block -4 4 -4 4 0 9 units box"
         motion = "vx 0.4 vy -0.2 vz -1.0 omega 1.5 0.8 -2.0"
-        density = SPHERE_DENSITY
     else:
         box = "boundary p f p\nregion box block -5 5 -1 10 -0.5 0.5\n"
         start, cup = "0 0.505 0", "region cup block -4 4 0 9 -0.5 0.5 units box"
         motion = "vx 0.4 vy -1.0 omega 0 0 -2.0"
-        density = 4 / np.pi
     walls = {"plane": f"fix w all wall/gran/mn {plane} 0.0 NULL",
              "region": f"{cup}\nfix w all wall/gran/region/mn cup"}
-    header = HEADER_3D if dimension == 3 else HEADER.format(plugin=PLUGIN)
-    integrator = "nve/sphere" if dimension == 3 else "nve/sphere disc"
-    return header.replace("boundary p p p\n", "") + f"""
-{box}create_box 1 box
-create_atoms 1 single {start}
-set atom 1 diameter 1.0 density {density!r}
-set atom 1 {motion}
-pair_style gran/mn kn {KN} e {E} beta {BETA} mu 0.5
-pair_coeff * *
-fix integrate all {integrator}
-{walls[wall]}
-timestep {dt!r}
-thermo 0
-""" + (COUNTERS if counters else "") + "run 400\n" + FINAL + (
+    return one_atom(dimension, box, start, motion, walls[wall], dt) + (COUNTERS if counters else "") + "run 400\n" + FINAL + (
         "print \"RESULT counters $(f_c[1]) $(f_c[2]) $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6])\"\n"
         if counters else "")
 
@@ -424,7 +430,6 @@ def test_a_face_reached_from_beyond_the_neighbour_skin(tmp_path, dimension, shap
         box = "boundary p p f\nregion box block -6 6 -6 6 -1 10\n"
         start, motion = "0 0 3.0", "vx 0.4 vy -0.2 vz -1.0 omega 1.5 0.8 -2.0"
         cup = "region cup block -5 5 -5 5 0 9 units box"
-        density, integrator, header = SPHERE_DENSITY, "nve/sphere", HEADER_3D
     else:
         box = "boundary f f p\nregion box block -6 6 -6 6 -0.5 0.5\n"
         # on the circle's rim no sideways velocity: the normal stays y's, the rebound vy
@@ -433,24 +438,11 @@ def test_a_face_reached_from_beyond_the_neighbour_skin(tmp_path, dimension, shap
                   else "vy -1.0 omega 0 0 -2.0")
         cup = ("region cup block -5 5 -5 5 -0.5 0.5 units box" if shape == "block" else
                "region cup cylinder z 0 0 5.0 -0.5 0.5 units box")
-        density, integrator = 4 / np.pi, "nve/sphere disc"
-        header = HEADER.format(plugin=PLUGIN)
 
     def bounce(skin):
-        deck = header.replace("boundary p p p\n", "") + f"""neighbor {skin} bin
-{box}create_box 1 box
-create_atoms 1 single {start}
-set atom 1 diameter 1.0 density {density!r}
-set atom 1 {motion}
-pair_style gran/mn kn {KN} e {E} beta {BETA} mu 0.5
-pair_coeff * *
-fix integrate all {integrator}
-{cup}
-fix w all wall/gran/region/mn cup
-timestep {dt!r}
-thermo 0
-run {int(round(3.0 / dt))}
-""" + FINAL
+        deck = one_atom(dimension, box, start, motion,
+                        f"{cup}\nfix w all wall/gran/region/mn cup", dt, skin)
+        deck += f"run {int(round(3.0 / dt))}\n" + FINAL
         return run_lammps(deck, tmp_path / f"skin{skin}", header=False)
 
     near, far = bounce(3.0), bounce(0.1)
