@@ -421,9 +421,9 @@ def test_a_face_reached_from_beyond_the_neighbour_skin(tmp_path, dimension, shap
     them at the last neighbour-list build (and those still touching one), as fix wall/gran/mn's
     planes. A disk or sphere inside the region, 2.5 from contact (25 skins of 0.1), moving onto
     its floor (a block's bottom face, with a sideways velocity; in 2D also a circle's rim) at 1
-    with a spin, is taken in only by the builds on its way: its bounce is bitwise the one of the same
-    run with a skin of 3, which lists it from the start (one atom: the skin changes nothing
-    else). A list made only at the run's start would let it through the face; one of the atoms
+    with a spin, is taken in only by the builds on its way: its bounce is bitwise the one of
+    the same run with a skin of 3, which lists it from the start (one atom: the skin changes
+    nothing else). A list made only at the run's start would let it through the face; one of the atoms
     already touching at a build would find the contact up to half a skin late."""
     dt = law(KN, E, BETA)["tau_c"] / 100
     if dimension == 3:
