@@ -173,13 +173,18 @@ void FixWallGranRegionMN::list_near_surface()
   const double *radius = atom->radius;
   const double skin = neighbor->skin;
   const bool planar = domain->dimension == 2;
-  // a face within the skin of atom i; in 2D not one normal to z (no wall: the disks lie in
-  // the plane, and a slab's faces at z = +-0.5 are within the skin of every disk)
+  // atom i outside the region (a region that is not open lets it in between builds, next
+  // to a face), or a face within its skin. In 2D not a face's pure z contact (a slab's faces
+  // at z = +-0.5, right above and below every disk: no wall, the disks lie in the plane); a
+  // contact with a part in the plane counts (an open region reports only the nearest point
+  // to an atom outside it, which can be on a z face's rim: its part in the plane is no more
+  // than the distance to the faces in the plane).
   const auto near_a_face = [&](int i) {
-    if (!region->match(x[i][0], x[i][1], x[i][2])) return false;
+    if (!region->match(x[i][0], x[i][1], x[i][2])) return true;
     const int nc = region->surface(x[i][0], x[i][1], x[i][2], radius[i] + skin);
     for (int ic = 0; ic < nc; ic++)
-      if (!planar || region->contact[ic].delz == 0.0) return true;
+      if (!planar || region->contact[ic].delx != 0.0 || region->contact[ic].dely != 0.0)
+        return true;
     return false;
   };
   // every atom, in the group or not: a dynamic group can change between builds

@@ -63,8 +63,8 @@ class FixWallGranRegionMN : public FixPerAtomState, public granmn::HeldContacts 
   bool force_reduced;
   // A region at rest: the atoms that can touch its surface before the next neighbour-list
   // build, in index order (those inside it within the neighbour skin of a face at the last
-  // build, and any still touching a face), as fix wall/gran/mn's near_wall. A moving region's
-  // step visits every atom.
+  // build, those outside it, and any still touching a face), as fix wall/gran/mn's near_wall.
+  // A moving region's step visits every atom.
   std::vector<int> near_surface;
 
   void find_region();

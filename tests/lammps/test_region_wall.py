@@ -453,3 +453,33 @@ def test_a_face_reached_from_beyond_the_neighbour_skin(tmp_path, dimension, shap
     e_w = law(KN, E, BETA)["e_w"]
     print(f"{dimension}D {shape}: rebound {rebound:.5f}, e_w {e_w:.5f}")
     assert abs(rebound - e_w) <= restitution_error_bound(e_w, 1 / 100)
+
+
+def test_a_disk_outside_an_open_region_meets_the_rim_of_its_side_face(tmp_path):
+    """An open region's faces are walls on both sides, and to an atom outside it the region
+    reports only the nearest point of its surface; in 2D that can be on the rim of a z face
+    (a slab's), which is no wall itself but is no farther in the plane than the faces that are.
+    A disk above a box open at the top falls at 1 and drifts at 0.3 onto the top of its side
+    face. With a skin of 3 it is within the skin at the start (1.12 from the z face's rim, 1.14
+    from the side face's top), and no build falls before it hits: the run must be bitwise the
+    one with a skin of 0.1 (a list without that rim's contact let the disk into the face
+    unseen, until a build found it 0.4 deep: thrown out at 150), and the disk must come off
+    the rim upwards, slower than it came."""
+    dt = law(KN, E, BETA)["tau_c"] / 100
+    box = "boundary f f p\nregion box block -6 6 -6 8 -0.5 0.5\n"
+    cup = "region cup block -5 5 -5 5 -0.5 0.5 open 4 units box"
+
+    def fall(skin):
+        deck = one_atom(2, box, "4.45 6.0 0", "vx 0.3 vy -1.0",
+                        f"{cup}\nfix w all wall/gran/region/mn cup", dt, skin)
+        deck += f"run {int(round(2.0 / dt))}\n" + FINAL
+        return run_lammps(deck, tmp_path / f"skin{skin}", header=False)
+
+    coarse, fine = fall(3.0), fall(0.1)
+    assert (coarse.workdir / "final.txt").read_text() == (fine.workdir / "final.txt").read_text()
+    atoms = coarse.atoms()
+    speed = np.hypot(atoms["vx"][0], atoms["vy"][0])
+    print(f"after the rim: y {atoms['y'][0]:.4f}, v ({atoms['vx'][0]:.4f}, "
+          f"{atoms['vy'][0]:.4f}), speed {speed:.4f} of {np.hypot(0.3, 1.0):.4f}")
+    assert atoms["y"][0] > 5.0 and atoms["vy"][0] > 0.0
+    assert speed < np.hypot(0.3, 1.0)
