@@ -52,7 +52,8 @@ def oblique_drop(dimension, wall, counters=False):
         motion = "vx 0.4 vy -1.0 omega 0 0 -2.0"
     walls = {"plane": f"fix w all wall/gran/mn {plane} 0.0 NULL",
              "region": f"{cup}\nfix w all wall/gran/region/mn cup"}
-    return one_atom(dimension, box, start, motion, walls[wall], dt) + (COUNTERS if counters else "") + "run 400\n" + FINAL + (
+    return one_atom(dimension, box, start, motion, walls[wall], dt) + (
+        COUNTERS if counters else "") + "run 400\n" + FINAL + (
         "print \"RESULT counters $(f_c[1]) $(f_c[2]) $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6])\"\n"
         if counters else "")
 
@@ -423,8 +424,8 @@ def test_a_face_reached_from_beyond_the_neighbour_skin(tmp_path, dimension, shap
     its floor (a block's bottom face, with a sideways velocity; in 2D also a circle's rim) at 1
     with a spin, is taken in only by the builds on its way: its bounce is bitwise the one of
     the same run with a skin of 3, which lists it from the start (one atom: the skin changes
-    nothing else). A list made only at the run's start would let it through the face; one of the atoms
-    already touching at a build would find the contact up to half a skin late."""
+    nothing else). A list made only at the run's start would let it through the face; one of
+    the atoms already touching at a build would find the contact up to half a skin late."""
     dt = law(KN, E, BETA)["tau_c"] / 100
     if dimension == 3:
         box = "boundary p p f\nregion box block -6 6 -6 6 -1 10\n"
