@@ -28,7 +28,7 @@ using namespace FixConst;
 FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), own_law(false), use_history(false),
     integrator(mn::Integrator::VelocityVerlet), observer(nullptr),
-    force_per_mass_acceleration(1.0), force_reduced(false)
+    force_per_mass_acceleration(1.0), force_reduced(false), radii_change(false)
 {
   const bool three_d = domain->dimension == 3;
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
@@ -119,6 +119,7 @@ void FixWallGranMN::init()
   force_per_mass_acceleration = 1.0 / force->ftm2v;
   observer = granmn::find_observer(granmn::all_fixes(modify));
   integrator = granmn::integrator_in_use(modify);
+  radii_change = !granmn::fixes_by_style(modify, "^adapt").empty();
   // The state keeps u_t (mu > 0), the contact observer's record and a touching flag of each
   // side (each wall fix its own, with fix contacts/mn), and the previous v_t of Adams-Bashforth
   // 2's rule for u_t, which is kept from then on (current under either integrator).
@@ -189,6 +190,10 @@ void FixWallGranMN::list_near_wall()
   near_wall.clear();
   // every atom, in the group or not: a dynamic group can change between builds
   for (int i = 0; i < nlocal; i++) {
+    if (radii_change) {
+      near_wall.push_back(i);
+      continue;
+    }
     const double at = axis == ZCYLINDER ? std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1])
                                         : x[i][axis];
     const bool near =

@@ -50,8 +50,10 @@ class FixWallGranMN : public FixPerAtomState, public granmn::HeldContacts {
   // The atoms that can touch a side before the next neighbour-list build, in index
   // order: those within the neighbour skin of a side at the last build, and any still holding
   // a contact's state. Between builds an atom moves less than the skin (LAMMPS's trigger is
-  // half of it) and keeps its index; an atom left out holds no state.
+  // half of it) and keeps its index; an atom left out holds no state. Under a fix adapt
+  // (radii_change) a disk can grow into a wall without moving: every atom is listed.
   std::vector<int> near_wall;
+  bool radii_change;
 
   void resolve_law();
   void list_near_wall();

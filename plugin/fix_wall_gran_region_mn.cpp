@@ -31,7 +31,7 @@ FixWallGranRegionMN::FixWallGranRegionMN(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), region(nullptr), max_contacts(0), own_law(false),
     use_history(false), integrator(mn::Integrator::VelocityVerlet), ut_width(1),
     ut_block(-1), record_block(-1), vt_block(-1), observer(nullptr),
-    force_per_mass_acceleration(1.0), force_reduced(false)
+    force_per_mass_acceleration(1.0), force_reduced(false), radii_change(false)
 {
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "Fix wall/gran/region/mn requires atom attributes radius, rmass, omega, "
@@ -110,6 +110,7 @@ void FixWallGranRegionMN::init()
   granmn::check_disc_integration(lmp, "fix wall/gran/region/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
   integrator = granmn::integrator_in_use(modify);
+  radii_change = !granmn::fixes_by_style(modify, "^adapt").empty();
   observer = granmn::find_observer(granmn::all_fixes(modify));
   // The observer's record of each slot (with fix contacts/mn), and Adams-Bashforth 2's
   // previous v_t of each slot: kept from then on (current under either integrator), as by
@@ -168,7 +169,7 @@ void FixWallGranRegionMN::pre_neighbor()
 void FixWallGranRegionMN::list_near_surface()
 {
   near_surface.clear();
-  if (region->dynamic_check()) return;
+  if (region->dynamic_check() || radii_change) return;
   double **x = atom->x;
   const double *radius = atom->radius;
   const double skin = neighbor->skin;
@@ -231,10 +232,12 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
     region->prematch();
     track_motion();
   }
-  // a region at rest: only the atoms near its surface (near_surface); a moving one: every atom
-  const int visited = moving ? nlocal : static_cast<int>(near_surface.size());
+  // a region at rest: only the atoms near its surface (near_surface); a moving one, or radii
+  // that change: every atom
+  const bool every = moving || radii_change;
+  const int visited = every ? nlocal : static_cast<int>(near_surface.size());
   for (int n = 0; n < visited; n++) {
-    const int i = moving ? n : near_surface[n];
+    const int i = every ? n : near_surface[n];
     if (!(mask[i] & groupbit)) continue;
     double *row = state[i];
     const int touching_before = static_cast<int>(row[0]);

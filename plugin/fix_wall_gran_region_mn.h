@@ -64,8 +64,10 @@ class FixWallGranRegionMN : public FixPerAtomState, public granmn::HeldContacts 
   // A region at rest: the atoms that can touch its surface before the next neighbour-list
   // build, in index order (those inside it within the neighbour skin of a face at the last
   // build, those outside it, and any still touching a face), as fix wall/gran/mn's near_wall.
-  // A moving region's step visits every atom.
+  // A moving region's step visits every atom, and so does every step under a fix adapt
+  // (radii_change: an atom can grow into a face without moving).
   std::vector<int> near_surface;
+  bool radii_change;
 
   void find_region();
   void list_near_surface();

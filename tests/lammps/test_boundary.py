@@ -6,7 +6,7 @@ import pytest
 
 import test_cylinder_wall as walls
 from collision_decks import contact_interval, disk_on_boundary
-from granmn_run import (ORDER_RATIO, ab2_error_bound, convergence_ratio, law,
+from granmn_run import (HEADER, ORDER_RATIO, PLUGIN, ab2_error_bound, convergence_ratio, law,
                         restitution_error_bound, run_lammps)
 
 
@@ -238,3 +238,39 @@ run {int(round(3.0 / dt))}
     e_w = law(kn, e, beta)["e_w"]
     print(f"{wall}: rebound {rebound:.5f}, e_w {e_w:.5f}")
     assert abs(rebound - e_w) <= restitution_error_bound(e_w, 1 / 100)
+
+
+@pytest.mark.parametrize("wall", ["fix w all wall/gran/mn yplane 0.0 NULL",
+                                  "region cup block -5 5 0 9 -0.5 0.5 units box\n"
+                                  "fix w all wall/gran/region/mn cup"])
+def test_a_disk_grown_into_the_floor_by_fix_adapt_is_pushed_off_it(tmp_path, wall):
+    """A disk at rest, centre 0.45 above the floor, grows from diameter 0.2 to 1 under fix
+    adapt (0.35 from the floor at first: outside a skin of 0.1). It does not move, so no
+    neighbour-list build falls due: a wall fix that visits only the atoms near the wall at the
+    last build would leave it 0.05 inside the floor with no force. Under a fix adapt the wall
+    fixes visit every atom: the floor pushes it off, and it leaves upwards with its centre
+    above 0.5 (half its final diameter)."""
+    dt = law(2e5, 0.7, 0.7)["tau_c"] / 50
+    header = HEADER.format(plugin=PLUGIN).replace("atom_style sphere", "atom_style sphere 1")
+    deck = header.replace("boundary p p p\n", "") + f"""
+boundary p f p
+region box block -5 5 -1 10 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 0.45 0
+set type 1 diameter 0.2
+set type 1 density/disc {4 / np.pi!r}
+velocity all set 0 0 0
+pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+{wall}
+timestep {dt!r}
+variable diameter equal 0.2+0.8*((step*dt<0.2)*step*dt/0.2+(step*dt>=0.2))
+fix grow all adapt 1 atom diameter v_diameter
+fix integrate all nve/sphere disc
+thermo 0
+run {int(round(1.0 / dt))}
+write_dump all custom final.txt id x y vx vy modify sort id format float %.17g
+"""
+    atoms = run_lammps(deck, tmp_path, header=False).atoms()
+    print(f"after growing: y {atoms['y'][0]:.6f}, vy {atoms['vy'][0]:.6f}")
+    assert atoms["y"][0] > 0.5 and atoms["vy"][0] > 0.0
