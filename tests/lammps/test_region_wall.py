@@ -416,6 +416,21 @@ run {int(round(5 / dt))}
     assert abs(slope - 2 / 3 * g * sin_theta) < 0.005 * 2 / 3 * g * sin_theta
 
 
+def same_with_either_skin(tmp_path, dimension, box, start, motion, cup, dt, run_time):
+    """One atom against region `cup` (fix wall/gran/region/mn) for run_time, with a neighbour
+    skin of 3 and of 0.1: the final states must be bitwise the same (one atom: the skin changes
+    only which builds list it). Returns the atoms of the run with the skin of 3."""
+    runs = []
+    for skin in (3.0, 0.1):
+        deck = one_atom(dimension, box, start, motion,
+                        f"{cup}\nfix w all wall/gran/region/mn cup", dt, skin)
+        deck += f"run {int(round(run_time / dt))}\n" + FINAL
+        runs.append(run_lammps(deck, tmp_path / f"skin{skin}", header=False))
+    final = [(run.workdir / "final.txt").read_text() for run in runs]
+    assert final[0] == final[1]
+    return runs[0].atoms()
+
+
 @pytest.mark.parametrize("dimension,shape", [(2, "block"), (3, "block"), (2, "cylinder")])
 def test_a_face_reached_from_beyond_the_neighbour_skin(tmp_path, dimension, shape):
     """At rest a region's faces are visited only for the atoms within the neighbour skin of
@@ -440,15 +455,7 @@ def test_a_face_reached_from_beyond_the_neighbour_skin(tmp_path, dimension, shap
         cup = ("region cup block -5 5 -5 5 -0.5 0.5 units box" if shape == "block" else
                "region cup cylinder z 0 0 5.0 -0.5 0.5 units box")
 
-    def bounce(skin):
-        deck = one_atom(dimension, box, start, motion,
-                        f"{cup}\nfix w all wall/gran/region/mn cup", dt, skin)
-        deck += f"run {int(round(3.0 / dt))}\n" + FINAL
-        return run_lammps(deck, tmp_path / f"skin{skin}", header=False)
-
-    near, far = bounce(3.0), bounce(0.1)
-    assert (far.workdir / "final.txt").read_text() == (near.workdir / "final.txt").read_text()
-    atoms = far.atoms()
+    atoms = same_with_either_skin(tmp_path, dimension, box, start, motion, cup, dt, 3.0)
     normal = "vz" if dimension == 3 else "vy"
     rebound = atoms[normal][0]
     e_w = law(KN, E, BETA)["e_w"]
@@ -470,15 +477,7 @@ def test_a_disk_outside_an_open_region_meets_the_rim_of_its_side_face(tmp_path):
     box = "boundary f f p\nregion box block -6 6 -6 8 -0.5 0.5\n"
     cup = "region cup block -5 5 -5 5 -0.5 0.5 open 4 units box"
 
-    def fall(skin):
-        deck = one_atom(2, box, "4.45 6.0 0", "vx 0.3 vy -1.0",
-                        f"{cup}\nfix w all wall/gran/region/mn cup", dt, skin)
-        deck += f"run {int(round(2.0 / dt))}\n" + FINAL
-        return run_lammps(deck, tmp_path / f"skin{skin}", header=False)
-
-    coarse, fine = fall(3.0), fall(0.1)
-    assert (coarse.workdir / "final.txt").read_text() == (fine.workdir / "final.txt").read_text()
-    atoms = coarse.atoms()
+    atoms = same_with_either_skin(tmp_path, 2, box, "4.45 6.0 0", "vx 0.3 vy -1.0", cup, dt, 2.0)
     speed = np.hypot(atoms["vx"][0], atoms["vy"][0])
     print(f"after the rim: y {atoms['y'][0]:.4f}, v ({atoms['vx'][0]:.4f}, "
           f"{atoms['vy'][0]:.4f}), speed {speed:.4f} of {np.hypot(0.3, 1.0):.4f}")
