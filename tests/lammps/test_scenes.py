@@ -176,6 +176,8 @@ BAD_VARIABLES = {
     "sin_theta above one": (dict(sin_theta=1.5), "sin_theta = 1.5 must lie in (0,1)"),
     "unknown integrator": (dict(integrator="leapfrog"),
                            "deck variable integrator = leapfrog must be verlet or ab2"),
+    "unknown newton setting": (dict(newton="maybe"),
+                               "deck variable newton = maybe must be on or off"),
     "averaging after the end": (dict(run_time=10, average_start=20),
                                 "average_start = 20 must lie in [0, run_time = 10)"),
     "seed not an integer": (dict(seed=1.5), "seed = 1.5 must be a positive integer"),
