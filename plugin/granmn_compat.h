@@ -37,6 +37,16 @@ inline void reverse_comm(LAMMPS_NS::Comm *comm, LAMMPS_NS::Fix *fix)
 #endif
 }
 
+// 24Mar2022: comm->forward_comm_pair(this) became the overloaded comm->forward_comm(this).
+inline void forward_comm(LAMMPS_NS::Comm *comm, LAMMPS_NS::Pair *pair)
+{
+#if LAMMPS_VERSION_NUMBER >= 20220324
+  comm->forward_comm(pair);
+#else
+  comm->forward_comm_pair(pair);
+#endif
+}
+
 // 24Mar2022: a neighbor list is requested with flags instead of by editing the request.
 // A size (finite-radius) half list, with per-pair history if asked.
 inline void request_size_list(LAMMPS_NS::Neighbor *neighbor, LAMMPS_NS::Pair *pair,

@@ -176,6 +176,7 @@ void PairGranMN::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
   if (domain->dimension == 2 && neighbor->ago == 0) check_in_plane();
   const bool friction = layout.ut >= 0, observed = observer != nullptr;
+  if (sends_ghost_velocity) granmn::forward_comm(comm, this);
   if (domain->dimension == 3)
     compute_for<3>(friction, observed);
   else
@@ -411,6 +412,57 @@ void PairGranMN::publish_law()
   }
 }
 
+// A fix deform with remap v shifts the velocities of ghosts across a periodic boundary by the
+// box's rate, in LAMMPS's own ghost communication only; it is known at the run's setup
+// (Domain::init comes after the pair style's).
+void PairGranMN::setup()
+{
+  if (sends_ghost_velocity && domain->deform_vremap)
+    error->all(FLERR, "Pair style gran/mn with fix deform remap v requires comm_modify vel "
+                      "yes (the ghosts' velocities then carry the box's rate)");
+}
+
+int PairGranMN::pack_forward_comm(int n, int *list, double *buf, int, int *)
+{
+  const double *v = granmn::rows(atom->v), *omega = granmn::rows(atom->omega);
+  int m = 0;
+  if (domain->dimension == 3) {
+    for (int k = 0; k < n; k++) {
+      const std::ptrdiff_t row = granmn::row_start(list[k], 3);
+      for (int c = 0; c < 3; c++) buf[m++] = v[row + c];
+      for (int c = 0; c < 3; c++) buf[m++] = omega[row + c];
+    }
+  } else {
+    for (int k = 0; k < n; k++) {
+      const std::ptrdiff_t row = granmn::row_start(list[k], 3);
+      buf[m++] = v[row];
+      buf[m++] = v[row + 1];
+      buf[m++] = omega[row + 2];
+    }
+  }
+  return m;
+}
+
+void PairGranMN::unpack_forward_comm(int n, int first, double *buf)
+{
+  double *v = granmn::rows(atom->v), *omega = granmn::rows(atom->omega);
+  int m = 0;
+  if (domain->dimension == 3) {
+    for (int i = first; i < first + n; i++) {
+      const std::ptrdiff_t row = granmn::row_start(i, 3);
+      for (int c = 0; c < 3; c++) v[row + c] = buf[m++];
+      for (int c = 0; c < 3; c++) omega[row + c] = buf[m++];
+    }
+  } else {
+    for (int i = first; i < first + n; i++) {
+      const std::ptrdiff_t row = granmn::row_start(i, 3);
+      v[row] = buf[m++];
+      v[row + 1] = buf[m++];
+      omega[row + 2] = buf[m++];
+    }
+  }
+}
+
 // pair_style gran/mn kn K e E beta B mu MU [wall_types T ...] [limit_damping] [coulomb_cutback]
 void PairGranMN::settings(int narg, char **arg)
 {
@@ -519,9 +571,12 @@ void PairGranMN::init_style()
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "Pair style gran/mn requires atom attributes radius, rmass, omega, torque "
                       "(atom_style sphere)");
-  if (comm->ghost_velocity == 0)
-    error->all(FLERR, "Pair style gran/mn requires ghost atoms store velocity "
-                      "(comm_modify vel yes)");
+  // LAMMPS's own comm_modify vel yes sends x, v and omega of every ghost, 3 values each, with
+  // a generic loop; without it LAMMPS sends x alone, and this style sends v and omega at
+  // compute(), only the components the law reads (the same values: a pair's force is
+  // bitwise the same either way)
+  sends_ghost_velocity = comm->ghost_velocity == 0;
+  comm_forward = sends_ghost_velocity ? (domain->dimension == 3 ? 6 : 3) : 0;
   check_wall_types();
   check_bumps();
   granmn::check_disc_integration(lmp, "pair_style gran/mn");

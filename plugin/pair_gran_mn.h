@@ -28,6 +28,7 @@ class PairGranMN : public Pair {
   void settings(int, char **) override;
   void coeff(int, char **) override;
   void init_style() override;
+  void setup() override;
   double init_one(int, int) override;
   void write_restart(FILE *) override;
   void read_restart(FILE *) override;
@@ -37,6 +38,10 @@ class PairGranMN : public Pair {
   // The law as derived for the current settings (granmn::LAW_EXTRACT_NAME): the wall fix takes
   // it from here.
   void *extract(const char *, int &) override;
+  // The ghosts' velocity and spin, which the law reads, when LAMMPS does not send them
+  // (comm_modify vel no): what compute() sends them with.
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
   void GRANMN_TRANSFER_HISTORY(, ) override;
 #ifdef GRANMN_PAIR_HAS_ATOM2CUT
   double atom2cut(int) override;
@@ -53,6 +58,9 @@ class PairGranMN : public Pair {
   granmn::ContactObserver *observer;    // nullptr unless fix contacts/mn is defined
   std::vector<std::pair<int, int>> excluded_types;    // type pairs this style excluded
   bool law_reported;
+  // comm_modify vel no: this style sends the ghosts' v and omega itself at each compute,
+  // in 2D only vx, vy and omega_z (comm_forward values an atom)
+  bool sends_ghost_velocity = false;
   double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units
   double *max_radius;                // per type, for the cutoffs
 

@@ -81,8 +81,12 @@ ERRORS = {
              fix="fix floor all wall/gran/mn xcylinder 0.0 NULL"),
         "unknown wall style xcylinder (expected xplane, yplane, zplane or zcylinder; other "
         "shapes: fix wall/gran/region/mn)"),
-    "ghost velocities off": (deck(comm="comm_modify vel no"),
-                             "requires ghost atoms store velocity"),
+    # without comm_modify vel yes the pair style sends the ghosts' v and omega itself, but not
+    # fix deform's shift of them across the periodic boundary (LAMMPS's own communication's)
+    "ghost velocities off under fix deform remap v": (
+        deck(comm="comm_modify vel no",
+             fix="fix shear all deform 1 x erate 0.01 remap v"),
+        "with fix deform remap v requires comm_modify vel yes"),
     "time step above stability limit": (deck(timestep="timestep 0.003"),
                                         "exceeds the stability limit"),
     "wall fix without pair style": (

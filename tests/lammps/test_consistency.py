@@ -44,13 +44,14 @@ def mirrored_data(source, target, box_length=10.0):
 
 
 def full_run(settled, workdir, newton="on", nprocs=1, mu=0.5, shuffle=False,
-             integrator="nve/sphere disc"):
+             integrator="nve/sphere disc", ghost_velocity="yes"):
     # shuffle: rebuild neighbor lists every step and re-sort atoms often, so that contacts
     # are handed between the two atoms' lists (and ranks) many times while they last
     shuffle_settings = "atom_modify sort 7 0.5\n" if shuffle else ""
     shuffle_neighbors = "neigh_modify every 1 delay 0 check no\n" if shuffle else ""
     deck = f"""
 newton {newton}
+comm_modify vel {ghost_velocity}
 processors * 1 1
 {shuffle_settings}{BOUNDARY}read_data {settled}
 {shuffle_neighbors}
@@ -92,6 +93,20 @@ def test_same_trajectory_with_newton_and_ranks(settled, reference, tmp_path, new
     difference = np.max(np.abs(state(other) - state(reference)))
     print(f"newton {newton}, {nprocs} ranks, shuffle {shuffle}: max difference {difference:.2e}")
     assert difference < ROUNDING
+
+
+@pytest.mark.parametrize("newton,nprocs", [("on", 1), ("on", 2), ("off", 2)])
+def test_the_pair_style_sending_ghost_velocities_gives_the_same_trajectory(
+        settled, reference, tmp_path, newton, nprocs):
+    """Without comm_modify vel yes pair_style gran/mn sends the ghosts' v and omega itself: the
+    same values, so the same forces and trajectory to the bit, across the periodic boundary and
+    between ranks. (A ghost whose velocity is not sent keeps zeros or stale values: the pairs
+    across a boundary get other damping forces, and the pile moves otherwise.)"""
+    sent_by_lammps = (reference if (newton, nprocs) == ("on", 1) else
+                      full_run(settled, tmp_path / "lammps", newton=newton, nprocs=nprocs))
+    sent_by_pair = full_run(settled, tmp_path / "pair", newton=newton, nprocs=nprocs,
+                            ghost_velocity="no")
+    assert np.array_equal(state(sent_by_pair), state(sent_by_lammps))
 
 
 def rolling_over_a_bump(angle_deg, gravity, velocity):

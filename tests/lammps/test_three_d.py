@@ -258,7 +258,7 @@ def pile_start(tmp_path_factory):
     return run.workdir / "start.data"
 
 
-def pile_run(start, workdir, newton="on", nprocs=1, shuffle=False, mu=0.5):
+def pile_run(start, workdir, newton="on", nprocs=1, shuffle=False, mu=0.5, ghost_velocity="yes"):
     dt = law(PILE_KN, 0.7, 0.7)["tau_c"] / 50
     shuffle_settings = ("atom_modify sort 7 0.5\nneigh_modify every 1 delay 0 check no\n"
                         if shuffle else "")
@@ -266,6 +266,8 @@ def pile_run(start, workdir, newton="on", nprocs=1, shuffle=False, mu=0.5):
 newton {newton}
 processors * 1 1
 {PILE_BOUNDARY}
+comm_modify vel {ghost_velocity}
+
 read_data {start}
 {shuffle_settings}group mobile type 1
 pair_style gran/mn kn {PILE_KN} e 0.7 beta 0.7 mu {mu} wall_types 2
@@ -321,6 +323,15 @@ def test_pile_the_same_with_newton_ranks_and_shuffled_lists(pile_start, pile_ref
     run = pile_run(pile_start, tmp_path, newton, nprocs, shuffle)
     assert_same_pile(run, pile_reference, f"newton {newton}, {nprocs} ranks, shuffle {shuffle}")
     assert run.result("sums")[:2] == pile_reference.result("sums")[:2]
+
+
+def test_pile_the_same_to_the_bit_when_the_pair_style_sends_ghost_velocities(pile_start, tmp_path):
+    """Without comm_modify vel yes pair_style gran/mn sends the ghosts' v and omega (all
+    three components of each in 3D) itself, here between two ranks: the same pile to the bit."""
+    by_lammps = pile_run(pile_start, tmp_path / "lammps", nprocs=2)
+    by_pair = pile_run(pile_start, tmp_path / "pair", nprocs=2, ghost_velocity="no")
+    assert np.array_equal(pile_state(by_pair)[0], pile_state(by_lammps)[0])
+    assert np.array_equal(pile_state(by_pair)[1], pile_state(by_lammps)[1])
 
 
 def test_pile_continues_across_a_restart(pile_reference, tmp_path):
