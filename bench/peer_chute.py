@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """LAMMPS's own granular benchmark, bench/in.chute (32000 spheres, a 3D chute on a frozen base),
-from the LAMMPS tree the build uses, in three variants side by side (issue 33,
+from the LAMMPS tree the build uses, in four variants side by side (issue 33,
 docs/performance.md):
 
 - as LAMMPS ships it: pair_style gran/hooke/history 200000 NULL 50 NULL 0.5 0;
@@ -10,6 +10,8 @@ docs/performance.md):
   coulomb_cutback (gran/hooke/history cuts the shear back), `wall_types 2` for the frozen base
   in place of the base's neigh_modify exclude (its contacts take m_i, as gran/hooke's meff
   with a frozen partner);
+- the gran/mn deck without comm_modify vel yes: gran/mn then sends the ghosts' v and omega
+  itself (the same forces to the bit);
 - with pair_style granular (hooke 2e5 50, tangential linear_history 2/7 x 2e5 0 0.5, damping
   mass_velocity);
 - with --baseline-plugin PLUGIN, the gran/mn deck again with another build's plugin (built
@@ -17,7 +19,7 @@ docs/performance.md):
 
 Each variant runs STEPS steps, interleaved, best of --repeat: the loop time times LAMMPS's CPU
 share, the Pair time, LAMMPS's timer breakdown, memory per rank, and the final kinetic energy
-(the three simulate the same flow: gran/mn's k_t is (2 k_n - eta_n^2)/7 per unit mass, times
+(they simulate the same flow: gran/mn's k_t is (2 k_n - eta_n^2)/7 per unit mass, times
 m: 0.08 % below gran/hooke's 2/7 k_n, so their energies agree closely, not exactly).
 Then each variant's CPU and Pair time against gran/hooke/history's of the same round, the
 median over the rounds with their range: on a machine whose speed drifts (a shared one: its
@@ -62,9 +64,13 @@ def variants(shipped, mn_law):
                 f"linear_history {2 / 7 * KN!r} 0 {MU!r} damping mass_velocity")
     pair = "pair_style\tgran/hooke/history 200000.0 NULL 50.0 NULL 0.5 0\npair_coeff\t* *\n"
     exclude = "neigh_modify\texclude group bottom bottom\n"
-    assert pair in shipped and exclude in shipped, "bench/in.chute is not the one this reads"
+    ghost_velocity = "comm_modify\tvel yes\n"
+    assert pair in shipped and exclude in shipped and ghost_velocity in shipped, \
+        "bench/in.chute is not the one this reads"
+    with_mn = shipped.replace(pair, mn + "\npair_coeff * *\n").replace(exclude, "")
     return {"gran/hooke/history": shipped,
-            "gran/mn": shipped.replace(pair, mn + "\npair_coeff * *\n").replace(exclude, ""),
+            "gran/mn": with_mn,
+            "gran/mn, comm_modify vel no": with_mn.replace(ghost_velocity, ""),
             "granular": shipped.replace(pair, granular + "\n")}
 
 
@@ -102,7 +108,7 @@ def main():
                         help="also the gran/mn deck with this granmnplugin.so (another build "
                              "of the plugin against the same LAMMPS), paired with gran/mn")
     parser.add_argument("--decks", type=Path, metavar="DIR",
-                        help="write the three decks (in.<variant>, STEPS steps) and data.chute "
+                        help="write the decks (in.<variant>, STEPS steps) and data.chute "
                              "into DIR and run nothing: for callgrind (docs/performance.md)")
     args = parser.parse_args()
     build = args.build.resolve()
@@ -147,21 +153,22 @@ def main():
                 if name not in best or result["cpu"] < best[name]["cpu"]:
                     best[name] = result
     reference = best["gran/hooke/history"]
-    print(f"{'variant':<20} {'CPU s':>8} {'/hooke':>7} {'Pair s':>8} {'/hooke':>7} "
+    print(f"{'variant':<28} {'CPU s':>8} {'/hooke':>7} {'Pair s':>8} {'/hooke':>7} "
           f"{'MB/rank':>8} {'KE':>14}  " + " ".join(f"{s:>6}" for s in SECTIONS) + "  (% loop)")
     for name, r in best.items():
-        print(f"{name:<20} {r['cpu']:8.3f} {r['cpu'] / reference['cpu']:7.3f} {r['pair']:8.3f} "
+        print(f"{name:<28} {r['cpu']:8.3f} {r['cpu'] / reference['cpu']:7.3f} {r['pair']:8.3f} "
               f"{r['pair'] / reference['pair']:7.3f} {r['memory']:8.2f} {r['ke']:14.8g}  " +
               " ".join(f"{r['sections'][s]:6.1f}" for s in SECTIONS))
     if "granular" in best:
         print(f"gran/mn / granular: CPU {best['gran/mn']['cpu'] / best['granular']['cpu']:.3f}")
     print(f"paired with gran/hooke/history in each of the {len(rounds)} rounds: median (min-max)")
     pairs = [(name, "gran/hooke/history") for name in best if name != "gran/hooke/history"]
+    pairs.append(("gran/mn, comm_modify vel no", "gran/mn"))
     if BASELINE in best:
         pairs.append(("gran/mn", BASELINE))
     for name, against in pairs:
         label = name if against == "gran/hooke/history" else f"{name} / {against}"
-        print(f"{label:<28}" + "".join(
+        print(f"{label:<38}" + "".join(
             f" {key} " + median_and_range(paired_ratios(rounds, name, against,
                                                         lambda result: result[field]))
             for key, field in (("CPU", "cpu"), ("Pair", "pair"))))
