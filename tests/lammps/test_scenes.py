@@ -8,7 +8,7 @@ import pytest
 from collision_decks import two_disks
 from granmn_run import law, run_lammps, run_scene
 
-from postprocess.signals import dominant_period, trend
+from postprocess.signals import dominant_period
 
 SINGLE_KN = 0.5e5    # the paper's stiffness for the single disk
 
@@ -116,17 +116,20 @@ def test_the_softest_disk_has_no_steady_rolling_state(tmp_path):
 
 
 def test_collisional_flow_reaches_a_steady_energy(tmp_path):
-    """After a transient of 200, the energy per disk has no trend: the slope of 10 block means
-    over [200, 500) is within 3 standard errors of zero (blocks of 30 time units are much
-    longer than the time between collisions, so their means are nearly independent)."""
-    run = run_scene("collisional_flow", tmp_path, kn=0.125e5, run_time=500, average_start=200)
+    """After a transient of 200 the energy per disk is steady: its mean over [500, 800) is
+    within a factor 1.6 of its mean over [200, 500). A flow with no steady state, gaining
+    energy as it did from rest (mean rate over the start-up), gives 650/350 = 1.86; one that
+    comes to rest gives ~0. The bound is 3.1 times the scatter of the log of that ratio in
+    16 runs of the same physics (seeds 1-7 and 2003, newton on and off: sd 0.15): the energy
+    wanders by ~15 % over hundreds of time units, so a slope judged by the scatter of 30-unit
+    block means (which failed at 3 standard errors in 4 of those runs over [200, 800)) is not
+    the test. With restitution 0.9 in place of 0.7 the flow accelerates: the ratio is 3.5."""
+    run = run_scene("collisional_flow", tmp_path, kn=0.125e5, run_time=800, average_start=200)
     t, e = energy(run)
-    slope, error = trend(t, e, 200, 500)
-    steady = e[t >= 200].mean()
-    print(f"steady E {steady:.3f}; trend {slope:.2e} +- {error:.2e} per unit time")
-    assert abs(slope) <= 3 * error
-    assert abs(slope) * 300 < 0.2 * steady            # and small in absolute terms
-    assert e[t < 10].mean() < 0.5 * steady             # it did start from rest
+    early, late = e[(t >= 200) & (t < 500)].mean(), e[t >= 500].mean()
+    print(f"mean E over [200, 500) {early:.3f}, over [500, 800) {late:.3f}")
+    assert 1 / 1.6 < late / early < 1.6
+    assert e[t < 10].mean() < 0.5 * early              # it did start from rest
 
 
 def test_frictional_flow_writes_its_series(tmp_path):
