@@ -8,12 +8,15 @@ physics (its mutant points, which must fail it)?
 Per run the observables of its steady window (the mean of its blocks), for the runs that end
 flowing; per scene and variant their mean over the runs and its standard error; a variant
 passes against newton on if every observable is within 3.5 combined standard errors and, where
-runs stop, the numbers that stop do not differ (two-sided Fisher exact p >= 0.01). Exit status
+runs stop, the numbers that stop do not differ (two-sided Fisher exact p >= 0.01); with
+fewer than two flowing runs an error is undefined and the variant fails. Exit status
 0 if newton off passes in every scene and every mutant fails, else 1."""
 import json
 import math
 import sys
 from pathlib import Path
+
+from postprocess.engines import mean_and_error    # scripts/postprocess links the package
 
 OBSERVABLES = ["E_total", "N_c", "N_w", "t_c", "t_w"]
 Z_MAX = 3.5
@@ -45,15 +48,6 @@ def fisher_two_sided(a, b, c, d):
                         if chance(x) <= observed * (1 + 1e-9)))
 
 
-def mean_and_error(values):
-    n = len(values)
-    mean = sum(values) / n
-    if n < 2:
-        return mean, math.inf
-    variance = sum((v - mean) ** 2 for v in values) / (n - 1)
-    return mean, math.sqrt(variance / n)
-
-
 def main(directory):
     runs = {}
     for path in sorted(Path(directory).rglob("*.json")):
@@ -79,7 +73,7 @@ def main(directory):
             for o in OBSERVABLES:
                 values = [sum(r["measured"]["window"]["blocks"][o]) /
                           len(r["measured"]["window"]["blocks"][o]) for r in flowing]
-                stats[o] = mean_and_error(values) if values else (math.nan, math.inf)
+                stats[o] = mean_and_error(values) if values else (math.nan, math.nan)
             table[name] = (len(summaries), len(flowing), stats)
         print(f"{scene} (mean over the flowing runs, standard error):")
         print(f"  {'variant':<26} {'runs':>4} {'flow':>4}  " +
