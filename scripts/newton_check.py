@@ -22,7 +22,7 @@ OBSERVABLES = ["E_total", "N_c", "N_w", "t_c", "t_w"]
 Z_MAX = 3.5
 FISHER_P_MIN = 0.01
 # the mutants of the config: (variable, value) -> a wrong-physics variant
-MUTANTS = {("e", 0.65), ("mu", 0.4)}
+MUTANTS = {("e", 0.65), ("mu", 0.4), ("mu", 0.25)}
 
 
 def variant(summary):
