@@ -21,17 +21,19 @@ from postprocess.engines import mean_and_error    # scripts/postprocess links th
 OBSERVABLES = ["E_total", "N_c", "N_w", "t_c", "t_w"]
 Z_MAX = 3.5
 FISHER_P_MIN = 0.01
-# the mutants of the config: (variable, value) -> a wrong-physics variant
-MUTANTS = {("e", 0.65), ("mu", 0.4), ("mu", 0.25)}
+# what every point of the config sets; a point that sets anything else is a mutant
+SETTINGS = {"scene", "seed", "run_time", "average_start", "newton"}
 
 
 def variant(summary):
-    """The run's variant: 'newton on', 'newton off', or the mutant variable it changes."""
+    """The run's variant: 'newton on', 'newton off', or a mutant named by what it changes."""
     values = summary["variables"]
-    for name, value in MUTANTS:
-        if name in values and float(values[name]) == value:
-            return f"{name} = {value:g} (newton on)"
-    return f"newton {values['newton']}"
+    changed = sorted(set(values) - SETTINGS)
+    if not changed:
+        return f"newton {values['newton']}"
+    shown = (f"{values[n]}" if isinstance(values[n], str) else f"{values[n]:g}" for n in changed)
+    return ", ".join(f"{name} = {value}" for name, value in zip(changed, shown)) + \
+        f" (newton {values['newton']})"
 
 
 def fisher_two_sided(a, b, c, d):
