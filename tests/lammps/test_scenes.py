@@ -120,10 +120,12 @@ def test_collisional_flow_reaches_a_steady_energy(tmp_path):
     within a factor 1.6 of its mean over [200, 500). A flow with no steady state, gaining
     energy as it did from rest (mean rate over the start-up), gives 650/350 = 1.86; one that
     comes to rest gives ~0. The bound is 3.1 times the scatter of the log of that ratio in
-    16 runs of the same physics (seeds 1-7 and 2003, newton on and off: sd 0.15): the energy
-    wanders by ~15 % over hundreds of time units, so a slope judged by the scatter of 30-unit
-    block means (which failed at 3 standard errors in 4 of those runs over [200, 800)) is not
-    the test. With restitution 0.9 in place of 0.7 the flow accelerates: the ratio is 3.5."""
+    16 runs of the same physics (inputs/sweeps/collisional_steadiness.toml: seeds 1-7 and 2003,
+    newton on and off, 0.063 CPU-hours; scripts/steadiness_calibration.py
+    data/collisional_steadiness: sd 0.153, ratios 0.78-1.26): the energy wanders by ~15 % over
+    hundreds of time units, so a slope judged by the scatter of 30-unit block means (which
+    failed at 3 standard errors in 4 of those runs over [200, 800)) is not the test. With
+    restitution 0.9 in place of 0.7 the flow accelerates: the ratio is 3.47."""
     run = run_scene("collisional_flow", tmp_path, kn=0.125e5, run_time=800, average_start=200)
     t, e = energy(run)
     early, late = e[(t >= 200) & (t < 500)].mean(), e[t >= 500].mean()
