@@ -1,7 +1,7 @@
 """Runs a grid of scene points described in a TOML config, resumably, with progress and ETA.
 
     scripts/sweep.py CONFIG [--output DIR] [--jobs N | --partitions P] [--ranks R]
-                     [--checkpoint-interval T] [--dry-run]
+                     [--checkpoint-interval T] [--set NAME=VALUE ...] [--dry-run]
 
 Config (TOML):
 
@@ -69,7 +69,7 @@ from pathlib import Path
 
 from granmn_sweep import SweepError
 from granmn_sweep import processes
-from granmn_sweep.config import expand, load_config, point_name
+from granmn_sweep.config import expand, load_config, point_name, with_settings
 from granmn_sweep.cost import CostModel, format_seconds, predicted_steps
 from granmn_sweep.decks import ROOT, engine
 from granmn_sweep.points import check_output, check_path, foreign, lock_output
@@ -97,6 +97,10 @@ def main(argv=None):
                         help="checkpoints every T time units (the deck's checkpoint_interval) "
                              "for the points that do not set one: a killed point resumes from "
                              "its last (default 0: none); not part of a point's name")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        help="a deck variable for every point, as if in the config's "
+                             "[defaults] (replacing its value there; a grid may not set it); "
+                             "repeatable")
     parser.add_argument("--dry-run", action="store_true",
                         help="list the points and the predicted cost, run nothing")
     parser.add_argument("--build", type=Path, default=ROOT / "build")
@@ -118,7 +122,7 @@ def main(argv=None):
              "mn_law": args.build / "plugin" / "mn-law",
              "mpiexec": shutil.which("mpirun") or "mpirun"}
     try:
-        config = load_config(args.config)
+        config = with_settings(load_config(args.config), args.set, args.config)
         points = expand(config, args.config)
         engines = {engine(p) for p in points}
         if args.partitions and engines != {"lammps"}:

@@ -38,6 +38,22 @@ def load_config(path):
     return config
 
 
+
+def with_settings(config, settings, path):
+    """The config with each --set NAME=VALUE in its [defaults], replacing the file's value (the
+    same sweep at another setting of one variable). A grid that sets NAME itself is refused:
+    the grid's value would win, so the --set would be silently void there."""
+    defaults = dict(config.get("defaults", {}))
+    for setting in settings:
+        name, equals, value = setting.partition("=")
+        if not equals or not value or not NAME.match(name):
+            raise SweepError(f"--set {setting}: expected NAME=VALUE, NAME a deck variable")
+        for number, grid in enumerate(config["grid"], 1):
+            if name in grid:
+                raise SweepError(f"--set {setting}: grid {number} of {path} sets {name} itself")
+        defaults[name] = value
+    return dict(config, defaults=defaults)
+
 def expand(config, path):
     """The points of the config: dicts of deck variables, each with a scene."""
     points = []

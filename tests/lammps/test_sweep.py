@@ -360,6 +360,25 @@ def test_one_value_is_one_point_whatever_its_spelling(tmp_path):
     assert names == ["kn50000_seed1"] * 4 + ["kn1e+06_seed1"] * 3
 
 
+
+def test_set_gives_every_point_the_variable(tmp_path):
+    """--set NAME=VALUE is a [defaults] entry: it replaces the file's value there and names
+    every point; where a grid sets NAME itself (the grid would win) and where it is not
+    NAME=VALUE, the sweep is refused before anything runs."""
+    config = tmp_path / "set.toml"
+    config.write_text('[defaults]\nnewton = "on"\n[[grid]]\nscene = "collisional_flow"\n'
+                      'seed = [1, 2]\n[[grid]]\nscene = "collisional_flow"\nseed = 3\n'
+                      'kn = 1e5\n')
+    listing = sweep(config, tmp_path / "out", "--set", "newton=off", "--dry-run").stdout
+    assert re.findall(r"collisional_flow/(\S+)", listing) == [
+        "newtonoff_seed1", "newtonoff_seed2", "kn100000_newtonoff_seed3"]
+    for setting, message in (("kn=2e5", "--set kn=2e5: grid 2 of"),
+                             ("newton", "--set newton: expected NAME=VALUE"),
+                             ("=off", "--set =off: expected NAME=VALUE")):
+        proc = sweep(config, tmp_path / "out", "--set", setting, check=False)
+        assert proc.returncode == 2 and message in proc.stderr, proc.stderr
+    assert not (tmp_path / "out").exists()
+
 def single_disk_config(tmp_path, text):
     config = tmp_path / "sweep.toml"
     config.write_text('[[grid]]\nscene = "single_disk"\n' + text)
