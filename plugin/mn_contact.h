@@ -14,6 +14,7 @@
 #define MN_CONTACT_H
 
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 namespace mn {
@@ -293,6 +294,20 @@ inline void rotate_into_tangent_plane(const double n[3], double ut[3])
   for (int c = 0; c < 3; c++) ut[c] *= rescale;
 }
 
+// Whether sqrt(square) <= cap, without the square root (whose latency a sticking contact's
+// force waited for): square <= cap^2, the product rounded. Exact wherever cap^2 is a normal
+// number: the rounded square root of the rounded cap^2 is cap again (cap^2's relative error
+// of at most u = 2^-53 moves its root by at most u/2, less than half of cap's ulp), and
+// rounding and the square root keep order. false where cap^2 underflows or overflows, or is
+// NaN: the caller then compares sqrt(square) with cap, so the outcome is that comparison's in
+// every case, to the bit.
+inline bool certainly_within(double square, double cap)
+{
+  const double cap_squared = cap * cap;
+  return cap_squared >= std::numeric_limits<double>::min() &&
+         cap_squared <= std::numeric_limits<double>::max() && square <= cap_squared;
+}
+
 struct Force3 {
   double fn;      // along n, positive = repulsive
   double ft[3];   // tangential force on i
@@ -313,9 +328,13 @@ inline Force3 tangential_force3(const Law &law, double force_scale, const Kinema
   }
   double trial[3];
   for (int c = 0; c < 3; c++) trial[c] = -force_scale * (law.kt * ut[c] + law.eta_t * k.vt[c]);
-  const double magnitude =
-      std::sqrt(trial[0] * trial[0] + trial[1] * trial[1] + trial[2] * trial[2]);
+  const double square = trial[0] * trial[0] + trial[1] * trial[1] + trial[2] * trial[2];
   const double cap = law.material.mu * std::fabs(f.fn);
+  if (certainly_within(square, cap)) {
+    for (int c = 0; c < 3; c++) f.ft[c] = trial[c];
+    return f;
+  }
+  const double magnitude = std::sqrt(square);
   if (magnitude > cap) {
     f.sliding = true;
     const double shrink = cap / magnitude;

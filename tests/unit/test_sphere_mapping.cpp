@@ -381,6 +381,40 @@ TEST(Law3D, CoulombCapAndCutback)
   }
 }
 
+// The Coulomb test without a square root (mn::certainly_within) says "within" exactly where
+// sqrt(square) > cap is false, for caps over the whole range of doubles (cap^2 underflowing and
+// overflowing at the ends) and squares within a few ulps of cap^2, where the rounding decides:
+// a bound a few ulps more generous, or one that trusts an underflowed or overflowed cap^2, says
+// "within" for contacts that slide. Above cap^2 it leaves the decision to the square root.
+TEST(Law3D, CoulombTestWithoutSquareRootAgreesWithTheSquareRoot)
+{
+  unsigned long state = 2003;
+  const auto uniform = [&state]() {    // a 64-bit LCG's top 53 bits: [0, 1)
+    state = state * 6364136223846793005UL + 1442695040888963407UL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  int within = 0, left_to_the_root = 0;
+  for (int trial = 0; trial < 200000; trial++) {
+    const double cap = std::ldexp(1.0 + uniform(), static_cast<int>(uniform() * 1100.0) - 560);
+    const double cap_squared = cap * cap;
+    double square = cap_squared;
+    const int ulps = static_cast<int>(uniform() * 16.0) - 8;
+    for (int k = 0; k < std::abs(ulps); k++)
+      square = std::nextafter(square, ulps < 0 ? 0.0 : HUGE_VAL);
+    const bool sliding = std::sqrt(square) > cap;
+    if (mn::certainly_within(square, cap)) {
+      within++;
+      ASSERT_FALSE(sliding) << "cap " << cap << " square " << square;
+    } else {
+      left_to_the_root++;
+    }
+  }
+  EXPECT_GT(within, 50000);
+  EXPECT_GT(left_to_the_root, 50000);
+  EXPECT_FALSE(mn::certainly_within(0.0, 0.0));
+  EXPECT_FALSE(mn::certainly_within(std::nan(""), 1.0));
+}
+
 // A contact in the xy plane with spins about z: the 3D law gives the 2D law's force, torque and
 // u_t (u_t = u t, t = z x n) step after step, with and without sliding and cut-back, for a pair
 // and against a wall. This fixes the 3D signs (v_t, the torque) to the 2D ones.
