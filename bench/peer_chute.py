@@ -24,6 +24,9 @@ m: 0.08 % below gran/hooke's 2/7 k_n, so their energies agree closely, not exact
 Then each variant's CPU and Pair time against gran/hooke/history's of the same round, the
 median over the rounds with their range: on a machine whose speed drifts (a shared one: its
 best-of times can come from rounds of different speed) the paired ratio is the steadier one.
+Last, issue 33's goals for gran/mn (at most 1.0x gran/hooke/history's CPU, at most 0.7x pair
+granular's) judged on those paired ratios: met, not met or undecided by a one-sided sign test
+(bench/paired.py; 7 rounds of 7, 8 of 9 or 15 of 21 decide).
 
     bench/peer_chute.py [--steps 400] [--repeat 3] [--build build] [--decks DIR]
                         [--baseline-plugin PLUGIN]"""
@@ -37,13 +40,15 @@ import tempfile
 from pathlib import Path
 
 from mn_law import derived    # bench/mn_law.py links scripts/mn_law.py
-from paired import median_and_range, paired_ratios
+from paired import against_goal, median_and_range, paired_ratios
 
 ROOT = Path(__file__).resolve().parent.parent
 SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
 MASS = math.pi / 6           # data.chute: diameter 1, density 1
 KN, GAMMA_N, MU = 2e5, 50.0, 0.5
 BASELINE = "gran/mn, baseline"    # the variant of --baseline-plugin
+# issue 33's goals for gran/mn's CPU per step, judged on the paired ratios (bench/paired.py)
+GOALS = {"gran/hooke/history": 1.0, "granular": 0.7}
 
 
 def restitution_for(eta_n, kn):
@@ -166,12 +171,19 @@ def main():
     pairs.append(("gran/mn, comm_modify vel no", "gran/mn"))
     if BASELINE in best:
         pairs.append(("gran/mn", BASELINE))
+    if "granular" in best:
+        pairs.append(("gran/mn", "granular"))
     for name, against in pairs:
         label = name if against == "gran/hooke/history" else f"{name} / {against}"
         print(f"{label:<38}" + "".join(
             f" {key} " + median_and_range(paired_ratios(rounds, name, against,
                                                         lambda result: result[field]))
             for key, field in (("CPU", "cpu"), ("Pair", "pair"))))
+    for against, goal in GOALS.items():
+        if against in best:
+            cpu = paired_ratios(rounds, "gran/mn", against, lambda result: result["cpu"])
+            print(f"goal: gran/mn's CPU at most {goal:g}x {against}'s: "
+                  f"{against_goal(cpu, goal)}")
     return 0
 
 
