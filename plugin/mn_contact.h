@@ -330,20 +330,19 @@ inline Force3 tangential_force3(const Law &law, double force_scale, const Kinema
   for (int c = 0; c < 3; c++) trial[c] = -force_scale * (law.kt * ut[c] + law.eta_t * k.vt[c]);
   const double square = trial[0] * trial[0] + trial[1] * trial[1] + trial[2] * trial[2];
   const double cap = law.material.mu * std::fabs(f.fn);
-  if (certainly_within(square, cap)) {
-    for (int c = 0; c < 3; c++) f.ft[c] = trial[c];
-    return f;
+  if (!certainly_within(square, cap)) {
+    const double magnitude = std::sqrt(square);
+    if (magnitude > cap) {
+      f.sliding = true;
+      const double shrink = cap / magnitude;
+      for (int c = 0; c < 3; c++) f.ft[c] = shrink * trial[c];
+      if (law.options.coulomb_cutback && law.kt > 0.0)
+        for (int c = 0; c < 3; c++)
+          ut[c] = -(f.ft[c] / force_scale + law.eta_t * k.vt[c]) / law.kt;
+      return f;
+    }
   }
-  const double magnitude = std::sqrt(square);
-  if (magnitude > cap) {
-    f.sliding = true;
-    const double shrink = cap / magnitude;
-    for (int c = 0; c < 3; c++) f.ft[c] = shrink * trial[c];
-    if (law.options.coulomb_cutback && law.kt > 0.0)
-      for (int c = 0; c < 3; c++) ut[c] = -(f.ft[c] / force_scale + law.eta_t * k.vt[c]) / law.kt;
-  } else {
-    for (int c = 0; c < 3; c++) f.ft[c] = trial[c];
-  }
+  for (int c = 0; c < 3; c++) f.ft[c] = trial[c];
   return f;
 }
 
