@@ -294,8 +294,8 @@ inline void rotate_into_tangent_plane(const double n[3], double ut[3])
   for (int c = 0; c < 3; c++) ut[c] *= rescale;
 }
 
-// Whether sqrt(square) <= cap, without the square root (whose latency a sticking contact's
-// force waited for): square <= cap^2, the product rounded. Exact wherever cap^2 is a normal
+// Whether sqrt(square) <= cap (a cap >= 0), without the square root (whose latency a sticking
+// contact's force waited for): square <= cap^2, the product rounded. Exact wherever cap^2 is a normal
 // number: the rounded square root of the rounded cap^2 is cap again (cap^2's relative error
 // of at most u = 2^-53 moves its root by at most u/2, less than half of cap's ulp), and
 // rounding and the square root keep order. false where cap^2 underflows or overflows, or is
