@@ -24,7 +24,7 @@ def test_clearly_below_is_met_and_clearly_above_is_not():
 
 
 def test_a_ratio_at_the_goal_within_the_noise_is_undecided():
-    # 9 rounds, 5 below and 4 above: neither side rejects (p = 0.5 either way)
+    # 9 rounds, 5 below and 4 above: neither side rejects (p = 0.5 and 0.75)
     ratios = [0.98, 0.99, 0.995, 0.997, 0.999, 1.001, 1.003, 1.01, 1.02]
     assert paired.against_goal(ratios, 1.0).startswith("undecided (5 of 9")
 
