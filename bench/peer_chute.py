@@ -57,32 +57,50 @@ def restitution_for(eta_n, kn):
     return math.exp(-math.sqrt(ln2))
 
 
-def variants(shipped, mn_law):
+def gran_mn_style(mn_law):
+    """The pair_style line of gran/mn at gran/hooke/history's stiffness and damping."""
     kn_mn = KN / MASS
     e = restitution_for(GAMMA_N / 2, kn_mn)
     # the law's own mapping (mn-law, the header's) gives back eta_n = 25 for that e
     eta_n = derived(mn_law, kn_mn, e, 1.0, "sphere")["eta_n"]
     assert abs(eta_n - GAMMA_N / 2) < 1e-9 * GAMMA_N, eta_n
-    mn = (f"pair_style gran/mn kn {kn_mn!r} e {e!r} beta 1 mu {MU!r} coulomb_cutback "
-          "wall_types 2")
-    granular = (f"pair_style granular\npair_coeff * * hooke {KN!r} {GAMMA_N!r} tangential "
-                f"linear_history {2 / 7 * KN!r} 0 {MU!r} damping mass_velocity")
-    pair = "pair_style\tgran/hooke/history 200000.0 NULL 50.0 NULL 0.5 0\npair_coeff\t* *\n"
-    exclude = "neigh_modify\texclude group bottom bottom\n"
-    ghost_velocity = "comm_modify\tvel yes\n"
-    assert pair in shipped and exclude in shipped and ghost_velocity in shipped, \
-        "bench/in.chute is not the one this reads"
-    with_mn = shipped.replace(pair, mn + "\npair_coeff * *\n").replace(exclude, "")
+    return (f"pair_style gran/mn kn {kn_mn!r} e {e!r} beta 1 mu {MU!r} coulomb_cutback "
+            "wall_types 2")
+
+
+def with_command(deck, command, replacement):
+    """deck with its one line whose words are those of `command` replaced by the line
+    `replacement` ("" drops it). LAMMPS splits a line at any white space, and its trees write
+    bench/in.chute with tabs (2021) or spaces (2025 on): lines are matched by their words."""
+    lines = deck.splitlines(keepends=True)
+    found = [k for k, line in enumerate(lines) if line.split() == command.split()]
+    if len(found) != 1:
+        sys.exit(f"peer_chute.py: bench/in.chute has {len(found)} lines '{command}' where this "
+                 "reads one: not the deck it was written for")
+    lines[found[0]] = replacement + "\n" if replacement else ""
+    return "".join(lines)
+
+
+def variants(shipped, mn_style):
+    """The decks by variant from LAMMPS's bench/in.chute; mn_style: gran/mn's pair_style line."""
+    hooke = "pair_style gran/hooke/history 200000.0 NULL 50.0 NULL 0.5 0"
+    exclude = "neigh_modify exclude group bottom bottom"
+    ghost_velocity = "comm_modify vel yes"
+    with_command(shipped, ghost_velocity, ghost_velocity)    # the deck has each line once
+    with_mn = with_command(with_command(shipped, hooke, mn_style), exclude, "")
+    granular = with_command(with_command(shipped, hooke, "pair_style granular"), "pair_coeff * *",
+                            f"pair_coeff * * hooke {KN!r} {GAMMA_N!r} tangential linear_history "
+                            f"{2 / 7 * KN!r} 0 {MU!r} damping mass_velocity")
     return {"gran/hooke/history": shipped,
             "gran/mn": with_mn,
-            "gran/mn, comm_modify vel no": with_mn.replace(ghost_velocity, ""),
-            "granular": shipped.replace(pair, granular + "\n")}
+            "gran/mn, comm_modify vel no": with_command(with_mn, ghost_velocity, ""),
+            "granular": granular}
 
 
 def deck_text(plugin, deck, steps):
     """A variant's deck as run: the plugin loaded, `steps` steps, thermo at the last."""
-    text = deck.replace("run\t\t100", f"run\t\t{steps}").replace("thermo\t\t100",
-                                                                 f"thermo\t\t{steps}")
+    text = with_command(with_command(deck, "run 100", f"run {steps}"), "thermo 100",
+                        f"thermo {steps}")
     return f"plugin load {plugin}\n" + text
 
 
@@ -123,7 +141,8 @@ def main():
     version = re.search(r'LAMMPS_VERSION "(.*)"', (tree / "src" / "version.h").read_text())
     print(f"LAMMPS {version.group(1)} ({tree}); {args.steps} steps" +
           ("" if args.decks else f", best of {args.repeat}"))
-    decks = variants((tree / "bench" / "in.chute").read_text(), build / "plugin" / "mn-law")
+    decks = variants((tree / "bench" / "in.chute").read_text(),
+                     gran_mn_style(build / "plugin" / "mn-law"))
     plugins = {name: plugin for name in decks}
     if args.baseline_plugin:
         if not args.baseline_plugin.is_file():
