@@ -16,6 +16,7 @@
 
     bench/run_benchmarks.py [--steps 4000] [--repeat 3] [--side 40] [--scenes-only]
                             [--warmup 10] [--span 10] [--baseline SOURCE_TREE]
+                            [--build build|build-2025|build-2026]
 
 Each figure is the best of --repeat runs, the variants interleaved so that drifts in the
 machine's load hit all of them; the scenes' ratios to the reference loop are also given paired
@@ -30,6 +31,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections import namedtuple
 from pathlib import Path
 
 from equivalent_laws import LIGGGHTS_FLOOR, hooke_history_contacts, liggghts_contacts
@@ -37,11 +39,6 @@ from mn_law import derived    # bench/mn_law.py links scripts/mn_law.py
 from paired import against_goal, median_and_range, paired_ratios
 
 ROOT = Path(__file__).resolve().parent.parent
-BUILD = ROOT / "build"
-LMP = BUILD / "lammps" / "lmp"
-PLUGIN = BUILD / "plugin" / "granmnplugin.so"
-MN_LAW = BUILD / "plugin" / "mn-law"
-REFERENCE_LOOP = BUILD / "bench" / "reference-loop"
 SCENES = {"frictional_flow": "frictional", "collisional_flow": "collisional"}
 # issue 33's goals: a scene as the study runs it (counters and outputs) at most this many times
 # the reference loop's CPU per step, judged on the paired ratios (bench/paired.py)
@@ -57,8 +54,20 @@ VECTOR_MEMSET = {"GLIBC_TUNABLES": ":".join(
     filter(None, (os.environ.get("GLIBC_TUNABLES"), "glibc.cpu.x86_rep_stosb_threshold=1048576")))}
 
 
-def law():
-    return derived(MN_LAW, KN, E, BETA)
+class Build(namedtuple("Build", "directory lmp plugin mn_law reference_loop")):
+    """What a checkout's build directory holds: ./scripts/build.sh makes `build` (Debian 12's
+    LAMMPS), `--lammps 2025` and `--lammps 2026` make `build-2025` and `build-2026`."""
+
+    @classmethod
+    def of(cls, tree, name):
+        directory = tree / name
+        return cls(directory, directory / "lammps" / "lmp",
+                   directory / "plugin" / "granmnplugin.so", directory / "plugin" / "mn-law",
+                   directory / "bench" / "reference-loop")
+
+
+def law(build):
+    return derived(build.mn_law, KN, E, BETA)
 
 
 def data_file(path, side):
@@ -78,8 +87,8 @@ def data_file(path, side):
     path.write_text("\n".join(lines) + "\n")
 
 
-def lammps_deck(data, style, counters, steps, dt):
-    c = law()
+def lammps_deck(build, data, style, counters, steps, dt):
+    c = law(build)
     common = f"""
 units lj
 dimension 2
@@ -91,7 +100,7 @@ read_data {data}
 set type 1 mass 1.0
 """
     if style == "gran/mn":
-        contact = f"""plugin load {PLUGIN}
+        contact = f"""plugin load {build.plugin}
 {common}
 pair_style gran/mn kn {KN} e {E} beta {BETA} mu {MU}
 pair_coeff * *
@@ -110,8 +119,8 @@ run {steps}
 """
 
 
-def liggghts_deck(data, steps, dt):
-    c = law()
+def liggghts_deck(build, data, steps, dt):
+    c = law(build)
     return f"""
 atom_style granular
 dimension 2
@@ -145,17 +154,19 @@ def run(command, deck, work):
     return loop, (float(memory.group(1)) if memory else float("nan")), wall
 
 
-def scene_run(source, scene, counters, timer, integration, environment, dt_fraction, warmup,
-              span, work):
-    """One scene deck of `source` (a checkout with build/plugin), with `environment` added to
+def scene_run(lmp, source, scene, counters, timer, integration, environment, dt_fraction,
+              warmup, span, work):
+    """One scene deck and plugin of `source` (a Build of a checkout, its plugin built against
+    lmp's LAMMPS), run by lmp with `environment` added to
     lmp's (or nothing): CPU us/step over the span after the warm-up (the deck's second run), its
     timer breakdown (% of the loop; None unless the deck's timer is normal or full), mean E per
     disk over the span."""
     out = work / f"{scene}-{counters}-{timer}-{integration}-{bool(environment)}"
     out.mkdir(exist_ok=True)
-    command = [str(LMP), "-in", str(source / "inputs" / f"{scene}.lmp"), "-log", "none",
-               "-var", "plugin", str(source / "build" / "plugin" / "granmnplugin.so"),
-               "-var", "lib", str(source / "inputs" / "lib"), "-var", "out", str(out),
+    tree = source.directory.parent
+    command = [str(lmp), "-in", str(tree / "inputs" / f"{scene}.lmp"), "-log", "none",
+               "-var", "plugin", str(source.plugin),
+               "-var", "lib", str(tree / "inputs" / "lib"), "-var", "out", str(out),
                "-var", "kn", repr(KN), "-var", "run_time", repr(warmup + span),
                "-var", "average_start", repr(warmup), "-var", "stop_energy", "0",
                "-var", "dt_fraction", repr(dt_fraction)]
@@ -185,11 +196,11 @@ def scene_run(source, scene, counters, timer, integration, environment, dt_fract
     return 1e6 * seconds / steps, breakdown, sum(in_span) / len(in_span)
 
 
-def reference_run(scene, dt_fraction, warmup, span, loop=REFERENCE_LOOP):
-    """The reference loop on the same scene, time step and span: CPU us/step, E per disk,
+def reference_run(build, scene, dt_fraction, warmup, span):
+    """build's reference loop on the same scene, time step and span: CPU us/step, E per disk,
     contacts per step."""
-    dt = min(dt_fraction * law()["tau_c"], 1e-4)    # as the decks (dt_cap 1e-4)
-    proc = subprocess.run([str(loop), SCENES[scene], repr(KN), repr(dt_fraction),
+    dt = min(dt_fraction * law(build)["tau_c"], 1e-4)    # as the decks (dt_cap 1e-4)
+    proc = subprocess.run([str(build.reference_loop), SCENES[scene], repr(KN), repr(dt_fraction),
                            repr(warmup), str(int(span / dt))],
                           capture_output=True, text=True, check=True)
     fields = proc.stdout.split()
@@ -198,7 +209,7 @@ def reference_run(scene, dt_fraction, warmup, span, loop=REFERENCE_LOOP):
         float(values["contacts_per_step"])
 
 
-def scene_comparison(args, work):
+def scene_comparison(args, build, work):
     """Each scene in LAMMPS (counters on, off; the baseline's) against the reference loop,
     the variants interleaved, best of --repeat; then each variant against the reference loop
     of the same round, the median over the rounds with their range (the machine's speed drifts
@@ -206,13 +217,13 @@ def scene_comparison(args, work):
     # The decks run LAMMPS's timer at `loop` (the total only); the breakdown comes from the same
     # run with the timer at `normal`, which costs a few % more.
     # (source, counters, timer, integration, environment); None: the deck's default
-    variants = {"LAMMPS, counters + outputs": (ROOT, "yes", None, None, None),
-                "LAMMPS, counters off": (ROOT, "no", None, None, None),
-                "LAMMPS, counters + outputs, timer": (ROOT, "yes", "normal", None, None),
-                "LAMMPS, fix nve/sphere + gravity": (ROOT, "yes", None, "separate", None),
-                "LAMMPS, memset by vector stores": (ROOT, "yes", None, None, VECTOR_MEMSET)}
+    variants = {"LAMMPS, counters + outputs": (build, "yes", None, None, None),
+                "LAMMPS, counters off": (build, "no", None, None, None),
+                "LAMMPS, counters + outputs, timer": (build, "yes", "normal", None, None),
+                "LAMMPS, fix nve/sphere + gravity": (build, "yes", None, "separate", None),
+                "LAMMPS, memset by vector stores": (build, "yes", None, None, VECTOR_MEMSET)}
     if args.baseline:
-        baseline = Path(args.baseline).resolve()
+        baseline = Build.of(Path(args.baseline).resolve(), args.build)
         variants["baseline, counters + outputs"] = (baseline, None, None, None, None)
         variants["baseline, counters off"] = (baseline, "no", None, None, None)
     print(f"Scenes at kn = {KN:g}, dt = tau_c x {args.dt_fraction:g}, {args.span:g} time units "
@@ -224,16 +235,16 @@ def scene_comparison(args, work):
         for _ in range(args.repeat):
             rounds.append({})
             for name, (source, counters, timer, integration, environment) in variants.items():
-                result = scene_run(source, scene, counters, timer, integration, environment,
-                                   args.dt_fraction, args.warmup, args.span, work)
+                result = scene_run(build.lmp, source, scene, counters, timer, integration,
+                                   environment, args.dt_fraction, args.warmup, args.span, work)
                 rounds[-1][name] = result[0]
                 if name not in best or result[0] < best[name][0]:
                     best[name] = result
-            loops = {"reference": REFERENCE_LOOP}
+            loops = {"reference": build}
             if args.baseline:
-                loops["baseline reference"] = baseline / "build" / "bench" / "reference-loop"
+                loops["baseline reference"] = baseline
             for key, loop in loops.items():
-                reference = reference_run(scene, args.dt_fraction, args.warmup, args.span, loop)
+                reference = reference_run(loop, scene, args.dt_fraction, args.warmup, args.span)
                 rounds[-1][key] = reference[0]
                 if key not in best or reference[0] < best[key][0]:
                     best[key] = reference
@@ -264,7 +275,7 @@ def scene_comparison(args, work):
                                                     "reference"), GOALS[scene]))
 
 
-def sweep_comparison(work):
+def sweep_comparison(build, work):
     """Two short single-disk points: one 2-partition run against two serial runs."""
     config = work / "sweep.toml"
     config.write_text('[defaults]\nrun_time = 40\naverage_start = 10\n'
@@ -274,7 +285,7 @@ def sweep_comparison(work):
         out = work / mode
         start = time.time()
         subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"), str(config),
-                        "--output", str(out), *extra], check=True, capture_output=True, env=ENV)
+                        "--output", str(out), "--build", str(build.directory), *extra], check=True, capture_output=True, env=ENV)
         times[mode] = time.time() - start
     return times
 
@@ -293,20 +304,28 @@ def main():
                         help="the scenes' dt in units of tau_c (the decks' default; the paper "
                              "presets use 0.05 and 0.1)")
     parser.add_argument("--baseline", help="another checkout, built, to run the scenes of too")
+    parser.add_argument("--build", default="build",
+                        help="the build directory of this checkout (and of the baseline's) to "
+                             "run: build (Debian 12's LAMMPS), build-2025 or build-2026 (the "
+                             "LAMMPS of ./scripts/build.sh --lammps 2025 or 2026)")
     args = parser.parse_args()
-    for path in (LMP, PLUGIN, MN_LAW, REFERENCE_LOOP):
+    build = Build.of(ROOT, args.build)
+    for path in build[1:]:
         if not path.exists():
             sys.exit(f"{path} is missing: run ./scripts/build.sh first")
     if args.baseline:
-        for part in ("build/plugin/granmnplugin.so", "build/bench/reference-loop"):
-            if not (Path(args.baseline) / part).exists():
-                sys.exit(f"--baseline {args.baseline}: {part} is missing (the baseline "
-                         "checkout must be built: its ./scripts/build.sh)")
+        baseline = Build.of(Path(args.baseline), args.build)
+        for path in (baseline.plugin, baseline.reference_loop):
+            if not path.exists():
+                sys.exit(f"--baseline {args.baseline}: {path} is missing (the baseline "
+                         "checkout must be built against the same LAMMPS: its "
+                         "./scripts/build.sh)")
+    print(f"LAMMPS of {build.directory}")
     with tempfile.TemporaryDirectory() as tmp:
-        scene_comparison(args, Path(tmp))
+        scene_comparison(args, build, Path(tmp))
     if args.scenes_only:
         return
-    dt = law()["tau_c"] / 50
+    dt = law(build)["tau_c"] / 50
     mpirun = shutil.which("mpirun") or "mpirun"
     liggghts = shutil.which("liggghts")
     n = args.side ** 2
@@ -315,21 +334,24 @@ def main():
         data = work / "pile.data"
         data_file(data, args.side)
         variants = {
-            "gran/hooke/history": ([str(LMP)], lammps_deck(data, "hooke", False, args.steps, dt)),
-            "gran/mn": ([str(LMP)], lammps_deck(data, "gran/mn", False, args.steps, dt)),
-            "gran/mn + contacts/mn": ([str(LMP)], lammps_deck(data, "gran/mn", True, args.steps, dt)),
-            "gran/mn, 2 MPI ranks": ([mpirun, "-np", "2", str(LMP)],
-                                     lammps_deck(data, "gran/mn", False, args.steps, dt)),
+            "gran/hooke/history": ([str(build.lmp)],
+                                   lammps_deck(build, data, "hooke", False, args.steps, dt)),
+            "gran/mn": ([str(build.lmp)],
+                        lammps_deck(build, data, "gran/mn", False, args.steps, dt)),
+            "gran/mn + contacts/mn": ([str(build.lmp)],
+                                      lammps_deck(build, data, "gran/mn", True, args.steps, dt)),
+            "gran/mn, 2 MPI ranks": ([mpirun, "-np", "2", str(build.lmp)],
+                                     lammps_deck(build, data, "gran/mn", False, args.steps, dt)),
         }
         if liggghts:
-            variants["LIGGGHTS hooke/stiffness"] = ([liggghts], liggghts_deck(data, args.steps, dt))
+            variants["LIGGGHTS hooke/stiffness"] = ([liggghts], liggghts_deck(build, data, args.steps, dt))
         best = {}
         for _ in range(args.repeat):
             for name, (command, deck) in variants.items():
                 result = run(command, deck, work)
                 if name not in best or result[0] < best[name][0]:
                     best[name] = result
-        sweep_times = sweep_comparison(work)
+        sweep_times = sweep_comparison(build, work)
 
     base = best["gran/hooke/history"][0]
     print(f"{n} disks, dense flow, {args.steps} steps of dt = tau_c/50, best of {args.repeat}:")
