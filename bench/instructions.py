@@ -27,7 +27,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_benchmarks import KN, LMP, PLUGIN, REFERENCE_LOOP, ROOT, SCENES, law
+from run_benchmarks import KN, ROOT, SCENES, Build, law
 
 DT_FRACTION = 0.01    # the decks' default
 MEMSET = "memset"     # in the name of glibc's memset variants
@@ -50,12 +50,12 @@ def callgrind(command, out_file, cwd):
     return counts
 
 
-def lammps_run(scene, run_time, warmup, work):
+def lammps_run(build, scene, run_time, warmup, work):
     """Counts and final step of the scene deck run for run_time (average_start = warmup)."""
     out = work / f"{scene}-{run_time}"
     out.mkdir()
-    command = [str(LMP), "-in", str(ROOT / "inputs" / f"{scene}.lmp"), "-log", "none",
-               "-screen", "none", "-var", "plugin", str(PLUGIN),
+    command = [str(build.lmp), "-in", str(ROOT / "inputs" / f"{scene}.lmp"), "-log", "none",
+               "-screen", "none", "-var", "plugin", str(build.plugin),
                "-var", "lib", str(ROOT / "inputs" / "lib"), "-var", "out", str(out),
                "-var", "kn", repr(KN), "-var", "run_time", repr(run_time),
                "-var", "average_start", repr(warmup), "-var", "stop_energy", "0",
@@ -65,9 +65,9 @@ def lammps_run(scene, run_time, warmup, work):
     return counts, steps
 
 
-def reference_run(scene, steps, warmup, work):
+def reference_run(build, scene, steps, warmup, work):
     """Counts of the reference loop measured over `steps` steps after the warm-up."""
-    command = [str(REFERENCE_LOOP), SCENES[scene], repr(KN), repr(DT_FRACTION), repr(warmup),
+    command = [str(build.reference_loop), SCENES[scene], repr(KN), repr(DT_FRACTION), repr(warmup),
                str(steps)]
     return callgrind(command, work / f"reference-{scene}-{steps}.out", work), steps
 
@@ -79,11 +79,11 @@ def per_step(short, long):
     return {name: (b.get(name, 0) - a.get(name, 0)) / steps for name in b}
 
 
-def scene_counts(scene, args, work, pool):
-    dt = min(DT_FRACTION * law()["tau_c"], 1e-4)    # as the decks choose it (dt_cap 1e-4)
-    lammps = [pool.submit(lammps_run, scene, args.warmup + s, args.warmup, work)
+def scene_counts(build, scene, args, work, pool):
+    dt = min(DT_FRACTION * law(build)["tau_c"], 1e-4)    # as the decks choose it (dt_cap 1e-4)
+    lammps = [pool.submit(lammps_run, build, scene, args.warmup + s, args.warmup, work)
               for s in args.spans]
-    reference = [pool.submit(reference_run, scene, round(s / dt), args.warmup, work)
+    reference = [pool.submit(reference_run, build, scene, round(s / dt), args.warmup, work)
                  for s in args.spans]
     return (per_step(*(f.result() for f in lammps)),
             per_step(*(f.result() for f in reference)))
@@ -104,13 +104,17 @@ def main():
                         help="the two runs' time units after the warm-up")
     parser.add_argument("--top", type=int, default=8, help="functions listed per variant")
     parser.add_argument("--scenes", nargs="+", choices=sorted(SCENES), default=list(SCENES))
+    parser.add_argument("--build", default="build",
+                        help="the build directory to count: build (Debian 12's LAMMPS), "
+                             "build-2025 or build-2026")
     args = parser.parse_args()
+    build = Build.of(ROOT, args.build)
     if not args.spans[1] > args.spans[0] > 0:
         sys.exit("--spans S1 S2: 0 < S1 < S2")
     for tool in ("valgrind", "callgrind_annotate"):
         if not shutil.which(tool):
             sys.exit(f"{tool} is missing: apt-get install valgrind")
-    for path in (LMP, PLUGIN, REFERENCE_LOOP):
+    for path in build[1:]:
         if not path.exists():
             sys.exit(f"{path} is missing: run ./scripts/build.sh first")
     print(f"Instructions per step (callgrind), kn = {KN:g}, dt = tau_c x {DT_FRACTION}, between "
@@ -118,7 +122,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp, \
             concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
         for scene in args.scenes:
-            lammps, reference = scene_counts(scene, args, Path(tmp), pool)
+            lammps, reference = scene_counts(build, scene, args, Path(tmp), pool)
             total, base = lammps["PROGRAM TOTALS"], reference["PROGRAM TOTALS"]
             memset = sum(v for k, v in lammps.items() if MEMSET in k)
             base_memset = sum(v for k, v in reference.items() if MEMSET in k)
