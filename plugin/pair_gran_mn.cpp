@@ -412,14 +412,27 @@ void PairGranMN::publish_law()
   }
 }
 
-// A fix deform with remap v shifts the velocities of ghosts across a periodic boundary by the
-// box's rate, in LAMMPS's own ghost communication only; it is known at the run's setup
-// (Domain::init comes after the pair style's).
+// What is known only at a run's setup, after the domain's and the neighbor's init:
+// - a fix deform with remap v shifts the velocities of ghosts across a periodic boundary by
+//   the box's rate, in LAMMPS's own ghost communication only;
+// - bonded atoms (a molecular atom style): LAMMPS keeps a 1-2, 1-3 or 1-4 pair in the neighbor
+//   list, flagged, unless its special_bonds lj and coul weights are both 0 or both 1
+//   (Neighbor::special_flag 2), and its granular styles (2025 on) skip such a pair at lj 0 and
+//   scale its force otherwise. The law weighs no contact: the pair would touch in full.
+//   (LAMMPS 2021's granular lists keep every bonded pair, unflagged, for its own styles as for
+//   this one.)
 void PairGranMN::setup()
 {
   if (sends_ghost_velocity && domain->deform_vremap)
     error->all(FLERR, "Pair style gran/mn with fix deform remap v requires comm_modify vel "
                       "yes (the ghosts' velocities then carry the box's rate)");
+  if (atom->molecular == Atom::ATOMIC) return;
+  for (int level = 1; level <= 3; level++)
+    if (neighbor->special_flag[level] == 2 && force->special_lj[level] != 1.0)
+      error->all(FLERR, "pair_style gran/mn: special_bonds lj {:g} coul {:g} keeps 1-{} pairs in "
+                        "the neighbor list with a weight the law does not apply (a contact of "
+                        "this style is full or absent): use lj 0 with coul 0, or lj 1",
+                 force->special_lj[level], force->special_coul[level], level + 1);
 }
 
 int PairGranMN::pack_forward_comm(int n, int *list, double *buf, int, int *)

@@ -70,6 +70,13 @@ def _run(cmd, workdir, check):
     return run
 
 
+def installed_packages():
+    """The LAMMPS packages this lmp was built with (its -h listing)."""
+    listing = subprocess.run([LMP, "-h"], capture_output=True, text=True, timeout=60).stdout
+    match = re.search(r"^Installed packages:\s*\n\s*\n(.*?)\n\s*\n", listing, re.M | re.S)
+    return set(match.group(1).split()) if match else set()
+
+
 def _command(nprocs):
     return ([MPIEXEC, "-np", str(nprocs)] if nprocs > 1 else []) + [LMP]
 

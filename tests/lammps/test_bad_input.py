@@ -4,7 +4,7 @@ import re
 
 import pytest
 
-from granmn_run import HEADER, PLUGIN, run_lammps
+from granmn_run import HEADER, PLUGIN, installed_packages, run_lammps
 
 GOOD_PAIR = "pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5"
 # a box region around the two disks of deck(), its floor 0.5 below their centres
@@ -303,3 +303,59 @@ def test_neighbor_list_built_once_is_warned_about(tmp_path):
     that meet later never interact. The pair style warns."""
     run = run_lammps(deck(fix="neigh_modify once yes"), tmp_path, header=False)
     assert "neigh_modify once yes builds the neighbor list only at the start of a run" in run.output
+
+
+# bonds need LAMMPS's MOLECULE package: the project's builds have it (CMakeLists.txt), an lmp of
+# one's own may not
+needs_bonds = pytest.mark.skipif("MOLECULE" not in installed_packages(),
+                                 reason="this lmp has no MOLECULE package (bonds)")
+
+
+def bonded_pair(special_bonds, pair=GOOD_PAIR):
+    """Two disks that overlap by a tenth of a diameter, bonded (bond_style zero: no bond force),
+    at rest, no gravity: they move only if the pair style finds them in contact."""
+    return deck(pair=pair, atom_style="atom_style hybrid sphere bond",
+                second="0.9 0.5 0", timestep="timestep 1e-4").replace(
+        "create_box 2 box",
+        "create_box 2 box bond/types 1 extra/bond/per/atom 1 extra/special/per/atom 1").replace(
+        "set type * density/disc", f"""bond_style zero
+bond_coeff 1
+{special_bonds}
+create_bonds single/bond 1 1 2
+set type * density/disc""").replace("run 10", """run 10
+print "RESULT vx $(vx[1]) $(vx[2])"
+""")
+
+
+@pytest.mark.parametrize("special_bonds, level, weights", [
+    # BPM's setting: bonded pairs kept in the list (for the bond to break) at lj weight 0
+    ("special_bonds lj 0 1 1 coul 1 1 1", 2, "lj 0 coul 1"),
+    ("special_bonds lj 0.5 1 1", 2, "lj 0.5 coul 0"),
+    ("special_bonds lj 1 0.5 1", 3, "lj 0.5 coul 0")])
+@needs_bonds
+def test_bonded_pairs_the_law_would_weigh_are_refused(tmp_path, special_bonds, level, weights):
+    run = run_lammps(bonded_pair(special_bonds), tmp_path, header=False, check=False)
+    assert run.returncode != 0, run.output[-2000:]
+    assert f"special_bonds {weights} keeps 1-{level} pairs in the neighbor list" in run.output, \
+        run.output[-2000:]
+
+
+@pytest.mark.parametrize("special_bonds", ["", "special_bonds lj 0 1 1 coul 0 1 1",
+                                           "special_bonds lj 1 1 1"])
+@needs_bonds
+def test_bonded_pairs_touch_where_lammpss_own_granular_style_does(tmp_path, special_bonds):
+    """The weights the style accepts, against gran/hooke/history under the same LAMMPS: a bonded
+    pair kept in the neighbor list at weight 1 touches in both (the disks are pushed apart); at
+    LAMMPS's default weights (lj and coul 0) LAMMPS 2025 on leaves it out of the list, and
+    neither touches, while 2021's granular lists keep it, and both do."""
+    hooke = "pair_style gran/hooke/history 2e5 NULL 50 NULL 0.5 0"
+    runs = {name: run_lammps(bonded_pair(special_bonds, pair), tmp_path / name, header=False)
+            for name, pair in (("gran/mn", GOOD_PAIR), ("hooke", hooke))}
+    touching = {}
+    for name, run in runs.items():
+        vx1, vx2 = run.result("vx")
+        touching[name] = vx1 < 0 < vx2
+        assert touching[name] or vx1 == vx2 == 0.0, (name, vx1, vx2)
+    assert touching["gran/mn"] == touching["hooke"]
+    if special_bonds == "special_bonds lj 1 1 1":
+        assert touching["gran/mn"]
