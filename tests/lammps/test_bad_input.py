@@ -305,10 +305,11 @@ def test_neighbor_list_built_once_is_warned_about(tmp_path):
     assert "neigh_modify once yes builds the neighbor list only at the start of a run" in run.output
 
 
-# bonds need LAMMPS's MOLECULE package: the project's builds have it (CMakeLists.txt), an lmp of
-# one's own may not
-needs_bonds = pytest.mark.skipif("MOLECULE" not in installed_packages(),
-                                 reason="this lmp has no MOLECULE package (bonds)")
+def skip_without_bonds():
+    """Bonds need LAMMPS's MOLECULE package: the project's builds have it (CMakeLists.txt), an
+    lmp of one's own may not."""
+    if "MOLECULE" not in installed_packages():
+        pytest.skip("this lmp has no MOLECULE package (bonds)")
 
 
 def bonded_pair(special_bonds, pair=GOOD_PAIR):
@@ -327,27 +328,38 @@ print "RESULT vx $(vx[1]) $(vx[2])"
 """)
 
 
-@pytest.mark.parametrize("special_bonds, level, weights", [
+# special_bonds settings that keep bonded pairs in the neighbor list with a weight the law
+# would not apply
+BONDED = {
     # BPM's setting: bonded pairs kept in the list (for the bond to break) at lj weight 0
-    ("special_bonds lj 0 1 1 coul 1 1 1", 2, "lj 0 coul 1"),
-    ("special_bonds lj 0.5 1 1", 2, "lj 0.5 coul 0"),
-    ("special_bonds lj 1 0.5 1", 3, "lj 0.5 coul 0")])
-@needs_bonds
-def test_bonded_pairs_the_law_would_weigh_are_refused(tmp_path, special_bonds, level, weights):
+    "bonded pairs listed at lj weight 0": (
+        "special_bonds lj 0 1 1 coul 1 1 1",
+        "special_bonds lj 0 coul 1 keeps 1-2 pairs in the neighbor list"),
+    "bonded pairs at a fractional lj weight": (
+        "special_bonds lj 0.5 1 1",
+        "special_bonds lj 0.5 coul 0 keeps 1-2 pairs in the neighbor list"),
+    "bonded 1-3 pairs at a fractional lj weight": (
+        "special_bonds lj 1 0.5 1",
+        "special_bonds lj 0.5 coul 0 keeps 1-3 pairs in the neighbor list")}
+
+
+@pytest.mark.parametrize("case", sorted(BONDED))
+def test_bonded_pairs_the_law_would_weigh_are_refused(tmp_path, case):
+    skip_without_bonds()
+    special_bonds, message = BONDED[case]
     run = run_lammps(bonded_pair(special_bonds), tmp_path, header=False, check=False)
     assert run.returncode != 0, run.output[-2000:]
-    assert f"special_bonds {weights} keeps 1-{level} pairs in the neighbor list" in run.output, \
-        run.output[-2000:]
+    assert message in run.output, run.output[-2000:]
 
 
 @pytest.mark.parametrize("special_bonds", ["", "special_bonds lj 0 1 1 coul 0 1 1",
                                            "special_bonds lj 1 1 1"])
-@needs_bonds
 def test_bonded_pairs_touch_where_lammpss_own_granular_style_does(tmp_path, special_bonds):
     """The weights the style accepts, against gran/hooke/history under the same LAMMPS: a bonded
     pair kept in the neighbor list at weight 1 touches in both (the disks are pushed apart); at
     LAMMPS's default weights (lj and coul 0) LAMMPS 2025 on leaves it out of the list, and
     neither touches, while 2021's granular lists keep it, and both do."""
+    skip_without_bonds()
     hooke = "pair_style gran/hooke/history 2e5 NULL 50 NULL 0.5 0"
     runs = {name: run_lammps(bonded_pair(special_bonds, pair), tmp_path / name, header=False)
             for name, pair in (("gran/mn", GOOD_PAIR), ("hooke", hooke))}

@@ -19,7 +19,8 @@ DOC = (ROOT / "docs" / "bad_input.md").read_text()
 
 
 def test_every_bad_input_case_is_in_the_table():
-    tables = [test_bad_input.ERRORS, test_counters.BAD, test_nve_disc_mn.BAD, test_scenes.BAD_VARIABLES,
+    tables = [test_bad_input.ERRORS, test_bad_input.BONDED, test_counters.BAD,
+              test_nve_disc_mn.BAD, test_scenes.BAD_VARIABLES,
               test_scenes.BAD_FRICTIONAL_VARIABLES, test_scenes.BAD_SINGLE_DISK_VARIABLES,
               test_sweep.BAD_CONFIGS, test_sweep.BAD_OUTPUTS, test_chute_3d.BAD_3D,
               test_checkpoint.BAD_WINDOWS, test_bad_input_liggghts.BAD,
