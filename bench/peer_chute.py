@@ -86,7 +86,6 @@ def variants(shipped, mn_style):
     hooke = "pair_style gran/hooke/history 200000.0 NULL 50.0 NULL 0.5 0"
     exclude = "neigh_modify exclude group bottom bottom"
     ghost_velocity = "comm_modify vel yes"
-    with_command(shipped, ghost_velocity, ghost_velocity)    # the deck has each line once
     with_mn = with_command(with_command(shipped, hooke, mn_style), exclude, "")
     granular = with_command(with_command(shipped, hooke, "pair_style granular"), "pair_coeff * *",
                             f"pair_coeff * * hooke {KN!r} {GAMMA_N!r} tangential linear_history "
