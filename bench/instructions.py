@@ -114,7 +114,7 @@ def main():
     for tool in ("valgrind", "callgrind_annotate"):
         if not shutil.which(tool):
             sys.exit(f"{tool} is missing: apt-get install valgrind")
-    for path in build[1:]:
+    for path in build.programs:
         if not path.exists():
             sys.exit(f"{path} is missing: run ./scripts/build.sh first")
     print(f"Instructions per step (callgrind), kn = {KN:g}, dt = tau_c x {DT_FRACTION}, between "

@@ -58,6 +58,11 @@ class Build(namedtuple("Build", "directory lmp plugin mn_law reference_loop")):
     """What a checkout's build directory holds: ./scripts/build.sh makes `build` (Debian 12's
     LAMMPS), `--lammps 2025` and `--lammps 2026` make `build-2025` and `build-2026`."""
 
+    @property
+    def programs(self):
+        """What a run needs built: lmp, the plugin, mn-law and the reference loop."""
+        return self[1:]
+
     @classmethod
     def of(cls, tree, name):
         directory = tree / name
@@ -157,10 +162,9 @@ def run(command, deck, work):
 def scene_run(lmp, source, scene, counters, timer, integration, environment, dt_fraction,
               warmup, span, work):
     """One scene deck and plugin of `source` (a Build of a checkout, its plugin built against
-    lmp's LAMMPS), run by lmp with `environment` added to
-    lmp's (or nothing): CPU us/step over the span after the warm-up (the deck's second run), its
-    timer breakdown (% of the loop; None unless the deck's timer is normal or full), mean E per
-    disk over the span."""
+    lmp's LAMMPS), run by lmp with `environment` added to its own (or nothing): CPU us/step
+    over the span after the warm-up (the deck's second run), its timer breakdown (% of the
+    loop; None unless the deck's timer is normal or full), mean E per disk over the span."""
     out = work / f"{scene}-{counters}-{timer}-{integration}-{bool(environment)}"
     out.mkdir(exist_ok=True)
     tree = source.directory.parent
@@ -200,8 +204,8 @@ def reference_run(build, scene, dt_fraction, warmup, span):
     """build's reference loop on the same scene, time step and span: CPU us/step, E per disk,
     contacts per step."""
     dt = min(dt_fraction * law(build)["tau_c"], 1e-4)    # as the decks (dt_cap 1e-4)
-    proc = subprocess.run([str(build.reference_loop), SCENES[scene], repr(KN), repr(dt_fraction),
-                           repr(warmup), str(int(span / dt))],
+    proc = subprocess.run([str(build.reference_loop), SCENES[scene], repr(KN),
+                           repr(dt_fraction), repr(warmup), str(int(span / dt))],
                           capture_output=True, text=True, check=True)
     fields = proc.stdout.split()
     values = dict(zip(fields[::2], fields[1::2]))
@@ -285,7 +289,8 @@ def sweep_comparison(build, work):
         out = work / mode
         start = time.time()
         subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"), str(config),
-                        "--output", str(out), "--build", str(build.directory), *extra], check=True, capture_output=True, env=ENV)
+                        "--output", str(out), "--build", str(build.directory), *extra],
+                       check=True, capture_output=True, env=ENV)
         times[mode] = time.time() - start
     return times
 
@@ -310,7 +315,7 @@ def main():
                              "LAMMPS of ./scripts/build.sh --lammps 2025 or 2026)")
     args = parser.parse_args()
     build = Build.of(ROOT, args.build)
-    for path in build[1:]:
+    for path in build.programs:
         if not path.exists():
             sys.exit(f"{path} is missing: run ./scripts/build.sh first")
     if args.baseline:
@@ -344,7 +349,8 @@ def main():
                                      lammps_deck(build, data, "gran/mn", False, args.steps, dt)),
         }
         if liggghts:
-            variants["LIGGGHTS hooke/stiffness"] = ([liggghts], liggghts_deck(build, data, args.steps, dt))
+            variants["LIGGGHTS hooke/stiffness"] = ([liggghts],
+                                                    liggghts_deck(build, data, args.steps, dt))
         best = {}
         for _ in range(args.repeat):
             for name, (command, deck) in variants.items():

@@ -1,6 +1,7 @@
 """Run lmp with the gran/mn plugin on a deck and read back what it printed.
 
 The paths come from ctest's environment (GRANMN_LMP, GRANMN_PLUGIN, GRANMN_MPIEXEC)."""
+import functools
 import os
 import re
 import subprocess
@@ -70,6 +71,7 @@ def _run(cmd, workdir, check):
     return run
 
 
+@functools.lru_cache(maxsize=None)
 def installed_packages():
     """The LAMMPS packages this lmp was built with (its -h listing)."""
     listing = subprocess.run([LMP, "-h"], capture_output=True, text=True, timeout=60).stdout
