@@ -145,6 +145,42 @@ def test_frictional_flow_writes_its_series(tmp_path):
     assert counts["f_c[2]"].sum() > 0                 # the bottom layer touched the floor
 
 
+def start_of(run):
+    """The first frame of snapshots.lammpstrj (sorted by id) and the box's x extent."""
+    lines = (run.workdir / "snapshots.lammpstrj").read_text().splitlines()
+    box = [float(v) for v in lines[lines.index("ITEM: BOX BOUNDS pp fm pp") + 1].split()]
+    start = lines.index(next(l for l in lines if l.startswith("ITEM: ATOMS")))
+    end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("ITEM:")),
+               len(lines))
+    data = np.loadtxt(lines[start + 1:end], ndmin=2)
+    names = lines[start].split()[2:]
+    data = data[np.argsort(data[:, 0])]
+    return box, {name: data[:, k] for k, name in enumerate(names)}
+
+
+@pytest.mark.parametrize("width", [10, 40])
+def test_the_frictional_width_sets_the_rows_and_the_slope(tmp_path, width):
+    """width disks a row, ten rows, the slope 1.002 x width long: the disks start on the
+    lattice of spacing 1.002 along x and row_spacing (4) across, the last width ids (the top
+    row) raised by up to top_rise (2); params.txt names a width other than the paper's 10, and
+    the paper's leaves it as it was before the width was a deck variable."""
+    run = run_scene("frictional_flow", tmp_path, kn=0.125e5, run_time=0.2, average_start=0.1,
+                    width=width)
+    box, atoms = start_of(run)
+    assert box == [0.0, 1.002 * width]
+    n = 10 * width
+    assert np.array_equal(atoms["id"], np.arange(1, n + 1))
+    column, row = np.divmod(np.arange(n), width)[::-1]
+    assert np.allclose(atoms["x"], 1.002 * (column + 0.5), atol=1e-12)
+    below, top = row < 9, row == 9
+    assert np.allclose(atoms["y"][below], 4.0 * (row[below] + 0.5), atol=1e-12)
+    rise = atoms["y"][top] - 4.0 * 9.5
+    assert rise.min() >= 0 and rise.max() <= 2.0 and np.ptp(rise) > 0.5
+    params = dict(l.split() for l in (tmp_path / "params.txt").read_text().splitlines())
+    assert params["n_mobile"] == str(n)
+    assert params.get("width") == (None if width == 10 else str(width))
+
+
 @pytest.mark.parametrize("e", [0.5, 0.7])
 def test_integrators_agree_on_a_binary_collision(tmp_path, e):
     """Both converge to e; their difference shrinks as dt does (Verlet's first-order error
@@ -222,6 +258,8 @@ BAD_FRICTIONAL_VARIABLES = {
     "negative stop energy": (dict(stop_energy=-0.5), "stop_energy = -0.5 must be >= 0"),
     "stop time below the output interval": (dict(stop_time=0.05),
                                             "stop_time = 0.05 must be >= output_interval"),
+    "one disk a row": (dict(width=1), "width = 1 must be an integer >= 2"),
+    "a disk and a half a row": (dict(width=2.5), "width = 2.5 must be an integer >= 2"),
 }
 
 
