@@ -3,6 +3,7 @@
 python3 -m postprocess transition SWEEP_DIR [--output DIR]
 python3 -m postprocess summarize RESULTS_DIR [--to DIR] [--replace]
 python3 -m postprocess engines SWEEP_DIR [SWEEP_DIR ...] [--output DIR]
+python3 -m postprocess finite-size SWEEP_DIR [SWEEP_DIR ...] [--output DIR] [selection options]
 
 Several SWEEP_DIRs are analysed as one sweep (a preset and its extension, e.g. data/chute_3d
 data/chute_3d_stiff); the output goes to the first's report/ or limit/ unless --output says.
@@ -26,6 +27,10 @@ engines     a scene run in two engines (a point's engine: lammps, liggghts; docs
             per k_n, E, N_c, t_c and t_c - N_c tau_c of each engine (means over the seeds)
             and whether they agree, in DIR (default SWEEP_DIR/engines); exit status 1 if
             they differ on one or nothing could be compared
+finite-size the frictional scene at several widths (the deck's width, docs/hard_sphere_limit.md
+            "The width"): per law, k_n and width how the runs ended, each quantity's mean,
+            error and scatter, the width dependence against the widest width, and the width
+            and seeds the rule gives the wide series, in DIR (default SWEEP_DIR/finite-size)
 summarize   one compact summary per run of RESULTS_DIR, DIR/<scene>/<point>.json (default
             DIR: data/<name of RESULTS_DIR> in the repository); report and compare take a
             directory of summaries as SWEEP_DIR as well as a results directory (docs/sweeps.md);
@@ -59,6 +64,7 @@ from .transition import analyse_transition
 from .runs import load_runs
 from .write_compare import write_compare
 from .write_engines import write_engines
+from .write_finite_size import write_finite_size
 from .write_limit import write_limit
 from .write_report import write_report
 from .write_summaries import write_summaries
@@ -71,7 +77,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m postprocess", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("command", choices=("report", "compare", "transition", "limit",
-                                            "summarize", "engines"))
+                                            "summarize", "engines", "finite-size"))
     parser.add_argument("sweeps", type=Path, nargs="+", metavar="sweep")
     parser.add_argument("--output", type=Path)
     parser.add_argument("--to", type=Path)
@@ -124,13 +130,14 @@ def main(argv=None):
         print(f"summaries: {len(written)} runs written in {to} ({size / 1024:.0f} kB)" +
               (f", {len(kept)} kept as they were" if kept else ""))
         return 0
-    if args.command == "engines":
+    if args.command in ("engines", "finite-size"):
         try:
             runs = load_runs(sources, selection)
         except DataError as error:
             print(f"postprocess: {error}", file=sys.stderr)
             return 2
-        return write_engines(named, runs, out)
+        write = write_engines if args.command == "engines" else write_finite_size
+        return write(named, runs, out)
     if args.command == "transition":
         try:
             runs, groups, left_out = analyse_transition(args.sweep)
