@@ -1,0 +1,3 @@
+#include "mn_collision.h"
+#include <gtest/gtest.h>
+TEST(Placeholder, Builds) { SUCCEED(); }
