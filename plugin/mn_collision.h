@@ -276,7 +276,7 @@ class SoftLimitTable {
                  int steps = SOFT_LIMIT_STEPS)
       : law_(law), partner_(partner), tolerance_(tolerance), steps_(steps)
   {
-    normal_ratio_ = -soft_limit_collision(law_, partner_, {-1.0, 0.0}, steps_).out.vn;
+    normal_ratio_ = soft_limit_collision(law_, partner_, {-1.0, 0.0}, steps_).out.vn;
     const int initial = 16;
     const double right = 0.5 * PI;
     phi_.push_back(0.0);
@@ -292,7 +292,7 @@ class SoftLimitTable {
   {
     const double speed = std::hypot(in.vn, in.vt);
     const double phi = std::atan2(std::fabs(in.vt), std::fabs(in.vn));
-    return {-normal_ratio_ * in.vn, std::copysign(speed * interpolate(phi), in.vt)};
+    return {-normal_ratio_ * in.vn, (in.vt < 0.0 ? -speed : speed) * interpolate(phi)};
   }
 
   // H(phi), interpolated.
