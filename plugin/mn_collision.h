@@ -276,7 +276,8 @@ class SoftLimitTable {
                  int steps = SOFT_LIMIT_STEPS)
       : law_(law), partner_(partner), tolerance_(tolerance), steps_(steps)
   {
-    normal_ratio_ = soft_limit_collision(law_, partner_, {-1.0, 0.0}, steps_).out.vn;
+    // the normal outcome is one number: integrated 16 times finer, to rounding
+    normal_ratio_ = soft_limit_collision(law_, partner_, {-1.0, 0.0}, 16 * steps_).out.vn;
     const int initial = 16;
     const double right = 0.5 * PI;
     phi_.push_back(0.0);

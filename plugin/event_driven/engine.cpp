@@ -218,6 +218,7 @@ Engine::Engine(const Start &start, const Settings &settings)
     d.image = 0;
     d.collisions = 0;
     d.last_partner = NO_PARTNER;
+    d.last_encounter = 0;
     d.last_collision = -INFINITY;
     d.disk_collisions = d.boundary_collisions = 0;
     d.cell = d.slot = -1;
@@ -378,8 +379,10 @@ void Engine::predict(int i)
       for (int j : cell_disks_[cell]) {
         if (j == i) continue;
         const Disk &e = disk_[j];
-        // just collided with each other, and neither since: flying apart (free relative flight)
-        if (d.last_partner == j && e.last_partner == i) continue;
+        // just collided with each other, this image of it, and neither since: flying apart
+        // (free relative flight); another periodic image may still come
+        const long long encounter = (offset > 0.0) - (offset < 0.0) + d.image - e.image;
+        if (d.last_partner == j && e.last_partner == i && d.last_encounter == encounter) continue;
         const Flight g = flight(e, now_);
         const double dx = f.x - (g.x + offset), dy = f.y - g.y;
         const double dvx = f.vx - g.vx, dvy = f.vy - g.vy;
@@ -410,7 +413,9 @@ void Engine::collide_disks(int i, int j)
   advance(a, now_);
   advance(b, now_);
   double dx = a.x - b.x;
-  dx -= length_ * std::nearbyint(dx / length_);
+  const double images = std::nearbyint(dx / length_);
+  dx -= length_ * images;
+  const long long encounter = static_cast<long long>(images) + a.image - b.image;
   const double dy = a.y - b.y;
   const double dist = std::hypot(dx, dy), contact = a.radius + b.radius;
   totals_.largest_overlap = std::max(totals_.largest_overlap, (contact - dist) / contact);
@@ -424,6 +429,8 @@ void Engine::collide_disks(int i, int j)
     totals_.grazing++;
     a.last_partner = j;
     b.last_partner = i;
+    a.last_encounter = encounter;
+    b.last_encounter = -encounter;
     predict(i);
     predict(j);
     return;
@@ -443,6 +450,8 @@ void Engine::collide_disks(int i, int j)
   b.collisions++;
   a.last_partner = j;
   b.last_partner = i;
+  a.last_encounter = encounter;
+  b.last_encounter = -encounter;
   a.last_collision = b.last_collision = now_;
   a.disk_collisions++;
   b.disk_collisions++;
@@ -530,7 +539,7 @@ void Engine::cross(int i, int direction)
       add_rows_to(++row);
       break;
     default:
-      if (--row == 0) {
+      if (--row == 0 && (has_floor_ || !bump_.empty())) {
         // row 0 lies below the floor and every bump: the disk has passed the slope (between
         // bumps further apart than its diameter)
         std::ostringstream m;

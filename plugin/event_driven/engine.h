@@ -131,6 +131,7 @@ class Engine {
     long long image;                // periodic images crossed
     std::uint64_t collisions;       // changes of trajectory
     int last_partner;               // of the last collision (none: a value no partner has)
+    long long last_encounter;       // with a disk: which periodic image of it (image difference)
     double last_collision;
     std::uint64_t disk_collisions, boundary_collisions;
   };
