@@ -62,7 +62,7 @@ struct CollapseReport {
 
 // What the run has done so far.
 struct Totals {
-  std::uint64_t events = 0;               // collisions + cell crossings processed
+  std::uint64_t events = 0;               // collisions, cell crossings and grazing contacts
   std::uint64_t disk_collisions = 0;      // each counted once (it involves two disks)
   std::uint64_t boundary_collisions = 0;  // with the floor or a bump
   std::uint64_t tc_collisions = 0;        // of those, made elastic by the TC model

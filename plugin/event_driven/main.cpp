@@ -53,6 +53,13 @@ void write_summary(std::ostream &out, const mn::ed::Engine &engine, mn::ed::Engi
 int main(int argc, char **argv)
 {
   using namespace mn::ed;
+  if (argc < 2 || std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help") {
+    std::cerr << "usage: mn-event-driven [PARAMETER_FILE ...] [name=value ...]\n"
+                 "  start=FILE run_time=T [events=N] [out=DIR] [scene=NAME] [rule=paper|soft]\n"
+                 "  [tangential=literal|cutback] [e beta mu e_w beta_w g sin_theta]\n"
+                 "  [collapse=stop|tc] [tc_time tc_beta collapse_count collapse_time]\n";
+    return argc < 2 ? 1 : 0;
+  }
   try {
     std::vector<Parameter> parameters;
     for (int k = 1; k < argc; k++) {

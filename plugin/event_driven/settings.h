@@ -24,12 +24,19 @@ enum class OnCollapse {
   TC       // the TC model throughout: a collision within tc_time of a disk's previous is elastic
 };
 
+// The defaults of rule (a) at the boundary that go with e and beta: the soft law's own boundary
+// restitutions (e_w of docs/model.md section 3; beta_w of a sticking boundary collision, which
+// is e_w when beta = e), so that rule (a) and rule (b) meet where the contact sticks. For
+// beta <= 0 (outside the soft law's range) beta_w defaults to beta.
+PaperRule boundary_defaults(double e, double beta, double mu);
+
 struct Settings {
   double g = 1.0;             // gravity's magnitude (the unit: g = 1)
   double sin_theta = 0.0;     // the slope: gravity (g sin(theta), -g cos(theta))
   RuleKind rule = RuleKind::Paper;
   PaperRule disk{0.7, 0.7, 0.5};        // rule (a) between disks: e, beta, mu
-  PaperRule boundary{0.7, 0.7, 0.5};    // rule (a) with the boundary: e_w, beta_w, mu
+  PaperRule boundary = boundary_defaults(0.7, 0.7, 0.5);    // rule (a) with the boundary:
+                                                          // e_w, beta_w, mu
   bool coulomb_cutback = false;         // rule (b): the law's u_t reading
   OnCollapse on_collapse = OnCollapse::Stop;
   double tc_time = 0.0;       // the TC model's t_c (on_collapse TC)
@@ -42,12 +49,6 @@ struct Settings {
   // The rule of a collision the TC model makes elastic.
   PaperRule tc_rule() const { return {1.0, tc_beta, disk.mu}; }
 };
-
-// The defaults of rule (a) at the boundary that go with e and beta: the soft law's own boundary
-// restitutions (e_w of docs/model.md section 3; beta_w of a sticking boundary collision, which
-// is e_w when beta = e), so that rule (a) and rule (b) meet where the contact sticks. For
-// beta <= 0 (outside the soft law's range) beta_w defaults to beta.
-PaperRule boundary_defaults(double e, double beta, double mu);
 
 // One name=value, and where it came from ("the command line", "FILE line N").
 struct Parameter {

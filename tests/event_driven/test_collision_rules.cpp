@@ -308,6 +308,7 @@ TEST(SoftLimit, SoftCollisionsApproachItAtFirstOrderInTauC)
     const mn::ContactVelocity rule_a =
         mn::after_impulse(impact, mn::paper_impulse(paper, 1.0, 3.0, impact), 1.0, 3.0);
     std::vector<double> tau, to_b, to_a;
+    soft::Scene stiffest;
     for (double kn : {1e5, 1e6, 1e7, 1e8}) {
       const mn::Law law = mn::derive({kn, 0.7, 0.7, 0.5}, options);
       soft::Scene s;
@@ -317,8 +318,8 @@ TEST(SoftLimit, SoftCollisionsApproachItAtFirstOrderInTauC)
       const mn::ContactVelocity in = soft::contact_velocity(s);
       ASSERT_NEAR(in.vn, -1.0, 1e-15);
       ASSERT_NEAR(in.vt, c.x, 1e-15);
-      const mn::ContactVelocity out =
-          soft::contact_velocity(soft::collide(law, s, c.bump ? law.tau_w : law.tau_c, 4000));
+      stiffest = soft::collide(law, s, c.bump ? law.tau_w : law.tau_c, 4000);
+      const mn::ContactVelocity out = soft::contact_velocity(stiffest);
       tau.push_back(law.tau_c);
       to_b.push_back(std::hypot(out.vn - limit.vn, out.vt - limit.vt));
       to_a.push_back(std::hypot(out.vn - rule_a.vn, out.vt - rule_a.vt));
@@ -327,6 +328,25 @@ TEST(SoftLimit, SoftCollisionsApproachItAtFirstOrderInTauC)
     EXPECT_GT(order, 0.9) << "x " << c.x << " bump " << c.bump << " cutback " << c.cutback;
     EXPECT_LT(order, 1.1) << "x " << c.x << " bump " << c.bump << " cutback " << c.cutback;
     EXPECT_LT(to_b[3], 1e-2);
+    // the disks' own velocities and spins: rule (b)'s impulse applied by apply_impulse (the
+    // spins turned as the law's torque turns them) against the stiffest soft collision's, to
+    // its distance from the limit (a spin turned the wrong way is off by O(1))
+    {
+      mn::DiskMotion a{1.0, -c.x, 0.0, 1.0, 0.5, 0.125};
+      mn::DiskMotion b{0.0, 0.0, 0.0, c.d_b * c.d_b, 0.5 * c.d_b, 0.125 * c.d_b * c.d_b * c.d_b * c.d_b};
+      mn::DiskMotion *partner_motion = c.bump ? nullptr : &b;
+      const double m = mn::collision_reduced_mass(a, partner_motion), q = mn::collision_q(a, partner_motion);
+      mn::apply_impulse(-1.0, 0.0, mn::impulse_between(impact, limit, m, q), a, partner_motion);
+      const double bound = 3.0 * to_b[3] / std::min(1.0, m);
+      EXPECT_NEAR(stiffest.a.vx, a.vx, bound);
+      EXPECT_NEAR(stiffest.a.vy, a.vy, bound);
+      EXPECT_NEAR(stiffest.a.w, a.omega, bound / 0.5);
+      if (!c.bump) {
+        EXPECT_NEAR(stiffest.b.vx, b.vx, bound);
+        EXPECT_NEAR(stiffest.b.vy, b.vy, bound);
+        EXPECT_NEAR(stiffest.b.w, b.omega, bound / (0.5 * c.d_b));
+      }
+    }
     const double a_to_b = std::hypot(rule_a.vn - limit.vn, rule_a.vt - limit.vt);
     if (a_to_b > 0.03) {    // sliding, where the rules differ: rule (a) is not the limit
       EXPECT_GT(to_a[3], 0.5 * a_to_b) << "x " << c.x;
