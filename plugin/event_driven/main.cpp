@@ -86,10 +86,12 @@ int main(int argc, char **argv)
       if (engine.collapse()) std::ofstream(run.out + "/collapse.txt") << engine.collapse()->describe() << "\n";
     }
     if (stop == Engine::Stop::Collapse) {
-      std::cerr << "ERROR: " << engine.collapse()->describe()
+      const CollapseReport &c = *engine.collapse();
+      std::cerr << "ERROR: " << c.describe()
                 << (run.settings.on_collapse == OnCollapse::Stop
                         ? " (collapse = stop; collapse = tc with tc_time > 0 continues under the TC model)"
-                        : " (under the TC model: tc_time is too short to prevent it)")
+                        : c.grazing ? " (under the TC model: a lasting contact, which no restitution makes into collisions)"
+                                    : " (under the TC model: tc_time is too short to prevent it)")
                 << "\n";
       return 3;
     }
