@@ -154,12 +154,17 @@ def test_frictional_point_outside_the_energy_range_is_refused(tmp_path):
     ("negative", r"energy.txt:6: e_trans is -0.5, negative: it is an energy, a rate, a time "
                  "fraction or a count"),
     ("negative counter", r"energy.txt:6: time_disk is -1, negative"),
+    ("negative count", r"counts.txt: atom 2 of the snapshot: f_c\[1\] is -160, negative"),
     # a hand-edited params.txt, or one another tool wrote: its last value was taken
     ("params twice", r"params.txt:15: kn given twice \(line 2 gives it too\): which value the "
                      "run took cannot be told"),
 ])
 def test_broken_outputs_name_the_file_and_the_problem(tmp_path, damage, message):
     point = write_point(tmp_path, truncate=(damage == "truncate"))
+    if damage == "negative count":
+        lines = (point / "counts.txt").read_text().splitlines()
+        lines[-3] = lines[-3].replace(" 160.0 ", " -160.0 ")
+        (point / "counts.txt").write_text("\n".join(lines) + "\n")
     if damage == "params twice":
         with open(point / "params.txt", "a") as params:
             params.write("kn 100000\n")
