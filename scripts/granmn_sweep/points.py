@@ -1,6 +1,7 @@
-"""The output directory and its points' directories: the paths LAMMPS can carry, the lock, which
-directories the runner may remove, a point's fresh start or resume from its checkpoint, a
-failed resume set aside, a run's outcome (done.txt, timing.json, failed.txt)."""
+"""The output directory and its points' directories: the paths LAMMPS can carry, the names the
+filesystem takes, the lock, which directories the runner may remove, a point's fresh start or
+resume from its checkpoint, a failed resume set aside, a run's outcome (done.txt, timing.json,
+failed.txt)."""
 import fcntl
 import json
 import os
@@ -10,6 +11,7 @@ import shutil
 import checkpoints
 from granmn_sweep import SweepError
 from granmn_sweep import processes
+from postprocess.rundir import SUMMARY_SUFFIX     # scripts/postprocess links the package
 
 # What LAMMPS's input syntax does not carry in a file name: a word ends at whitespace;
 # quotes, $ (a variable) and # (a comment) are syntax.
@@ -35,6 +37,43 @@ def check_output(output):
                 raise SweepError(f"--output {output}: {path} is a file, not a directory; "
                                  "choose another --output")
             return
+
+
+def name_limit(output):
+    """The longest file name, in bytes, that the filesystem of `output` (or of the nearest
+    directory above it that exists) takes: its PC_NAME_MAX; 255, the common limit, where the
+    system does not say; None where it sets none."""
+    for path in (output, *output.parents):
+        if path.is_dir():
+            try:
+                limit = os.pathconf(path, "PC_NAME_MAX")
+            except (OSError, ValueError, AttributeError):
+                return 255
+            return limit if limit > 0 else None
+    return 255
+
+
+def check_names(output, names):
+    """names: [(scene, point name)]. A point's directory is named by its variables, and its
+    summary (postprocess summarize) by the point: both must fit the filesystem's limit on a
+    name, or the point would fail at its start (ENAMETOOLONG), after the points before it had
+    run. The names are kept whole (the name is how a run is known, in its summary and the
+    reports): a point whose name does not fit is refused."""
+    limit = name_limit(output)
+    if limit is None:
+        return
+    size = {name: len(os.fsencode(name)) for _, name in names}
+    over = [(scene, name) for scene, name in names
+            if size[name] + len(os.fsencode(SUMMARY_SUFFIX)) > limit]
+    if over:
+        scene, name = max(over, key=lambda point: size[point[1]])
+        raise SweepError(
+            f"{len(over)} point{'s with names' if len(over) > 1 else ' with a name'} too long "
+            f"for the filesystem of {output}, which takes names of at most {limit} bytes: "
+            f"{scene}/{name[:60]}... is {size[name]} bytes, and its summary "
+            f"<point>{SUMMARY_SUFFIX} must fit too (a point's directory is named by all its "
+            "variables, those of [defaults] and --set included): set fewer variables (one at "
+            "its deck's default need not be set) or shorter values")
 
 
 def foreign(directory, point):
@@ -201,24 +240,46 @@ def finish(directory, token, status, elapsed, cpu, logs, output, variables, note
 def lock_output(output):
     """Holds <output>/sweep.lock while the sweep runs (an flock: the kernel lets go when the
     runner dies, kill -9 included); two sweeps on one output would run its points twice at
-    once."""
-    try:
-        output.mkdir(parents=True, exist_ok=True)
-        handle = open(output / "sweep.lock", "a+")
-    except OSError as error:    # made a file since check_output, or not writable
-        raise SweepError(f"--output {output}: {error.strerror}; choose another --output")
-    try:
-        fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except BlockingIOError:
-        handle.seek(0)
-        holder = handle.read().strip() or "unknown"
-        handle.close()
-        raise SweepError(f"{output} is in use by another sweep (pid {holder}, "
-                         f"{output / 'sweep.lock'}): let it end or stop it")
+    once. unlock_output removes the file: a lock taken on a file removed meanwhile is taken
+    again on the file now there."""
+    path = output / "sweep.lock"
+    while True:
+        try:
+            output.mkdir(parents=True, exist_ok=True)
+            handle = open(path, "a+")
+        except OSError as error:    # made a file since check_output, or not writable
+            raise SweepError(f"--output {output}: {error.strerror}; choose another --output")
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            handle.seek(0)
+            holder = handle.read().strip() or "unknown"
+            handle.close()
+            raise SweepError(f"{output} is in use by another sweep (pid {holder}, {path}): let "
+                             "it end or stop it")
+        try:
+            held = os.fstat(handle.fileno())
+            there = os.stat(path)
+        except FileNotFoundError:
+            there = None
+        if there is not None and (held.st_dev, held.st_ino) == (there.st_dev, there.st_ino):
+            break
+        handle.close()      # the sweep that held it removed it: lock the one now there
     handle.truncate(0)
     handle.write(f"{os.getpid()}\n")
     handle.flush()
     return handle
+
+
+def unlock_output(handle):
+    """Lets go of the lock lock_output took, removing sweep.lock (while still holding it)."""
+    if handle is None:
+        return
+    try:
+        os.unlink(handle.name)
+    except OSError:
+        pass
+    handle.close()
 
 
 def cpu_seconds(directories):

@@ -15,7 +15,7 @@ from postprocess.rundir import RUNNING     # scripts/postprocess links the packa
 # those in a process group of its own) is a session of its own: a signal reaches all of it.
 _runs = {}
 _runs_lock = threading.RLock()   # the signal handler takes it too, in the main thread
-stopped_by = []                 # the signal that stopped the sweep
+stopped_by = []                 # what stopped the sweep: a signal, or None (the runner failed)
 _libc = ctypes.CDLL(None, use_errno=True)
 PR_SET_PDEATHSIG = 1
 SIGTERM = int(signal.SIGTERM)
@@ -92,13 +92,19 @@ def run_alive(record):
     return (start is None or start == record.get("start")) and bool(session_processes(leader))
 
 
-def stop(signum, frame):
-    """SIGTERM, SIGINT: no run is started any more and the runs under way are stopped; their
-    points are run again when the sweep is."""
+def stop_runs(cause):
+    """No run is started any more and the runs under way are stopped (SIGTERM); their points
+    are run again when the sweep is. cause: the signal's number, None where the runner itself
+    failed."""
     with _runs_lock:
-        stopped_by.append(signum)
+        stopped_by.append(cause)
         for pid in _runs:
             signal_session(pid, SIGTERM)
+
+
+def stop(signum, frame):
+    """SIGTERM, SIGINT: the sweep stops (stop_runs)."""
+    stop_runs(signum)
 
 
 def start(command, output, env, directories):

@@ -166,30 +166,35 @@ def run_points(plan, todo, output, paths, env, jobs, partitions, ranks, extra, m
     refused = []    # points whose directory became another's during the sweep: not run
     # runs start in pool threads only: the main thread takes the signals
     with concurrent.futures.ThreadPoolExecutor(max_workers=1 if partitions else jobs) as pool:
-        if partitions:
-            queue, number = list(todo), 0
-            while queue and not processes.stopped_by:
-                batch, queue = queue[:partitions], queue[partitions:]
-                results = pool.submit(run_partitions, [(p, d) for p, d, _ in batch],
-                                      output / "batches" / f"batch{number}", paths, env,
-                                      ranks, extra, resume_notes).result()
-                number += 1
-                for (p, d, s), (outcome, elapsed, note) in zip(batch, results):
-                    if outcome == "rerun":
-                        queue.append((p, d, s))
-                    # each point of the batch ran for the batch's wall time
-                    report(p, d, model.predict(p, s), outcome, elapsed, note)
-        else:
-            futures = {pool.submit(run_serial, p, d, paths, env, ranks, extra[d],
-                                   resume_notes): (p, d, s)
-                       for p, d, s in todo}
-            for future in concurrent.futures.as_completed(futures):
-                p, d, s = futures[future]
-                try:
-                    report(p, d, model.predict(p, s), *future.result())
-                except SweepError as error:    # its place taken while the sweep ran
-                    print(f"sweep: {error}", file=sys.stderr)
-                    refused.append(d)
+        try:
+            if partitions:
+                queue, number = list(todo), 0
+                while queue and not processes.stopped_by:
+                    batch, queue = queue[:partitions], queue[partitions:]
+                    results = pool.submit(run_partitions, [(p, d) for p, d, _ in batch],
+                                          output / "batches" / f"batch{number}", paths, env,
+                                          ranks, extra, resume_notes).result()
+                    number += 1
+                    for (p, d, s), (outcome, elapsed, note) in zip(batch, results):
+                        if outcome == "rerun":
+                            queue.append((p, d, s))
+                        # each point of the batch ran for the batch's wall time
+                        report(p, d, model.predict(p, s), outcome, elapsed, note)
+            else:
+                futures = {pool.submit(run_serial, p, d, paths, env, ranks, extra[d],
+                                       resume_notes): (p, d, s)
+                           for p, d, s in todo}
+                for future in concurrent.futures.as_completed(futures):
+                    p, d, s = futures[future]
+                    try:
+                        report(p, d, model.predict(p, s), *future.result())
+                    except SweepError as error:    # its place taken while the sweep ran
+                        print(f"sweep: {error}", file=sys.stderr)
+                        refused.append(d)
+        except BaseException:
+            # the pool's end waits for its threads: no run starts any more, those under way stop
+            processes.stop_runs(None)
+            raise
 
     if processes.stopped_by:
         print(f"sweep: stopped by {signal.Signals(processes.stopped_by[0]).name}; "
