@@ -60,6 +60,9 @@ rounding until, after some time units, the run is another realization of the sam
 A point's directory is named by its variables (those of [defaults] and --set included): a
 point whose name the output's filesystem cannot take (with room for its summary <point>.json,
 `python3 -m postprocess summarize`) is refused before anything runs, --dry-run included.
+A point whose files cannot be written (a full disk) fails with that cause, and a run that ends
+without the deck's last output (done.txt) fails with what the runner can tell of why (a full
+filesystem, a signal, no ERROR line): failed.txt, and the point's progress line.
 
 Exit status: 0 all done, 1 some points failed, 2 refused (a bad config or path, a busy output),
 3 the runner itself failed (an unexpected error: its message and traceback on stderr; the runs

@@ -109,7 +109,8 @@ def stop(signum, frame):
 
 def start(command, output, env, directories):
     """Starts a run with what it prints in `output`, unless the sweep is stopping; the
-    directories' running.json names it."""
+    directories' running.json names it. Where running.json cannot be written (a full disk),
+    the run is stopped and the OSError raised: no run goes on that nothing names."""
     with _runs_lock:
         if stopped_by:
             return None
@@ -118,8 +119,13 @@ def start(command, output, env, directories):
                                     start_new_session=True, preexec_fn=die_with(os.getpid()))
         _runs[proc.pid] = proc
     record = json.dumps({"pid": proc.pid, "start": process_start(proc.pid)}) + "\n"
-    for directory in directories:
-        (directory / RUNNING).write_text(record)
+    try:
+        for directory in directories:
+            (directory / RUNNING).write_text(record)
+    except OSError:
+        signal_session(proc.pid, signal.SIGKILL)
+        wait(proc, directories)
+        raise
     return proc
 
 

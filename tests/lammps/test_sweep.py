@@ -791,3 +791,43 @@ def test_an_unexpected_error_in_the_runner_stops_its_runs_and_lets_go_of_the_loc
     assert not (output / "sweep.lock").exists() and not processes_mentioning(output)
     assert "0 already done, 3 to run" in sweep(config, output).stdout
     assert not (output / "sweep.lock").exists()
+
+
+@pytest.fixture
+def small_tmpfs(tmp_path):
+    """A 64 KiB tmpfs (root only: `mount -t tmpfs`), unmounted afterwards."""
+    if os.geteuid() != 0:
+        pytest.skip("mounting a tmpfs needs root")
+    mount = tmp_path / "small"
+    mount.mkdir()
+    proc = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=64k", "tmpfs", str(mount)],
+                          capture_output=True, text=True)
+    if proc.returncode != 0:
+        pytest.skip(f"cannot mount a tmpfs here: {proc.stderr.strip()}")
+    try:
+        yield mount
+    finally:
+        subprocess.run(["umount", "-l", str(mount)], capture_output=True)
+
+
+def test_a_full_disk_fails_the_point_with_its_cause(tmp_path, small_tmpfs):
+    """A point whose outputs fill the disk: lmp stops with exit status 1 (fix ave/chunk checks
+    its writes; where LAMMPS does not, it exits 0), its ERROR lost with the log it writes it
+    to, done.txt missing. The point was marked failed with "exit status 1", "no ERROR line",
+    "mend what the ERROR names" (the runner's own write of failed.txt raised, where no byte was
+    left). Now its progress line and failed.txt name the full filesystem and done.txt."""
+    config = single_disk_config(tmp_path, "run_time = 100\naverage_start = 1\n")
+    proc = sweep(config, small_tmpfs / "out", check=False)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    assert "Traceback" not in proc.stderr, proc.stderr
+    point = next((small_tmpfs / "out" / "single_disk").iterdir())
+    cause = re.search(rf"\] FAILED single_disk/{point.name} in [\d.]+ s \((exit status \d+: the "
+                      rf"filesystem of {re.escape(str(point))} is full \(\d+ bytes free: "
+                      r"ENOSPC\), and done.txt, the deck's last output, is (empty|missing): the "
+                      r"run's outputs are cut short[^;]*)(; failed.txt could not be written "
+                      r"\(No space left on device \(ENOSPC\): [^)]*\))?\); ETA", proc.stdout)
+    assert cause, proc.stdout
+    assert "no ERROR line" not in proc.stdout and "mend what the ERROR" not in proc.stdout
+    if not cause.group(3):      # failed.txt fitted in what was left
+        assert (point / "failed.txt").read_text().startswith(cause.group(1) + "\n")
+    assert not (small_tmpfs / "out" / "sweep.lock").exists()
