@@ -27,6 +27,32 @@ ROW_COLUMNS = ("id_i", "id_j", "kind", "start", "duration", "vn_start", "vn_end"
 # boundary (docs/fix_contacts_mn.rst)
 CONTACT_KINDS = {"disk": 1, "boundary": 2}
 
+# The largest magnitude of a value the analysis takes: far beyond any energy, rate, time or count
+# of a run, and small enough that the sums of squares its errors are made of stay finite in
+# doubles (a square overflows above 1.3e154).
+LARGEST = 1e150
+NEGATIVE = "negative: it is an energy, a rate, a time fraction or a count"
+
+
+def checked_values(values, where, non_negative=False):
+    """values (numbers: an array, a list, or a table's rows) as an array of floats if each is
+    one the analysis can average: finite, at most LARGEST in magnitude and, where non_negative
+    (True, or one flag per column), not below 0. Else a DataError on the first that is not:
+    where(*index) names it (a file's line and column, a summary's field). The one rule for the
+    values of a run, whichever file (energy.txt, counts.txt, a summary) they come from."""
+    values = np.asarray(values, dtype=float)
+    finite = np.isfinite(values)
+    huge = finite & (np.abs(np.where(finite, values, 0.0)) > LARGEST)
+    negative = finite & np.asarray(non_negative) & (np.where(finite, values, 0.0) < 0)
+    bad = ~finite | huge | negative
+    if bad.any():
+        index = tuple(int(i) for i in np.argwhere(bad)[0])
+        why = ("not a finite number" if not finite[index] else
+               f"beyond {LARGEST:g} in magnitude, more than any energy, rate, time or count "
+               "of a run (a damaged file?)" if huge[index] else NEGATIVE)
+        raise DataError(f"{where(*index)} is {values[index]:g}, {why}")
+    return values
+
 
 def read_text(path):
     """A file's text (UTF-8); a byte that is not (a damaged or binary file) is a DataError
@@ -44,12 +70,16 @@ def read_params(point):
     path = Path(point) / rundir.PARAMS
     if not path.exists():
         raise DataError(f"{path}: missing (the run did not start its outputs)")
-    params = {}
+    params, given = {}, {}
     for number, line in enumerate(read_text(path).splitlines(), 1):
         words = line.split()
         if len(words) != 2:
             raise DataError(f"{path}:{number}: expected 'name value', got {line!r}")
         name, value = words
+        if name in given:
+            raise DataError(f"{path}:{number}: {name} given twice (line {given[name]} gives it "
+                            "too): which value the run took cannot be told")
+        given[name] = number
         try:
             params[name] = float(value)
         except ValueError:
@@ -80,13 +110,14 @@ def numbers(path, number, words):
         raise DataError(f"{path}:{number}: not a number in {' '.join(words)!r}")
 
 
-def numeric_table(path, columns, comment="#"):
+def numeric_table(path, columns, comment="#", non_negative=()):
     """Rows of whitespace-separated numbers with exactly len(columns) fields, as a dict of
-    arrays. A short, long or non-numeric line is an error naming its line number."""
+    arrays. A short, long or non-numeric line is an error naming its line number, and so is a
+    value checked_values refuses (the columns named in non_negative may not be negative)."""
     path = Path(path)
     if not path.exists():
         raise DataError(f"{path}: missing")
-    rows = []
+    rows, numbers_at = [], []
     for number, line in enumerate(read_text(path).splitlines(), 1):
         if not line.strip() or line.lstrip().startswith(comment):
             continue
@@ -95,11 +126,11 @@ def numeric_table(path, columns, comment="#"):
             raise DataError(f"{path}:{number}: {len(words)} columns, expected {len(columns)} "
                             f"({' '.join(columns)}): truncated or corrupt line?")
         rows.append(numbers(path, number, words))
+        numbers_at.append(number)
     if not rows:
         raise DataError(f"{path}: no data")
-    data = np.array(rows)
-    if not np.all(np.isfinite(data)):
-        raise DataError(f"{path}: non-finite values (nan or inf)")
+    data = checked_values(rows, lambda row, column: f"{path}:{numbers_at[row]}: {columns[column]}",
+                          [name in non_negative for name in columns])
     return {name: data[:, k] for k, name in enumerate(columns)}
 
 
@@ -127,7 +158,9 @@ def header_columns(path, first, needed):
 def read_energy(point, params):
     """energy.txt (columns as its header names them) with a time column (step * dt)."""
     path = Path(point) / rundir.ENERGY
-    table = numeric_table(path, header_columns(path, "step", ENERGY_COLUMNS))
+    # every column the analysis uses is a step, an energy, a count or a time: none below 0
+    table = numeric_table(path, header_columns(path, "step", ENERGY_COLUMNS),
+                          non_negative=ENERGY_COLUMNS)
     table["time"] = table["step"] * params["dt"]
     if len(table["time"]) < 2:
         raise DataError(f"{path}: 1 data row, the analysis needs at least 2: truncated?")
@@ -169,7 +202,11 @@ def read_dump_atoms(path, needed):
 def read_counts(point):
     """counts.txt: id, diameter and the counters of fix contacts/mn per disk, by name."""
     fix_columns = {f"f_c[{k}]": name for k, name in enumerate(COUNTER_COLUMNS, 1)}
-    table = read_dump_atoms(Path(point) / rundir.COUNTS, ("id", "diameter", *fix_columns))
+    path = Path(point) / rundir.COUNTS
+    table = read_dump_atoms(path, ("id", "diameter", *fix_columns))
+    for name in ("id", "diameter", *fix_columns):     # ids, a size, counts and times
+        checked_values(table[name], lambda row: f"{path}: atom {row + 1} of the snapshot: {name}",
+                       non_negative=True)
     return {fix_columns.get(name, name): values for name, values in table.items()}
 
 
@@ -282,10 +319,23 @@ def read_variables(point):
     if not path.exists():
         raise DataError(f"{path}: missing (not a sweep's point)")
     try:
-        variables = json.loads(read_text(path))
+        variables = json.loads(read_text(path), object_pairs_hook=unique_keys(path))
     except ValueError as error:
         raise DataError(f"{path}: not valid JSON ({error})")
     return checked_variables(variables, path)
+
+
+def unique_keys(path):
+    """json.loads' object_pairs_hook that refuses an object naming a key twice (JSON's own
+    reader would keep the last, silently): a DataError naming `path` and the key."""
+    def hook(pairs):
+        seen = set()
+        for key, _ in pairs:
+            if key in seen:
+                raise DataError(f"{path}: {key} given twice: which value is meant cannot be told")
+            seen.add(key)
+        return dict(pairs)
+    return hook
 
 
 def checked_variables(variables, path):
@@ -298,6 +348,28 @@ def checked_variables(variables, path):
         if isinstance(value, bool) or not isinstance(value, (int, float, str)):
             raise DataError(f"{path}: variable {name} is {value!r}, not a number or a word")
     return variables
+
+
+def same_value(variable, param):
+    """Whether a deck variable (point.json's: a number or a word) and params.txt's value of it
+    (a float, or a word) are one value: equal as numbers where both are, else as words."""
+    try:
+        return float(variable) == float(param)
+    except (TypeError, ValueError):
+        return str(variable) == str(param)
+
+
+def checked_agreement(variables, params, variables_from, params_from):
+    """params if every variable that params names too has the same value there (same_value):
+    the deck prints into params.txt the variables the runner passed it (point.json), so where
+    they differ the outputs are not those of this point's run, or a file was edited. Else a
+    DataError naming both sources (variables_from, params_from) and the variable."""
+    for name in sorted(set(variables) & set(params)):
+        if not same_value(variables[name], params[name]):
+            raise DataError(f"{variables_from} gives {name} = {variables[name]!r}, but "
+                            f"{params_from} gives {params[name]!r}: they disagree (the outputs "
+                            "of another run, or an edited file?)")
+    return params
 
 
 class Point:

@@ -33,6 +33,9 @@ TIMING = "timing.json"      # the runner's, once it saw the run end: seconds and
 FAILED = "failed.txt"       # the runner's, for a run that failed
 RUNNING = "running.json"    # the runner's, while a run of the point is under way
 LOG = "log.lammps"
+# A point's summary (postprocess summarize) is named by the point: <scene>/<point>.json, so a
+# point's name must leave room for it
+SUMMARY_SUFFIX = ".json"
 
 
 def read_timing(directory):

@@ -7,7 +7,7 @@ import math
 from pathlib import Path
 
 from . import rundir
-from .io import DataError, Point
+from .io import DataError, Point, checked_agreement
 from .observables import RESOLUTIONS, measure, observables, relative
 from .scenes import SCENES, scene
 from .record import RunRecord, drawn_energy, run_name
@@ -49,7 +49,8 @@ def read_run(point, resolutions=RESOLUTIONS, selection=Selection()):
     record.ended = "stopped" if (point / rundir.STOPPED).exists() else "flowing"
     try:
         record.variables = outputs.variables
-        record.params = outputs.params
+        record.params = checked_agreement(record.variables, outputs.params,
+                                          point / rundir.POINT, point / rundir.PARAMS)
         record.stopped_at = outputs.stopped_at
         record.energy = drawn_energy(outputs.energy)
     except DataError as error:

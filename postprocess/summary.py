@@ -16,7 +16,8 @@ import math
 from pathlib import Path
 
 from .durations import DURATION_EDGES, LASTING, LASTING_ALSO, SPLIT_NAMES
-from .io import CONTACT_KINDS, DataError, checked_params, checked_variables
+from .io import CONTACT_KINDS, DataError, checked_agreement, checked_params, checked_values, \
+    checked_variables, unique_keys
 from .observables import RESOLUTIONS
 from .quantities import BLOCKS, SIGNED
 from .record import DRAWN_WINDOW, ENDINGS, RunRecord
@@ -111,13 +112,22 @@ class _Checker:
     def fail(self, where, what):
         raise DataError(f"{self.path}: corrupt summary: {where} {what}")
 
-    def number(self, value, where, optional=False):
+    def numeric(self, value, where):
+        """value as a float if it is a JSON number (a double can hold), else the failure."""
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            self.fail(where, f"is {value!r}, not a finite number")
+        try:
+            return float(value)
+        except OverflowError:
+            self.fail(where, f"is {value!r}, not a finite number")
+
+    def number(self, value, where, optional=False, non_negative=False):
+        """A value of the run, which io.checked_values takes: the rule the raw reader applies
+        to energy.txt's values."""
         if value is None and optional:
             return None
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or \
-                not math.isfinite(value):
-            self.fail(where, f"is {value!r}, not a finite number")
-        return float(value)
+        return float(checked_values(self.numeric(value, where),
+                                    lambda: f"{self.path}: corrupt summary: {where}", non_negative))
 
     def text(self, value, where, optional=False):
         if value is None and optional:
@@ -136,12 +146,9 @@ class _Checker:
     def numbers(self, value, where, non_negative=False):
         if not isinstance(value, list):
             self.fail(where, "is not a list")
-        values = [self.number(v, f"{where}[{k}]") for k, v in enumerate(value)]
-        for k, v in enumerate(values):
-            if non_negative and v < 0:
-                self.fail(f"{where}[{k}]", f"is {v:g}, negative: it is an energy, a rate, a "
-                          "time fraction or a count")
-        return values
+        values = [self.numeric(v, f"{where}[{k}]") for k, v in enumerate(value)]
+        return checked_values(values, lambda k: f"{self.path}: corrupt summary: {where}[{k}]",
+                              non_negative).tolist()
 
     def key(self, data, name, where):
         if name not in data:
@@ -268,7 +275,7 @@ def read_summary(path, selection=Selection()):
     min_length and max_width (selection None: with any)."""
     path = Path(path)
     try:
-        data = json.loads(path.read_text())
+        data = json.loads(path.read_text(), object_pairs_hook=unique_keys(path))
     except (ValueError, UnicodeDecodeError) as error:
         raise DataError(f"{path}: not a run summary: not valid JSON ({error})")
     if not isinstance(data, dict) or data.get("schema") != SCHEMA:
@@ -321,6 +328,9 @@ def read_summary(path, selection=Selection()):
         record.params = checked_params(
             {name: value if isinstance(value, str) else check.number(value, f"params.{name}")
              for name, value in params.items()}, f"{path}: params")
+        if record.variables is not None:
+            checked_agreement(record.variables, record.params,
+                              f"{path}: corrupt summary: variables", "params")
     if data["measured"] is not None:
         if record.params is None:
             check.fail("measured", "is there without params")

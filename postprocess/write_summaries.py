@@ -24,7 +24,7 @@ def write_summaries(results_dir, to, selection=Selection(), replace=False):
         raise DataError(f"{results_dir}: no sweep points here (no <scene>/<point>/point.json)")
     written, kept = [], []
     for point in points:
-        path = Path(to) / point.parent.name / f"{point.name}.json"
+        path = Path(to) / point.parent.name / f"{point.name}{rundir.SUMMARY_SUFFIX}"
         record = read_run(point, RESOLUTIONS, selection)
         if path.exists() and not replace:
             try:

@@ -57,7 +57,16 @@ a point follows the 1-rank trajectory to rounding, and a chaotic dense flow ampl
 rounding until, after some time units, the run is another realization of the same flow
 (docs/sweeps.md).
 
-Exit status: 0 all done, 1 some points failed, 2 refused (a bad config or path, a busy output).
+A point's directory is named by its variables (those of [defaults] and --set included): a
+point whose name the output's filesystem cannot take (with room for its summary <point>.json,
+`python3 -m postprocess summarize`) is refused before anything runs, --dry-run included.
+A point whose files cannot be written (a full disk) fails with that cause, and a run that ends
+without the deck's last output (done.txt) fails with what the runner can tell of why (a full
+filesystem, a signal, no ERROR line): failed.txt, and the point's progress line.
+
+Exit status: 0 all done, 1 some points failed, 2 refused (a bad config or path, a busy output),
+3 the runner itself failed (an unexpected error: its message and traceback on stderr; the runs
+under way are stopped, <output>/sweep.lock is let go and removed, the same command resumes).
 """
 import argparse
 import math
@@ -65,6 +74,7 @@ import os
 import shutil
 import signal
 import sys
+import traceback
 from pathlib import Path
 
 from granmn_sweep import SweepError
@@ -72,7 +82,8 @@ from granmn_sweep import processes
 from granmn_sweep.config import expand, load_config, point_name, with_settings
 from granmn_sweep.cost import CostModel, format_seconds, predicted_steps
 from granmn_sweep.decks import ROOT, engine
-from granmn_sweep.points import check_output, check_path, foreign, lock_output
+from granmn_sweep.points import check_names, check_output, check_path, foreign, lock_output, \
+    unlock_output
 from granmn_sweep.schedule import check_slots, run_points
 from postprocess.rundir import completed     # scripts/postprocess links the package
 
@@ -124,6 +135,11 @@ def main(argv=None):
     try:
         config = with_settings(load_config(args.config), args.set, args.config)
         points = expand(config, args.config)
+        output = args.output or ROOT / "results" / config.get("name", Path(args.config).stem)
+        for what, path in (("--output", output), ("--build", args.build), ("the checkout", ROOT)):
+            check_path(what, path)
+        check_output(output)
+        check_names(output, [(p["scene"], point_name(p)) for p in points])
         engines = {engine(p) for p in points}
         if args.partitions and engines != {"lammps"}:
             raise SweepError("--partitions runs the points as the partitions of one lmp: the "
@@ -131,10 +147,6 @@ def main(argv=None):
         for key in sorted(engines | {"mn_law"} | ({"plugin"} if "lammps" in engines else set())):
             if not paths[key].exists():
                 raise SweepError(f"{paths[key]} is missing: run ./scripts/build.sh first")
-        output = args.output or ROOT / "results" / config.get("name", Path(args.config).stem)
-        for what, path in (("--output", output), ("--build", args.build), ("the checkout", ROOT)):
-            check_path(what, path)
-        check_output(output)
         steps = [predicted_steps(p, paths["mn_law"]) for p in points]
     except SweepError as error:
         print(f"sweep: {error}", file=sys.stderr)
@@ -173,6 +185,7 @@ def main(argv=None):
         return 0
 
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    lock = None
     try:
         if args.partitions and todo:
             batch = min(args.partitions, len(todo))
@@ -195,12 +208,23 @@ def main(argv=None):
                 "(stop them, e.g. `kill PID`, or let them end; then run the sweep again): " +
                 "; ".join(f"pid {pid} in {d}" for d, pid in live[:5]))
     except SweepError as error:
+        unlock_output(lock)
         print(f"sweep: {error}", file=sys.stderr)
         return 2
     signal.signal(signal.SIGTERM, processes.stop)
     signal.signal(signal.SIGINT, processes.stop)
 
-    status = run_points(plan, todo, output, paths, env, args.jobs, args.partitions, args.ranks,
-                        extra, model, processes_at_once)
-    lock.close()
-    return status
+    try:
+        return run_points(plan, todo, output, paths, env, args.jobs, args.partitions,
+                          args.ranks, extra, model, processes_at_once)
+    except SweepError as error:
+        print(f"sweep: {error}", file=sys.stderr)
+        return 2
+    except Exception as error:
+        print(f"sweep: the runner failed: {type(error).__name__}: {error}; the runs under way "
+              "were stopped and the points not done are run by the same command (the "
+              "traceback follows: a fault of the runner, please report it)", file=sys.stderr)
+        traceback.print_exc()
+        return 3
+    finally:
+        unlock_output(lock)

@@ -1,5 +1,6 @@
 """A config's points: loading a TOML config, expanding its grids into points (checked against
 the scene decks), one spelling of each number, the points' names."""
+import math
 import re
 import tomllib
 from itertools import product
@@ -38,28 +39,43 @@ def load_config(path):
     return config
 
 
-
 def with_settings(config, settings, path):
     """The config with each --set NAME=VALUE in its [defaults], replacing the file's value (the
-    same sweep at another setting of one variable). A grid that sets NAME itself is refused:
-    the grid's value would win, so the --set would be silently void there."""
+    same sweep at another setting of one variable), and under "set" {NAME: the --set that gave
+    it}, for expand's messages. Refused: a NAME the runner sets itself, a NAME set twice (which
+    value was meant cannot be told), a NAME a grid sets itself (the grid's value would win, so
+    the --set would be silently void there)."""
     defaults = dict(config.get("defaults", {}))
+    given = {}
     for setting in settings:
         name, equals, value = setting.partition("=")
         if not equals or not value or not NAME.match(name):
             raise SweepError(f"--set {setting}: expected NAME=VALUE, NAME a deck variable")
+        if name in RESERVED:
+            raise SweepError(f"--set {setting}: {name} is set by the sweep runner itself "
+                             "(--output, --build), not by --set")
+        if name in given:
+            raise SweepError(f"--set {setting}: {name} is set twice (--set {given[name]} "
+                             "too): which value is meant cannot be told")
         for number, grid in enumerate(config["grid"], 1):
             if name in grid:
                 raise SweepError(f"--set {setting}: grid {number} of {path} sets {name} itself")
         defaults[name] = value
-    return dict(config, defaults=defaults)
+        given[name] = setting
+    return dict(config, defaults=defaults, set=given)
+
 
 def expand(config, path):
-    """The points of the config: dicts of deck variables, each with a scene."""
+    """The points of the config: dicts of deck variables, each with a scene. A refusal names
+    where the variable was set: the config's grid, or the --set of with_settings."""
     points = []
     for number, grid in enumerate(config["grid"], 1):
         merged = dict(config.get("defaults", {}))
         merged.update(grid)
+
+        def source(name, number=number):
+            given = config.get("set", {})
+            return f"--set {given[name]}" if name in given else f"{path}: grid {number}"
         for key, value in merged.items():
             if not NAME.match(key):
                 raise SweepError(f"{path}: grid {number}: '{key}' is not a deck variable name")
@@ -70,6 +86,8 @@ def expand(config, path):
                 if not isinstance(v, (int, float, str)) or isinstance(v, bool):
                     raise SweepError(f"{path}: grid {number}: '{key}' must hold numbers or "
                                      f"strings, not {v!r}")
+                if isinstance(v, float) and not math.isfinite(v):
+                    raise SweepError(f"{source(key)}: {key} = {v!r} is not a finite number")
         if "scene" not in merged:
             raise SweepError(f"{path}: grid {number} has no scene")
         reserved = sorted(set(merged) & RESERVED)
@@ -91,18 +109,21 @@ def expand(config, path):
             defaults = deck_defaults(deck)
             unknown = sorted(set(point) - RUNNER_KEYS - set(defaults))
             if unknown:
-                raise SweepError(f"{path}: grid {number}: {', '.join(unknown)}: not a variable "
+                raise SweepError(f"{source(unknown[0])}: {', '.join(unknown)}: not a variable "
                                  f"of {where(deck)} (docs/scenes.md lists them)")
             # a deck takes a word where it expects a number without complaint (as 0)
             for name, value in point.items():
                 if name in defaults and is_number(defaults[name]):
                     if not is_number(value):
-                        raise SweepError(f"{point['scene']} point: {name} = {value!r} is not a "
-                                         "number")
+                        raise SweepError(f"{source(name)}: {point['scene']} point: {name} = "
+                                         f"{value!r} is not a number")
+                    if not math.isfinite(float(value)):
+                        raise SweepError(f"{source(name)}: {point['scene']} point: {name} = "
+                                         f"{value!r} is not a finite number")
                     point[name] = canonical_number(value)
             ignored = sorted(set(point) - RUNNER_KEYS - deck_uses(deck))
             if ignored:
-                raise SweepError(f"{path}: grid {number}: {', '.join(ignored)}: "
+                raise SweepError(f"{source(ignored[0])}: {', '.join(ignored)}: "
                                  f"{where(deck)} does not use it (every value would give the "
                                  "same run)")
             points.append(point)

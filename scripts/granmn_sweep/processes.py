@@ -15,7 +15,7 @@ from postprocess.rundir import RUNNING     # scripts/postprocess links the packa
 # those in a process group of its own) is a session of its own: a signal reaches all of it.
 _runs = {}
 _runs_lock = threading.RLock()   # the signal handler takes it too, in the main thread
-stopped_by = []                 # the signal that stopped the sweep
+stopped_by = []                 # what stopped the sweep: a signal, or None (the runner failed)
 _libc = ctypes.CDLL(None, use_errno=True)
 PR_SET_PDEATHSIG = 1
 SIGTERM = int(signal.SIGTERM)
@@ -92,18 +92,25 @@ def run_alive(record):
     return (start is None or start == record.get("start")) and bool(session_processes(leader))
 
 
-def stop(signum, frame):
-    """SIGTERM, SIGINT: no run is started any more and the runs under way are stopped; their
-    points are run again when the sweep is."""
+def stop_runs(cause):
+    """No run is started any more and the runs under way are stopped (SIGTERM); their points
+    are run again when the sweep is. cause: the signal's number, None where the runner itself
+    failed."""
     with _runs_lock:
-        stopped_by.append(signum)
+        stopped_by.append(cause)
         for pid in _runs:
             signal_session(pid, SIGTERM)
 
 
+def stop(signum, frame):
+    """SIGTERM, SIGINT: the sweep stops (stop_runs)."""
+    stop_runs(signum)
+
+
 def start(command, output, env, directories):
     """Starts a run with what it prints in `output`, unless the sweep is stopping; the
-    directories' running.json names it."""
+    directories' running.json names it. Where running.json cannot be written (a full disk),
+    the run is stopped and the OSError raised: no run goes on that nothing names."""
     with _runs_lock:
         if stopped_by:
             return None
@@ -112,8 +119,13 @@ def start(command, output, env, directories):
                                     start_new_session=True, preexec_fn=die_with(os.getpid()))
         _runs[proc.pid] = proc
     record = json.dumps({"pid": proc.pid, "start": process_start(proc.pid)}) + "\n"
-    for directory in directories:
-        (directory / RUNNING).write_text(record)
+    try:
+        for directory in directories:
+            (directory / RUNNING).write_text(record)
+    except OSError:
+        signal_session(proc.pid, signal.SIGKILL)
+        wait(proc, directories)
+        raise
     return proc
 
 

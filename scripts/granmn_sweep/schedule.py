@@ -12,8 +12,8 @@ from granmn_sweep import processes
 from granmn_sweep.config import RUNNER_KEYS, format_value
 from granmn_sweep.cost import format_seconds
 from granmn_sweep.decks import LIB, engine, point_deck
-from granmn_sweep.points import cpu_seconds, error_lines, finish, resume_or_prepare, \
-    set_aside_failed_resume, wrote_done
+from granmn_sweep.points import cpu_seconds, error_lines, failed_to_start, finish, \
+    resume_or_prepare, set_aside_failed_resume, wrote_done
 from mpirun_slots import slots_problem
 
 
@@ -27,7 +27,17 @@ def run_serial(point, directory, paths, env, ranks, extra, notes):
     """(outcome, wall seconds, note) of a point run as one lmp process, or as `mpirun -np
     ranks lmp` (one LAMMPS world of `ranks` ranks: the domain decomposed). A resume that fails
     (set_aside_failed_resume) is followed at once by the next try: the older checkpoint, then
-    a fresh start; `notes[directory]` says what happened."""
+    a fresh start; `notes[directory]` says what happened. A point whose files the runner cannot
+    write (a full disk) fails with that cause."""
+    try:
+        return run_serial_tries(point, directory, paths, env, ranks, extra, notes)
+    except OSError as error:
+        outcome, note = failed_to_start(directory, error)
+        return outcome, 0.0, note
+
+
+def run_serial_tries(point, directory, paths, env, ranks, extra, notes):
+    """run_serial's tries of a point, until one is not a failed resume."""
     while True:
         if processes.stopped_by:
             return "stopped", 0.0, ""
@@ -51,10 +61,10 @@ def run_serial(point, directory, paths, env, ranks, extra, notes):
             notes.setdefault(directory, []).append(failed_resume)
             print(f"sweep: {directory}: {failed_resume}", flush=True)
             continue
-        outcome = finish(directory, token, status, elapsed, cpu,
-                         [directory / "log.lammps", directory / "run.out"],
-                         directory / "run.out", variables, notes.get(directory, []))
-        return outcome, elapsed, ""
+        outcome, note = finish(directory, token, status, elapsed, cpu,
+                               [directory / "log.lammps", directory / "run.out"],
+                               directory / "run.out", variables, notes.get(directory, []))
+        return outcome, elapsed, note
 
 
 def run_partitions(batch, batch_dir, paths, env, ranks, extras, notes):
@@ -62,25 +72,45 @@ def run_partitions(batch, batch_dir, paths, env, ranks, extras, notes):
     [(outcome, wall seconds, note)]. Each partition's rank 0 writes its point's log and outputs.
     A LAMMPS ERROR in one partition aborts them all (MPI_Abort): a sibling without an ERROR of
     its own did not fail, its outcome is "rerun"; so is a point whose resume failed
-    (set_aside_failed_resume: its next run takes the older checkpoint, or starts afresh)."""
+    (set_aside_failed_resume: its next run takes the older checkpoint, or starts afresh). A
+    point whose files the runner cannot write (a full disk) fails with that cause, and the
+    others run without it."""
+    results, prepared = {}, []     # prepared: [(directory, token, variables)]
+    for point, directory in batch:
+        token = secrets.token_hex(8)
+        try:
+            variables = resume_or_prepare(directory, point, extras[directory],
+                                          keep=directory in notes)
+            lines = [f"log {directory / 'log.lammps'}"]
+            lines += [f"variable {name} index {format_value(value)}"
+                      for name, value in {**point_variables(point, directory, paths, token),
+                                          **variables}.items()]
+            lines.append(f"include {point_deck(point)}")
+            (directory / "settings.lmp").write_text("\n".join(lines) + "\n")
+        except OSError as error:
+            outcome, note = failed_to_start(directory, error)
+            results[directory] = (outcome, 0.0, note)
+            continue
+        prepared.append((directory, token, variables))
+    if prepared:
+        try:
+            results.update(run_batch(prepared, batch_dir, paths, env, ranks, notes))
+        except OSError as error:
+            for directory, _, _ in prepared:
+                outcome, note = failed_to_start(directory, error)
+                results[directory] = (outcome, 0.0, note)
+    return [results[directory] for _, directory in batch]
+
+
+def run_batch(prepared, batch_dir, paths, env, ranks, notes):
+    """{directory: (outcome, wall seconds, note)} of the prepared points (run_partitions) run
+    as the partitions of one lmp."""
+    directories = [directory for directory, _, _ in prepared]
     batch_dir.mkdir(parents=True, exist_ok=True)
-    directories = [directory for _, directory in batch]
-    tokens = [secrets.token_hex(8) for _ in batch]
-    resumes = []
-    for (point, directory), token in zip(batch, tokens):
-        variables = resume_or_prepare(directory, point, extras[directory],
-                                      keep=directory in notes)
-        resumes.append(variables)
-        lines = [f"log {directory / 'log.lammps'}"]
-        lines += [f"variable {name} index {format_value(value)}"
-                  for name, value in {**point_variables(point, directory, paths, token),
-                                      **variables}.items()]
-        lines.append(f"include {point_deck(point)}")
-        (directory / "settings.lmp").write_text("\n".join(lines) + "\n")
     driver = batch_dir / "driver.lmp"
     driver.write_text("variable point world " + " ".join(str(d) for d in directories) +
                       "\ninclude ${point}/settings.lmp\n")
-    n = len(batch)
+    n = len(prepared)
     command = [paths["mpiexec"], "-np", str(n * ranks), str(paths["lammps"]), "-partition",
                f"{n}x{ranks}",
                "-in", str(driver), "-log", str(batch_dir / "log.lammps"), "-plog", "none",
@@ -89,35 +119,34 @@ def run_partitions(batch, batch_dir, paths, env, ranks, extras, notes):
         (directory / "command.txt").write_text(shlex.join(command) + "\n")
 
     def ended():    # every partition has written done.txt or an ERROR
-        return all(wrote_done(d, t) or error_lines(d / "log.lammps")
-                   for d, t in zip(directories, tokens))
+        return all(wrote_done(d, t) or error_lines(d / "log.lammps") for d, t, _ in prepared)
 
     proc = processes.start(command, batch_dir / "run.out", env, directories)
     if proc is None:
-        return [("stopped", 0.0, "")] * n
+        return {directory: ("stopped", 0.0, "") for directory in directories}
     status, elapsed, cpu, stuck = processes.wait(proc, directories, ended)
     note = (f" (mpirun stopped by the runner {processes.GRACE:g} s after every partition had "
             "ended: it does not return once a partition has quit)") if stuck else ""
     culprits = [d for d in directories if error_lines(d / "log.lammps")]
-    results = []
-    for directory, token, variables in zip(directories, tokens, resumes):
+    results = {}
+    for directory, token, variables in prepared:
         if culprits and directory not in culprits and not wrote_done(directory, token) \
                 and not processes.stopped_by:
-            results.append(("rerun", elapsed, "its batch ended with the ERROR of " +
-                            ", ".join(d.name for d in culprits)))
+            results[directory] = ("rerun", elapsed, "its batch ended with the ERROR of " +
+                                  ", ".join(d.name for d in culprits))
             continue
         failed_resume = not wrote_done(directory, token) and not processes.stopped_by and \
             set_aside_failed_resume(directory, variables)
         if failed_resume:
             notes.setdefault(directory, []).append(failed_resume)
-            results.append(("rerun", elapsed, failed_resume))
+            results[directory] = ("rerun", elapsed, failed_resume)
             continue
         # one process for the batch: its time is shared out equally
-        outcome = finish(directory, token, status, elapsed, cpu / n,
-                         [directory / "log.lammps", batch_dir / "log.lammps",
-                          batch_dir / "run.out"], batch_dir / "run.out", variables,
-                         notes.get(directory, []), note)
-        results.append((outcome, elapsed, ""))
+        outcome, said = finish(directory, token, status, elapsed, cpu / n,
+                               [directory / "log.lammps", batch_dir / "log.lammps",
+                                batch_dir / "run.out"], batch_dir / "run.out", variables,
+                               notes.get(directory, []), note)
+        results[directory] = (outcome, elapsed, said)
     return results
 
 
@@ -159,37 +188,43 @@ def run_points(plan, todo, output, paths, env, jobs, partitions, ranks, extra, m
             f"done (pile stopped: {stopped.read_text().strip()})"
         remaining = sum(model.predict(p, s) for p, s in unfinished.values()) / processes_at_once
         on = f" on {ranks} ranks" if ranks > 1 else ""
+        why = f" ({note})" if outcome == "failed" and note else ""
         print(f"[{len(todo) - len(unfinished)}/{len(todo)}] {how} "
-              f"{directory.relative_to(output)} in {elapsed:.1f} s{on}; "
+              f"{directory.relative_to(output)} in {elapsed:.1f} s{on}{why}; "
               f"ETA {format_seconds(remaining)}", flush=True)
 
     refused = []    # points whose directory became another's during the sweep: not run
     # runs start in pool threads only: the main thread takes the signals
     with concurrent.futures.ThreadPoolExecutor(max_workers=1 if partitions else jobs) as pool:
-        if partitions:
-            queue, number = list(todo), 0
-            while queue and not processes.stopped_by:
-                batch, queue = queue[:partitions], queue[partitions:]
-                results = pool.submit(run_partitions, [(p, d) for p, d, _ in batch],
-                                      output / "batches" / f"batch{number}", paths, env,
-                                      ranks, extra, resume_notes).result()
-                number += 1
-                for (p, d, s), (outcome, elapsed, note) in zip(batch, results):
-                    if outcome == "rerun":
-                        queue.append((p, d, s))
-                    # each point of the batch ran for the batch's wall time
-                    report(p, d, model.predict(p, s), outcome, elapsed, note)
-        else:
-            futures = {pool.submit(run_serial, p, d, paths, env, ranks, extra[d],
-                                   resume_notes): (p, d, s)
-                       for p, d, s in todo}
-            for future in concurrent.futures.as_completed(futures):
-                p, d, s = futures[future]
-                try:
-                    report(p, d, model.predict(p, s), *future.result())
-                except SweepError as error:    # its place taken while the sweep ran
-                    print(f"sweep: {error}", file=sys.stderr)
-                    refused.append(d)
+        try:
+            if partitions:
+                queue, number = list(todo), 0
+                while queue and not processes.stopped_by:
+                    batch, queue = queue[:partitions], queue[partitions:]
+                    results = pool.submit(run_partitions, [(p, d) for p, d, _ in batch],
+                                          output / "batches" / f"batch{number}", paths, env,
+                                          ranks, extra, resume_notes).result()
+                    number += 1
+                    for (p, d, s), (outcome, elapsed, note) in zip(batch, results):
+                        if outcome == "rerun":
+                            queue.append((p, d, s))
+                        # each point of the batch ran for the batch's wall time
+                        report(p, d, model.predict(p, s), outcome, elapsed, note)
+            else:
+                futures = {pool.submit(run_serial, p, d, paths, env, ranks, extra[d],
+                                       resume_notes): (p, d, s)
+                           for p, d, s in todo}
+                for future in concurrent.futures.as_completed(futures):
+                    p, d, s = futures[future]
+                    try:
+                        report(p, d, model.predict(p, s), *future.result())
+                    except SweepError as error:    # its place taken while the sweep ran
+                        print(f"sweep: {error}", file=sys.stderr)
+                        refused.append(d)
+        except BaseException:
+            # the pool's end waits for its threads: no run starts any more, those under way stop
+            processes.stop_runs(None)
+            raise
 
     if processes.stopped_by:
         print(f"sweep: stopped by {signal.Signals(processes.stopped_by[0]).name}; "
@@ -200,7 +235,8 @@ def run_points(plan, todo, output, paths, env, jobs, partitions, ranks, extra, m
               "remove (above); the other points ran", file=sys.stderr)
         return 2
     if failures:
-        print(f"sweep: {len(failures)} points failed; see failed.txt in:", file=sys.stderr)
+        print(f"sweep: {len(failures)} points failed (their lines above say why); see "
+              "failed.txt in:", file=sys.stderr)
         for d in failures:
             print(f"  {d}", file=sys.stderr)
         return 1

@@ -763,3 +763,71 @@ def test_a_point_whose_place_is_taken_during_the_sweep_is_refused_and_the_rest_r
     assert "not the runner's to remove" in stderr and "Traceback" not in stderr, stderr
     assert (taken / "analysis" / "fit.txt").read_text() == "a fit\n"
     assert (first / "done.txt").exists()
+
+
+def test_an_unexpected_error_in_the_runner_stops_its_runs_and_lets_go_of_the_lock(tmp_path):
+    """An exception the runner does not expect (here: in the code that ends a point, in its
+    pool thread) ended the sweep in a traceback only after every point left had run (the pool
+    waits for its threads), and left sweep.lock. Now it says what happened, stops the runs,
+    removes sweep.lock (exit status 3), and the same command resumes."""
+    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\n"
+                                          "kn = [5e4, 1e5, 2e5]\n")
+    output = tmp_path / "out"
+    code = ("import sys\nsys.path.insert(0, sys.argv[1])\n"
+            "from granmn_sweep import schedule\n"
+            "def fault(*args, **kwargs):\n    raise RuntimeError('a fault of the runner')\n"
+            "schedule.finish = fault\n"
+            "from granmn_sweep.cli import main\n"
+            "sys.exit(main(sys.argv[2:]))\n")
+    proc = subprocess.run([sys.executable, "-c", code, str(ROOT / "scripts"), str(config),
+                           "--output", str(output), "--build", str(BUILD), "--jobs", "1"],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 3, proc.stdout + proc.stderr
+    assert "sweep: the runner failed: RuntimeError: a fault of the runner; the runs under way " \
+        "were stopped" in proc.stderr and "Traceback" in proc.stderr, proc.stderr
+    # the point the pool's thread had begun by then is stopped, the last is not started
+    assert len(list(output.glob("*/*/point.json"))) < 3
+    assert not list(output.glob("*/*/failed.txt"))
+    assert not (output / "sweep.lock").exists() and not processes_mentioning(output)
+    assert "0 already done, 3 to run" in sweep(config, output).stdout
+    assert not (output / "sweep.lock").exists()
+
+
+@pytest.fixture
+def small_tmpfs(tmp_path):
+    """A 64 KiB tmpfs (root only: `mount -t tmpfs`), unmounted afterwards."""
+    if os.geteuid() != 0:
+        pytest.skip("mounting a tmpfs needs root")
+    mount = tmp_path / "small"
+    mount.mkdir()
+    proc = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=64k", "tmpfs", str(mount)],
+                          capture_output=True, text=True)
+    if proc.returncode != 0:
+        pytest.skip(f"cannot mount a tmpfs here: {proc.stderr.strip()}")
+    try:
+        yield mount
+    finally:
+        subprocess.run(["umount", "-l", str(mount)], capture_output=True)
+
+
+def test_a_full_disk_fails_the_point_with_its_cause(tmp_path, small_tmpfs):
+    """A point whose outputs fill the disk: lmp stops with exit status 1 (fix ave/chunk checks
+    its writes; where LAMMPS does not, it exits 0), its ERROR lost with the log it writes it
+    to, done.txt missing. The point was marked failed with "exit status 1", "no ERROR line",
+    "mend what the ERROR names" (the runner's own write of failed.txt raised, where no byte was
+    left). Now its progress line and failed.txt name the full filesystem and done.txt."""
+    config = single_disk_config(tmp_path, "run_time = 100\naverage_start = 1\n")
+    proc = sweep(config, small_tmpfs / "out", check=False)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    assert "Traceback" not in proc.stderr, proc.stderr
+    point = next((small_tmpfs / "out" / "single_disk").iterdir())
+    cause = re.search(rf"\] FAILED single_disk/{point.name} in [\d.]+ s \((exit status \d+: the "
+                      rf"filesystem of {re.escape(str(point))} is full \(\d+ bytes free: "
+                      r"ENOSPC\), and done.txt, the deck's last output, is (empty|missing): the "
+                      r"run's outputs are cut short[^;]*)(; failed.txt could not be written "
+                      r"\(No space left on device \(ENOSPC\): [^)]*\))?\); ETA", proc.stdout)
+    assert cause, proc.stdout
+    assert "no ERROR line" not in proc.stdout and "mend what the ERROR" not in proc.stdout
+    if not cause.group(3):      # failed.txt fitted in what was left
+        assert (point / "failed.txt").read_text().startswith(cause.group(1) + "\n")
+    assert not (small_tmpfs / "out" / "sweep.lock").exists()

@@ -12,6 +12,7 @@ import test_counters
 import test_nve_disc_mn
 import test_scenes
 import test_sweep
+import test_sweep_runner
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -22,7 +23,8 @@ def test_every_bad_input_case_is_in_the_table():
     tables = [test_bad_input.ERRORS, test_bad_input.BONDED, test_counters.BAD,
               test_nve_disc_mn.BAD, test_scenes.BAD_VARIABLES,
               test_scenes.BAD_FRICTIONAL_VARIABLES, test_scenes.BAD_SINGLE_DISK_VARIABLES,
-              test_sweep.BAD_CONFIGS, test_sweep.BAD_OUTPUTS, test_chute_3d.BAD_3D,
+              test_sweep.BAD_CONFIGS, test_sweep.BAD_OUTPUTS,
+              test_sweep_runner.BAD_SETTINGS, test_chute_3d.BAD_3D,
               test_checkpoint.BAD_WINDOWS, test_bad_input_liggghts.BAD,
               test_chute.BAD]
     for table in tables:

@@ -145,11 +145,37 @@ def test_frictional_point_outside_the_energy_range_is_refused(tmp_path):
     ("no params", "params.txt: missing"),
     ("short run", "before run_time"),
     ("counts", "atoms, the header says"),
-    ("nan", "non-finite"),
+    ("nan", r"energy.txt:6: e_trans is nan, not a finite number"),
     ("word", "not a number"),
+    # values no run writes, which the summary reader refused and the raw reader averaged (only
+    # numpy's overflow warnings): an energy of 1e308 in one row, a negative kinetic energy
+    ("huge", r"energy.txt:6: e_total is 1e\+308, beyond 1e\+150 in magnitude, more than any "
+             r"energy, rate, time or count of a run \(a damaged file\?\)"),
+    ("negative", r"energy.txt:6: e_trans is -0.5, negative: it is an energy, a rate, a time "
+                 "fraction or a count"),
+    ("negative counter", r"energy.txt:6: time_disk is -1, negative"),
+    ("negative count", r"counts.txt: atom 2 of the snapshot: f_c\[1\] is -160, negative"),
+    # a hand-edited params.txt, or one another tool wrote: its last value was taken
+    ("params twice", r"params.txt:15: kn given twice \(line 2 gives it too\): which value the "
+                     "run took cannot be told"),
 ])
 def test_broken_outputs_name_the_file_and_the_problem(tmp_path, damage, message):
     point = write_point(tmp_path, truncate=(damage == "truncate"))
+    if damage == "negative count":
+        lines = (point / "counts.txt").read_text().splitlines()
+        lines[-3] = lines[-3].replace(" 160.0 ", " -160.0 ")
+        (point / "counts.txt").write_text("\n".join(lines) + "\n")
+    if damage == "params twice":
+        with open(point / "params.txt", "a") as params:
+            params.write("kn 100000\n")
+    if damage in ("huge", "negative", "negative counter"):
+        lines = (point / "energy.txt").read_text().splitlines()
+        words = lines[5].split()
+        column, value = {"huge": (3, "1e308"), "negative": (1, "-0.5"),
+                         "negative counter": (6, "-1")}[damage]
+        words[column] = value
+        lines[5] = " ".join(words)
+        (point / "energy.txt").write_text("\n".join(lines) + "\n")
     if damage == "no params":
         (point / "params.txt").unlink()
     if damage == "counts header":
@@ -426,6 +452,24 @@ def test_a_broken_point_json_is_named(tmp_path):
     assert "point.json: not valid JSON" in left_out[0][1]
 
 
+def test_a_point_json_naming_a_variable_twice_is_named(tmp_path):
+    """JSON's reader keeps the last of a repeated key, silently (a hand-edited point.json)."""
+    point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow",
+                                          '{"kn": 200000, "kn": 100000}')
+    assert left_out == [(point, "point.json: kn given twice: which value is meant cannot be "
+                                "told")]
+
+
+def test_a_point_json_and_params_that_disagree_are_named(tmp_path):
+    """The deck prints the variables it was given into params.txt: a point.json that says
+    otherwise is of another run (or one of them was edited); the run was grouped by point.json
+    and averaged with params.txt's values."""
+    point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow", '{"kn": 100000}')
+    assert left_out == [(point, "point.json gives kn = 100000, but params.txt gives 200000.0: "
+                                "they disagree (the outputs of another run, or an edited "
+                                "file?)")]
+
+
 def test_a_list_valued_variable_is_named(tmp_path):
     """point.json's variables group the runs: a list there raised TypeError (unhashable)."""
     point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow", '{"kn": [1, 2]}')
@@ -460,14 +504,19 @@ def test_a_run_that_came_to_rest_has_no_steady_motion_to_average(tmp_path):
 
 def sweep_of(tmp_path, points):
     """A sweep directory of synthetic points: {(scene, name): writer(point directory)}; each
-    point gets point.json ({"kn": ..., "seed": 1}) and the files of a completed run (done.txt
-    and timing.json) unless its writer removes them."""
+    point gets point.json ({"kn": ..., "seed": 1}), the same kn in its params.txt if its writer
+    writes one, and the files of a completed run (done.txt and timing.json) unless its writer
+    removes them."""
     for (scene, name), write in points.items():
         point = tmp_path / scene / name
         point.mkdir(parents=True)
         (point / "point.json").write_text(f'{{"kn": {len(name)}, "seed": 1}}')
         completed(point)
         write(point)
+        params = point / "params.txt"
+        if params.exists():
+            params.write_bytes(params.read_bytes().replace(b"kn 200000\n",
+                                                           f"kn {len(name)}\n".encode()))
     return tmp_path
 
 
@@ -519,7 +568,7 @@ def test_a_broken_point_json_beside_a_usable_point_is_a_left_out_line(tmp_path, 
     assert main(["report", str(sweep)]) == 0
     err = capsys.readouterr().err
     assert f"left out {sweep / 'collisional_flow' / 'p2'}: point.json: not valid JSON" in err
-    assert "| 200000 |" in (sweep / "report" / "report.md").read_text()     # p1's row
+    assert "\n| 2 | 0.5999 " in (sweep / "report" / "report.md").read_text()   # p1's row (kn 2)
 
 
 def test_a_profile_that_cannot_be_read_is_listed_not_dropped(tmp_path):

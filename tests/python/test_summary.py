@@ -37,6 +37,8 @@ def with_energy(point, energy, dt=0.001, stop=None):
 def frictional(point, seed, energy=lambda t: 0.6 + 0.01 * np.sin(t), stop=None):
     """A frictional run of 1000 time units, E(t) sampled every 0.1."""
     write_point(point, scene="frictional_flow", run_time=1000.0, average_start=100.0)
+    params = point / "params.txt"
+    params.write_text(params.read_text().replace("seed 1\n", f"seed {seed}\n"))
     with_energy(point, energy, stop=stop)
     (point / "point.json").write_text(json.dumps({"kn": 200000, "seed": seed}))
 
@@ -201,6 +203,12 @@ def test_a_resolution_the_summaries_do_not_hold_is_refused(summarized, capsys):
                       "(expected one of single_disk, collisional_flow"),
     ("variables null", "corrupt summary: measured is there without variables"),
     ("list variable", "variables: variable kn is [100000, 200000], not a number or a word"),
+    # issue 46: what the raw reader refuses too (io: one rule, one check for both)
+    ("huge block", "corrupt summary: measured.window.blocks.E_total[0] is 1e+308, beyond "
+                   "1e+150 in magnitude"),
+    ("disagreeing params", "corrupt summary: variables gives kn = 100000.0, but params gives "
+                           "300000.0: they disagree"),
+    ("key twice", "cpu_seconds given twice: which value is meant cannot be told"),
 ])
 def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, damage, message):
     _, data = summarized
@@ -245,6 +253,10 @@ def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, dama
         summary["variables"] = None
     if damage == "list variable":
         summary["variables"]["kn"] = [100000, 200000]
+    if damage == "huge block":
+        summary["measured"]["window"]["blocks"]["E_total"][0] = 1e308
+    if damage == "disagreeing params":
+        summary["params"]["kn"] = 300000.0
     if damage in ("histogram", "tail", "contacts", "split", "split part"):
         # a run with contact rows (durations.run_contacts), damaged
         histogram = [0] * 50
@@ -263,10 +275,45 @@ def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, dama
             contacts["split"] = {"3": part, "x" if damage == "split" else "10":
                                  {k: v for k, v in part.items() if k != "bursts"}}
         summary["measured"].update(contacts=contacts, contacts_problem=None)
-    path.write_text("{kn: 5" if damage == "not json" else json.dumps(summary))
+    text = "{kn: 5" if damage == "not json" else json.dumps(summary)
+    if damage == "key twice":
+        text = text.replace('"cpu_seconds": ', '"cpu_seconds": 5, "cpu_seconds": ')
+    path.write_text(text)
     record, = load_runs(tmp_path / "data")
     assert record.ended == "unreadable" and record.reason.startswith(f"{path}: ")
     assert message in record.reason
+
+
+@pytest.mark.parametrize("value,why", [
+    (1e308, "beyond 1e+150 in magnitude, more than any energy, rate, time or count of a run (a "
+            "damaged file?)"),
+    (-0.5, "negative: it is an energy, a rate, a time fraction or a count"),
+    (float("nan"), "not a finite number")])
+def test_the_raw_and_the_summary_reader_refuse_a_value_alike(summarized, tmp_path, value, why):
+    """An energy of 1e308 in one row of energy.txt (averaged into the report, with numpy's
+    warnings only), a negative one, a nan: the raw reader refuses it as the summary reader
+    refuses the same value in a summary's E(t), by one rule (io.checked_values), in the same
+    words."""
+    import shutil
+    results, data = summarized
+    raw = tmp_path / "results" / "collisional_flow" / "kn100000"
+    shutil.copytree(results / "collisional_flow" / "kn100000", raw)
+    lines = (raw / "energy.txt").read_text().splitlines()
+    row = len(lines) // 2
+    words = lines[row].split()
+    words[3] = repr(value)
+    lines[row] = " ".join(words)
+    (raw / "energy.txt").write_text("\n".join(lines) + "\n")
+    from_raw, = load_runs(tmp_path / "results")
+    assert from_raw.reason == f"energy.txt:{row + 1}: e_total is {value:g}, {why}"
+
+    summary = json.loads((data / "collisional_flow" / "kn100000.json").read_text())
+    summary["energy"]["E"][3] = value
+    path = tmp_path / "data" / "collisional_flow" / "kn100000.json"
+    path.parent.mkdir(parents=True)
+    path.write_text(json.dumps(summary))
+    from_summary, = load_runs(tmp_path / "data")
+    assert from_summary.reason == f"{path}: corrupt summary: energy.E[3] is {value:g}, {why}"
 
 
 def test_summarize_needs_raw_outputs(summarized, capsys):
