@@ -121,8 +121,26 @@ ERRORS = {
     "wall fix stiffer than time step allows": (
         deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL kn 1e9"),
         "fix wall/gran/mn: timestep 5e-05 exceeds the stability limit"),
+    # at the start of a run no step has moved an atom: it was placed so (the message blamed
+    # the time step)
     "atom behind the wall": (deck(fix="fix floor all wall/gran/mn yplane 0.6 NULL"),
-                             "has passed through the wall at 0.6"),
+                             "atom 1 is behind the wall at 0.6 at the start of the run, its "
+                             "centre on the wall or beyond it (placed so?)"),
+    # faster than the contact can stop it (v >> r sqrt(kn)), as "atom through the region wall"
+    "atom through the wall": (
+        deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL\nset atom 1 vy -3000"),
+        "atom 1 has passed through the wall at 0 (time step too large for the contact "
+        "stiffness?)"),
+    "atom through the zcylinder": (
+        deck(boundary="f f p", fix="fix drum all wall/gran/mn zcylinder NULL 2.5\n"
+                                   "set atom 2 vx 3000"),
+        "atom 2 has passed through the zcylinder of radius 2.5 (time step too large"),
+    "atom outside the zcylinder": (
+        deck(boundary="f f p", fix="fix drum all wall/gran/mn zcylinder NULL 0.3"),
+        "atom 1 is outside the outer zcylinder of radius 0.3 at the start of the run"),
+    "atom inside the inner zcylinder": (
+        deck(boundary="f f p", fix="fix drum all wall/gran/mn zcylinder 0.6 NULL"),
+        "atom 1 is inside the inner zcylinder of radius 0.6 at the start of the run"),
     # an atom re-entering through the periodic boundary came back inside the wall (and was shot
     # out at v = 233)
     "wall in a periodic dimension": (
