@@ -9,6 +9,8 @@ from granmn_run import HEADER, PLUGIN, installed_packages, run_lammps
 GOOD_PAIR = "pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5"
 # a box region around the two disks of deck(), its floor 0.5 below their centres
 REGION = "region inside block -2.5 2.5 0 2.5 -0.5 0.5 units box"
+# the same box moved down by v_drop, its floor 0.01 into the disks at the start
+MOVING_REGION = "region inside block -2.5 2.5 0.01 2.5 -0.5 0.5 move NULL v_drop NULL units box"
 
 
 def deck(pair=GOOD_PAIR, coeff="pair_coeff * *", fix="", timestep="timestep 5e-5",
@@ -208,6 +210,24 @@ ERRORS = {
     "atom through the region wall": (
         deck(fix=f"{REGION}\nfix cup all wall/gran/region/mn inside\nset atom 1 vy -3000"),
         "atom 1 has passed through the surface of region inside"),
+    "region wall face through an atom's centre": (
+        deck(fix=REGION.replace("0 2.5 -0.5", "0.5 2.5 -0.5") +
+             "\nfix cup all wall/gran/region/mn inside"),
+        "atom 1 has its centre on the surface of region inside at the start of the run "
+        "(placed so?)"),
+    # a region that jumps by more than a radius in a step: it leaves an atom that touched its
+    # floor outside it, or (counted) far from it
+    "region wall that jumps past an atom": (
+        deck(fix="variable drop equal -3*(step>5)\n" + MOVING_REGION +
+             "\nfix cup all wall/gran/region/mn inside"),
+        "has passed through the surface of region inside (time step too large for the contact "
+        "stiffness, or a move or rotate variable of the region that jumps?)"),
+    "region wall that jumps away from an atom, counted": (
+        deck(fix="variable drop equal -1*(step>5)\n" + MOVING_REGION +
+             "\nfix cup all wall/gran/region/mn inside\nfix c all contacts/mn"),
+        "by more than its radius within one step: the atom or the face moved that far in a "
+        "step (a time step far too large, or a move or rotate variable of the region that "
+        "jumps)"),
     "e near zero at tau_c/100": (
         deck(pair="pair_style gran/mn kn 2e5 e 1e-40 beta 0.7 mu 0.5",
              timestep="timestep $(v_mn_tau_c/100)"),
