@@ -141,7 +141,7 @@ double FixWallGranRegionMN::ended_normal_velocity(int i, int face)
   const bool moving = surface.region()->dynamic_check();
   const int nc = surface.surface(x[i], 2.0 * atom->radius[i]);
   for (int ic = 0; ic < nc; ic++) {
-    const granmn::SurfaceContact &near = surface.contact(ic);
+    const granmn::SurfaceContact near = surface.contact(ic);
     if (near.iwall != face || near.r <= 0.0) continue;
     double v_wall[3] = {0.0, 0.0, 0.0};
     if (moving) wall_velocity(near, x[i], v_wall);
@@ -196,7 +196,7 @@ void FixWallGranRegionMN::list_near_surface()
     if (!surface.match(x[i])) return true;
     const int nc = surface.surface(x[i], radius[i] + skin);
     for (int ic = 0; ic < nc; ic++) {
-      const granmn::SurfaceContact &face = surface.contact(ic);
+      const granmn::SurfaceContact face = surface.contact(ic);
       if (!planar || face.delz == 0.0 || face.delx != 0.0 || face.dely != 0.0) return true;
     }
     return false;
@@ -289,7 +289,7 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
     for (int k = 0; k < ncols; k++) before[k] = row[k];
     int kept = 0;
     for (int ic = 0; ic < nc; ic++) {
-      const granmn::SurfaceContact &face = surface.contact(ic);
+      const granmn::SurfaceContact face = surface.contact(ic);
       if (DIM == 2 && face.delz != 0.0) continue;
       if (face.r <= 0.0) {
         if (starting)

@@ -44,6 +44,7 @@ class RegionSurface {
     plain.clear();
     face_layout.clear();
     add(domain, region);
+    single = nodes.size() == 1 ? region : nullptr;
   }
   LAMMPS_NS::Region *region() const { return nodes[0].region; }
   // The plain regions it is made of (itself if it is one), each once, in the order walked.
@@ -53,15 +54,25 @@ class RegionSurface {
   const std::string &layout() const { return face_layout; }
 
   // Region::match: whether x is on the region's side of its surface.
-  bool match(const double *x) { return matches(0, x); }
-  // Region::surface: the faces within cutoff of x, contact(0 .. n - 1).
+  bool match(const double *x)
+  {
+    return single ? single->match(x[0], x[1], x[2]) : matches(0, x);
+  }
+  // Region::surface: the faces within cutoff of x, contact(0 .. n - 1). A plain region's are
+  // read from its own contacts, those of a union or intersect from the walk's.
   int surface(const double *x, double cutoff)
   {
+    if (single) return single->surface(x[0], x[1], x[2], cutoff);
     found.clear();
     collect(0, x, cutoff);
     return static_cast<int>(found.size());
   }
-  const SurfaceContact &contact(int k) const { return found[k]; }
+  SurfaceContact contact(int k) const
+  {
+    if (!single) return found[k];
+    const LAMMPS_NS::Region::Contact &c = single->contact[k];
+    return {c.r, c.delx, c.dely, c.delz, c.iwall, 0};
+  }
 
   // A part's rotation point and unit axis (Region keeps them protected; a pointer to the member
   // formed through a derived class reads them without changing LAMMPS).
@@ -87,6 +98,7 @@ class RegionSurface {
   };
 
   std::vector<Node> nodes;    // nodes[0]: the region
+  LAMMPS_NS::Region *single = nullptr;    // the region if it is a plain one
   std::vector<LAMMPS_NS::Region *> plain;
   std::string face_layout;
   std::vector<SurfaceContact> found;
