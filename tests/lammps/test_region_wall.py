@@ -485,6 +485,30 @@ def test_a_moving_member_of_a_union_or_intersect_moves_the_wall(tmp_path, compos
     assert (member.workdir / "final.txt").read_text() == (alone.workdir / "final.txt").read_text()
 
 
+def test_a_union_of_moving_members_continues_across_a_restart(tmp_path):
+    """Two moving members of a union (the belt under the sphere and a block away from it that
+    moves too): the restart file holds each one's motion, and the run continued from it goes
+    on as the uninterrupted one, to rounding (1e-12 in the units of drum_state; LAMMPS 29 Sep
+    2021 starts the belt's time anew from the restart, which moves it along itself only)."""
+    regions = ("variable shift equal 1.0*time\n"
+               "region table block -50 50 -50 50 0 50 move v_shift NULL NULL units box\n"
+               "region far block 60 70 60 70 60 70 move NULL v_shift NULL units box\n"
+               "region floor union 2 far table\nfix w all wall/gran/region/mn floor\n")
+    through = run_lammps(resting_sphere(regions + "run 1000\nwrite_restart mid.restart\n"
+                                        "run 1000\n") + FINAL, tmp_path / "through",
+                         header=False)
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    resumed = run_lammps(HEADER_3D.replace("boundary p p p\n", "")
+                         + f"read_restart {through.workdir / 'mid.restart'}\n"
+                         f"neighbor 0.1 bin\ncomm_modify vel yes\nfix integrate all nve/sphere\n"
+                         f"fix down all gravity 1.0 vector 0 0 -1\ntimestep {dt!r}\nthermo 0\n"
+                         + regions + "run 1000\n" + FINAL, tmp_path / "resumed", header=False)
+    assert through.atoms()["vx"][0] > 0.05    # dragged by the belt (mu g t = 0.1; at rest 0)
+    difference = np.abs(drum_state(through) - drum_state(resumed)).max()
+    print(f"resumed: largest difference {difference:.1e}")
+    assert difference < 1e-12
+
+
 def test_an_exterior_union_is_the_exterior_of_its_members(tmp_path):
     """A union with side out: the atoms outside both members. A sphere bouncing on the top of
     one member (a post), away from the other, must bounce as on the post alone (side out),
