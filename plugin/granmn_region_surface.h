@@ -7,11 +7,12 @@
    RegIntersect (a member's face is kept where no other member covers it, or where all the
    others do; an exterior one, side out, from the members' exteriors; the faces numbered as
    LAMMPS numbers them), with the members' own Region::surface and Region::match. LAMMPS's
-   union and intersect cannot serve a moving member: those of 29 Sep 2021 and 4 Feb 2025
-   report no member's velocity (the wall is at rest), and a union with a rotating member
-   applies a rotation of its own whose angle and axis are never set; that of 4 Jul 2026 passes
-   the members' velocities but transforms a rotating member's contacts a second time. The
-   union of 29 Sep 2021 also reports an exterior face's distance as 0.
+   union and intersect cannot serve a moving member: those of 29 Sep 2021 and 4 Feb 2025 pass
+   no member's velocity on (an intersect gives none, a union its own, which nothing sets), and
+   a union with a rotating member applies a rotation of its own whose angle and axis are never
+   set; those of 4 Jul 2026 pass the members' velocities on but transform a rotating member's
+   contacts a second time. The union of 29 Sep 2021 also reports an exterior face's distance
+   as 0.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_GRANMN_REGION_SURFACE_H
