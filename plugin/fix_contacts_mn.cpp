@@ -192,12 +192,13 @@ void FixContactsMN::copy_arrays(int i, int j, int delflag)
   if (delflag && fold_ghosts) atoms_deleted = true;
 }
 
-// On one process only a contact begun has work here, unless the step's contacts are recounted
-// (reports_every_contact()).
+// On one process only a contact begun has work here, unless the step's pair contacts are
+// recounted (reports_every_contact()); on more, the pair style tallies every pair contact
+// itself (pair_tallies()) and the wall fixes report only the contacts begun.
 void FixContactsMN::set_recounting(bool on)
 {
   recounting = on;
-  every_contact = !fold_ghosts || recounting;
+  every_contact = recounting;
   tallies_every_pair = !fold_ghosts;
 }
 
@@ -225,19 +226,19 @@ void FixContactsMN::pair_touching(int i, int j, bool j_is_boundary, bool i_is_bo
   }
 }
 
+// A wall fix's contact is with an owned atom: changed at once, on any number of processes (a
+// count anew takes the wall fixes' contacts from what they hold, contacts_held), so that
+// neither the order of the fixes' setups nor the processes matter.
 void FixContactsMN::boundary_touching(int i, bool began)
 {
-  // owned atom: counted directly, so that the order of fix setups does not matter
-  if (began) {
-    if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
-    if (fold_ghosts) change(i, 0.0, 1.0);
-  }
-  if (!fold_ghosts) step.add(i, true, false);
+  if (!began) return;
+  if (atom->mask[i] & groupbit) state[i][BEGUN_BOUNDARY] += 1.0;
+  change(i, 0.0, 1.0);
 }
 
 void FixContactsMN::boundary_ended(int i, const double *record, double vn)
 {
-  if (fold_ghosts) change(i, 0.0, -1.0);
+  change(i, 0.0, -1.0);
   if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, ROW_BOUNDARY, vn);
 }
 
@@ -272,8 +273,9 @@ void FixContactsMN::ended(const double *record, double tag_i, double tag_j, doub
 
 /* ---------------------------------------------------------------------- */
 
-// More than one process: bring ghost tallies home, add the contacts begun, and change each
-// atom whose contacts at this step differ from its last.
+// More than one process, or no atom map: bring the pair style's ghost tallies home, add the
+// contacts begun, and change each atom whose contacts at this step (those tallied and those
+// the wall fixes hold) differ from its last.
 void FixContactsMN::collect()
 {
   if (force->newton_pair) granmn::reverse_comm(comm, this);
@@ -284,9 +286,12 @@ void FixContactsMN::collect()
       s[BEGUN_PARTICLE] += step.begun_particle[i];
       s[BEGUN_BOUNDARY] += step.begun_boundary[i];
     }
-    const double particle = step.particle[i] - s[CONTACTS_PARTICLE];
-    const double boundary = step.boundary[i] - s[CONTACTS_BOUNDARY];
-    if (particle != 0.0 || boundary != 0.0) change(i, particle, boundary);
+    double boundary = step.boundary[i];
+    for (const granmn::HeldContacts *holder : holders) boundary += holder->contacts_held(i);
+    const double particle_change = step.particle[i] - s[CONTACTS_PARTICLE];
+    const double boundary_change = boundary - s[CONTACTS_BOUNDARY];
+    if (particle_change != 0.0 || boundary_change != 0.0)
+      change(i, particle_change, boundary_change);
   }
 }
 
@@ -323,7 +328,8 @@ void FixContactsMN::update_outputs()
   }
 }
 
-// Contacts that exist when a run starts are counted once, at its setup.
+// Contacts that exist when a run starts are counted once, at its setup (the global vector
+// anew: it may have been read at this step in the last run).
 void FixContactsMN::setup(int)
 {
   if (fold_ghosts)
@@ -331,17 +337,23 @@ void FixContactsMN::setup(int)
   else
     collect();
   update_outputs();
-  publish_rows();
+  // a run that starts at the step the last one ended at, a multiple of N, finds the rows of
+  // that step handed and written (a dump writes a step once): the rows of contacts ended at
+  // this setup go with the next multiple
+  publish_rows(handed_step != update->ntimestep);
+  vector_step = -1;
 }
 
 // On one process after a deletion, the atoms that lost a partner lose its contact at this
-// step, as a contact found ended by this step's force evaluation.
+// step, as a contact found ended by this step's force evaluation. The global vector is
+// computed anew from here (an output may have read it earlier in this step).
 void FixContactsMN::end_of_step()
 {
   if (!fold_ghosts) collect();
   if (recounting) recount();
   if (update->ntimestep % every == 0) update_outputs();
-  if (rows_every && update->ntimestep % rows_every == 0) publish_rows();
+  if (rows_every && update->ntimestep % rows_every == 0) publish_rows(true);
+  vector_step = -1;
 }
 
 // Between runs the per-atom output is current (write_dump, variables).
@@ -351,7 +363,7 @@ void FixContactsMN::post_run()
   peratom_freq = 1;
 }
 
-void FixContactsMN::publish_rows()
+void FixContactsMN::publish_rows(bool hand)
 {
   if (!rows_every) return;
   const int n = rows.size() / ROW_COLS;
@@ -365,7 +377,7 @@ void FixContactsMN::publish_rows()
   array_local = row_array;
   size_local_rows = n;
   // dump local N writes them at this step
-  if (update->ntimestep % rows_every == 0) {
+  if (hand && update->ntimestep % rows_every == 0) {
     rows_handed = n;
     handed_step = update->ntimestep;
   }

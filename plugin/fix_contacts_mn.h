@@ -66,10 +66,12 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   // or per atom; reading them never rounds the sums (the output is a copy).
   enum { ACCUMULATED_PARTICLE = NCOLS, ACCUMULATED_BOUNDARY, ACCUMULATED_MULTIPLE, SINCE,
          CONTACTS_PARTICLE, CONTACTS_BOUNDARY, STATE_COLS };
-  // Tallies of this step's contacts (owned + ghost), where contacts are counted anew at a
-  // step: at every step on more than one process (brought home by reverse communication,
-  // then compared with each atom's contacts), at a run's setup on one. They are `step`, a
-  // member of ContactObserver: the pair style adds to them inline.
+  // Tallies of this step's pair contacts (owned + ghost), where contacts are counted anew at
+  // a step: at every step on more than one process or without an atom map (brought home by
+  // reverse communication, then compared with each atom's contacts), at a run's setup on one.
+  // They are `step`, a member of ContactObserver: the pair style adds to them inline. A wall
+  // fix's contacts are its atom's own: each begin and end changes the atom at once, and a
+  // count anew takes them from what the wall fixes hold (holders).
   int nmax_step;
   // One process: a ghost's contacts are its image's (atom->map), each begin and end of a
   // contact changes its atoms' contacts at once, and a step costs nothing per contact beyond
@@ -92,7 +94,7 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   double base_time;
   bigint base_step;
   double window_start;         // time at which accumulation (re)started
-  // The publishers that remember their contacts (wall fixes), asked at a recount
+  // The publishers that remember their contacts (wall fixes), asked at a count anew
   std::vector<const granmn::HeldContacts *> holders;
   int rows_every;              // local rows: contacts completed in the last N steps (0: none)
   std::vector<double> rows;    // 8 values per completed contact, not yet dumped
@@ -116,7 +118,8 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   void update_outputs();
   void grow_step_arrays();
   void zero_step_arrays();
-  void publish_rows();
+  // the rows to dump local; `hand`: a dump writes them at this step if it is a multiple of N
+  void publish_rows(bool hand);
 };
 
 // Inline: called for every contact at every step.

@@ -334,10 +334,20 @@ void FixWallGranMN::touching_side(int i, int side, double dist, double rho, doub
     touching = 1.0;
     if (began || events->reports_every_contact()) events->boundary_touching(i, began);
   }
-  if (dist <= 0.0)
-    error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the {} at {} "
+  if (dist <= 0.0) {
+    // at a run's start no step has moved it there: it was placed so (or the wall was)
+    if (update->setupflag)
+      error->one(FLERR, "Fix wall/gran/mn: atom {} is {} {} at the start of the run, its "
+                        "centre on the wall or beyond it (placed so?)",
+                 atom->tag[i],
+                 CYLINDER ? (side == 0 ? "inside the inner zcylinder of radius"
+                                       : "outside the outer zcylinder of radius")
+                          : "behind the wall at",
+                 side == 0 ? lo : hi);
+    error->one(FLERR, "Fix wall/gran/mn: atom {} has passed through the {} {} "
                       "(time step too large for the contact stiffness?)",
-               atom->tag[i], CYLINDER ? "zcylinder of radius" : "wall", side == 0 ? lo : hi);
+               atom->tag[i], CYLINDER ? "zcylinder of radius" : "wall at", side == 0 ? lo : hi);
+  }
   const double d[3] = {n[0] * dist, n[1] * dist, n[2] * dist};    // dist > 0 here
   const auto kin = mn::wall_kinematics<DIM>(d, dist, radius[i], v[i], atom->omega[i]);
   mn::add_wall_contact<DIM>(law, mn::boundary_mass_scale(atom->rmass[i]) *

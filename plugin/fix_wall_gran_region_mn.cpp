@@ -1,7 +1,8 @@
 /* ----------------------------------------------------------------------
    fix wall/gran/region/mn: a region's surface as a wall with the law of mn_contact.h.
    Which faces an atom touches, and where, comes from LAMMPS's Region::surface (as for LAMMPS's
-   fix wall/gran/region); the history of each face in contact is kept by the face's number.
+   fix wall/gran/region), of each part of a union or intersect (granmn_region_surface.h); the
+   history of each face in contact is kept by the face's number.
 ------------------------------------------------------------------------- */
 
 #include "fix_wall_gran_region_mn.h"
@@ -18,8 +19,10 @@
 #include "region.h"
 #include "update.h"
 
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -28,10 +31,10 @@ using namespace FixConst;
 // fix ID group wall/gran/region/mn region-ID [kn K] [e E] [beta B] [mu MU] [limit_damping]
 //                                            [coulomb_cutback]
 FixWallGranRegionMN::FixWallGranRegionMN(LAMMPS *lmp, int narg, char **arg) :
-    FixPerAtomState(lmp, narg, arg), region(nullptr), max_contacts(0), own_law(false),
-    use_history(false), integrator(mn::Integrator::VelocityVerlet), ut_width(1),
-    ut_block(-1), record_block(-1), vt_block(-1), observer(nullptr),
-    force_per_mass_acceleration(1.0), force_reduced(false), radii_change(false)
+    FixPerAtomState(lmp, narg, arg), max_contacts(0), own_law(false), use_history(false),
+    integrator(mn::Integrator::VelocityVerlet), ut_width(1), ut_block(-1), record_block(-1),
+    vt_block(-1), observer(nullptr), faces_renumbered(false), force_per_mass_acceleration(1.0),
+    force_reduced(false), radii_change(false)
 {
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "Fix wall/gran/region/mn requires atom attributes radius, rmass, omega, "
@@ -39,7 +42,8 @@ FixWallGranRegionMN::FixWallGranRegionMN(LAMMPS *lmp, int narg, char **arg) :
   if (narg < 4) error->all(FLERR, "Illegal fix wall/gran/region/mn command: expected a region ID");
   region_id = arg[3];
   find_region();
-  max_contacts = region->tmax;
+  max_contacts = surface.region()->tmax;
+  evaluated_layout = surface.layout();
   int iarg = 4;
   while (iarg < narg) {
     const int used =
@@ -71,13 +75,17 @@ int FixWallGranRegionMN::setmask()
 
 void FixWallGranRegionMN::find_region()
 {
-  region = granmn::region_by_id(domain, region_id);
+  Region *region = granmn::region_by_id(domain, region_id);
   if (!region)
     error->all(FLERR, "Fix wall/gran/region/mn: region {} does not exist", region_id);
   if (region->varshape)
     error->all(FLERR, "Fix wall/gran/region/mn: region {} changes its shape (variable "
                       "parameters): its surface velocity is not known; move or rotate it instead",
                region_id);
+  surface.assign(domain, region);
+  // a part's motion is kept where the region still has as many parts (the run's first
+  // evaluation checks that it is the same motion)
+  if (motions.size() != surface.parts().size()) motions.assign(surface.parts().size(), Motion());
 }
 
 // Material from the fix line where given, else from pair_style gran/mn (as fix wall/gran/mn).
@@ -91,18 +99,15 @@ void FixWallGranRegionMN::resolve_law()
 void FixWallGranRegionMN::init()
 {
   // A deck may delete the region and define it again between runs (LAMMPS's
-  // examples/granregion turns its box so): the contacts carry on by face number, and the
-  // region's motion is the new one's unless the region is the one the fix last saw (its
-  // displacement and angle of the last step as the fix left them: also after a restart).
-  const Region *before = region;
+  // examples/granregion turns its box so): the contacts carry on by face number where the
+  // faces are numbered as before, and end at the run's start where not.
   find_region();
+  const Region *region = surface.region();
   if (region->tmax > max_contacts)
     error->all(FLERR, "Fix wall/gran/region/mn: region {} was defined again with {} faces an "
                       "atom can touch at once, more than the {} the fix keeps: define the fix "
                       "again", region_id, region->tmax, max_contacts);
-  bool same_motion = region == before;
-  for (int k = 0; k < 4; k++) same_motion = same_motion && region->prev[k] == motion.prev[k];
-  if (!same_motion) motion = Motion();
+  faces_renumbered = surface.layout() != evaluated_layout;
   resolve_law();
   if (law.material.mu > 0.0 && !use_history)
     error->all(FLERR, "Fix wall/gran/region/mn was defined with mu = 0 and keeps no tangential "
@@ -127,24 +132,29 @@ void FixWallGranRegionMN::init()
 
 // The normal velocity (away from the face) of local atom i against a face it has just left,
 // for the observer's row of the ended contact: the face is found again within the atom's
-// diameter (it left it by less than a step's motion).
+// diameter (it left it by less than a step's motion). At a run's start the face may be gone
+// (the region defined again with it open, or the atom moved between runs): no normal, and the
+// row says so (nan).
 double FixWallGranRegionMN::ended_normal_velocity(int i, int face)
 {
   double **x = atom->x;
-  const int nc = region->surface(x[i][0], x[i][1], x[i][2], 2.0 * atom->radius[i]);
+  const bool moving = surface.region()->dynamic_check();
+  const int nc = surface.surface(x[i], 2.0 * atom->radius[i]);
   for (int ic = 0; ic < nc; ic++) {
-    const Region::Contact &near = region->contact[ic];
+    const granmn::SurfaceContact near = surface.contact(ic);
     if (near.iwall != face || near.r <= 0.0) continue;
-    double wall_velocity[3] = {0.0, 0.0, 0.0};
-    if (region->dynamic_check()) region->velocity_contact(wall_velocity, x[i], ic);
+    double v_wall[3] = {0.0, 0.0, 0.0};
+    if (moving) wall_velocity(near, x[i], v_wall);
     const double d[3] = {near.delx, near.dely, near.delz};
     double vn = 0.0;
-    for (int c = 0; c < 3; c++) vn += d[c] / near.r * (atom->v[i][c] - wall_velocity[c]);
+    for (int c = 0; c < 3; c++) vn += d[c] / near.r * (atom->v[i][c] - v_wall[c]);
     return vn;
   }
+  if (update->setupflag) return std::numeric_limits<double>::quiet_NaN();
   error->one(FLERR, "Fix wall/gran/region/mn: atom {} left face {} of region {} by more than "
-                    "its radius in one step (time step far too large)", atom->tag[i], face,
-             region_id);
+                    "its radius within one step: the atom or the face moved that far in a step "
+                    "(a time step far too large, or a move or rotate variable of the region "
+                    "that jumps)", atom->tag[i], face, region_id);
   return 0.0;
 }
 
@@ -159,6 +169,8 @@ void FixWallGranRegionMN::setup(int vflag)
 {
   list_near_surface();
   post_force(vflag);
+  faces_renumbered = false;
+  evaluated_layout = surface.layout();
 }
 
 void FixWallGranRegionMN::pre_neighbor()
@@ -169,7 +181,7 @@ void FixWallGranRegionMN::pre_neighbor()
 void FixWallGranRegionMN::list_near_surface()
 {
   near_surface.clear();
-  if (region->dynamic_check() || radii_change) return;
+  if (surface.region()->dynamic_check() || radii_change) return;
   double **x = atom->x;
   const double *radius = atom->radius;
   const double skin = neighbor->skin;
@@ -179,13 +191,14 @@ void FixWallGranRegionMN::list_near_surface()
   // at z = +-0.5, right above and below every disk: no wall, the disks lie in the plane); a
   // contact with a part in the plane counts (an open region reports only the nearest point
   // to an atom outside it, which can be on a z face's rim: its part in the plane is no more
-  // than the distance to the faces in the plane).
+  // than the distance to the faces in the plane), and so does one at distance 0.
   const auto near_a_face = [&](int i) {
-    if (!region->match(x[i][0], x[i][1], x[i][2])) return true;
-    const int nc = region->surface(x[i][0], x[i][1], x[i][2], radius[i] + skin);
-    for (int ic = 0; ic < nc; ic++)
-      if (!planar || region->contact[ic].delx != 0.0 || region->contact[ic].dely != 0.0)
-        return true;
+    if (!surface.match(x[i])) return true;
+    const int nc = surface.surface(x[i], radius[i] + skin);
+    for (int ic = 0; ic < nc; ic++) {
+      const granmn::SurfaceContact face = surface.contact(ic);
+      if (!planar || face.delz == 0.0 || face.delx != 0.0 || face.dely != 0.0) return true;
+    }
     return false;
   };
   // every atom, in the group or not: a dynamic group can change between builds
@@ -203,11 +216,12 @@ void FixWallGranRegionMN::post_force(int)
 
 // Each face the region reports within an atom's radius is one contact, as a plane of
 // fix wall/gran/mn: n along (delx, dely, delz) from the face's nearest point to the centre, the
-// wall's velocity there (a moving or rotating region) subtracted. A face's history follows it
-// by its number from step to step; a face no longer touched loses it.
+// wall's velocity there (a moving or rotating part of the region) subtracted. A face's history
+// follows it by its number from step to step; a face no longer touched loses it.
 template <int DIM> void FixWallGranRegionMN::post_force_loop()
 {
   const double dt_history = granmn::history_dt(update);
+  const bool starting = update->setupflag;
   double **x = atom->x;
   double **v = atom->v;
   double **f = atom->f;
@@ -223,10 +237,12 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
   const int width = ut_width;
   const int nslots = max_contacts;
   granmn::ContactObserver *const events = observer;
+  Region *region = surface.region();
   const bool moving = region->dynamic_check();
   double on_walls[3] = {0.0, 0.0, 0.0};
   // the slots of one atom as they were, to carry each face's history to its new slot
   std::vector<double> before(ncols);
+  const double no_normal = std::numeric_limits<double>::quiet_NaN();
 
   if (moving) {
     region->prematch();
@@ -240,30 +256,50 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
     const int i = every ? n : near_surface[n];
     if (!(mask[i] & groupbit)) continue;
     double *row = state[i];
-    const int touching_before = static_cast<int>(row[0]);
+    int touching_before = static_cast<int>(row[0]);
+    // A region defined again with its faces numbered otherwise: the contacts held end here
+    // (no normal to the face they had)
+    if (faces_renumbered && touching_before > 0) {
+      for (int old = 0; events && old < touching_before; old++)
+        events->boundary_ended(i, &row[record_block + old * granmn::RECORD_SIZE], no_normal);
+      for (int k = 0; k < ncols; k++) row[k] = 0.0;
+      touching_before = 0;
+    }
     int nc = 0;
     // most atoms are far from the surface: no contact now or before, nothing to carry
-    if (region->match(x[i][0], x[i][1], x[i][2])) {
-      nc = region->surface(x[i][0], x[i][1], x[i][2], radius[i]);
-    } else if (touching_before > 0 && !region->openflag) {
+    if (surface.match(x[i])) {
+      nc = surface.surface(x[i], radius[i]);
+    } else if (touching_before > 0 && !region->openflag && !starting) {
       error->one(FLERR, "Fix wall/gran/region/mn: atom {} has passed through the surface of "
-                        "region {} (time step too large for the contact stiffness?)",
-                 atom->tag[i], region_id);
+                        "region {} (time step too large for the contact stiffness{}?)",
+                 atom->tag[i], region_id,
+                 moving ? ", or a move or rotate variable of the region that jumps" : "");
     }
-    if (nc > nslots)
+    // in 2D a face normal to z is no wall (the disks lie in the plane): a slab thinner than a
+    // disk reports its two z faces as well
+    int in_plane = nc;
+    if (DIM == 2)
+      for (int ic = 0; ic < nc; ic++)
+        if (surface.contact(ic).delz != 0.0) in_plane--;
+    if (in_plane > nslots)
       error->one(FLERR, "Fix wall/gran/region/mn: atom {} touches {} faces of region {}, "
-                        "more than the {} it can have", atom->tag[i], nc, region_id, nslots);
+                        "more than the {} LAMMPS says an atom can touch at once (its tmax)",
+                 atom->tag[i], in_plane, region_id, nslots);
     if (nc == 0 && touching_before == 0) continue;
     for (int k = 0; k < ncols; k++) before[k] = row[k];
     int kept = 0;
     for (int ic = 0; ic < nc; ic++) {
-      const Region::Contact &face = region->contact[ic];
-      // in 2D a face normal to z is no wall (the disks lie in the plane)
+      const granmn::SurfaceContact face = surface.contact(ic);
       if (DIM == 2 && face.delz != 0.0) continue;
-      if (face.r <= 0.0)
+      if (face.r <= 0.0) {
+        if (starting)
+          error->one(FLERR, "Fix wall/gran/region/mn: atom {} has its centre on the surface of "
+                            "region {} at the start of the run (placed so?)",
+                     atom->tag[i], region_id);
         error->one(FLERR, "Fix wall/gran/region/mn: atom {} has reached the surface of region "
                           "{} with its centre (time step too large for the contact stiffness?)",
                    atom->tag[i], region_id);
+      }
       // the face's slot: its history if it was touched at the last evaluation, else none
       const int slot = kept++;
       double *ut = ut_block >= 0 ? row + ut_block + slot * width : nullptr;
@@ -282,11 +318,10 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
       if (record && !began)
         for (int k = 0; k < granmn::RECORD_SIZE; k++)
           record[k] = before[record_block + old * granmn::RECORD_SIZE + k];
-      double wall_velocity[3] = {0.0, 0.0, 0.0};
-      if (moving) region->velocity_contact(wall_velocity, x[i], ic);
+      double v_wall[3] = {0.0, 0.0, 0.0};
+      if (moving) wall_velocity(face, x[i], v_wall);
       const double d[3] = {face.delx, face.dely, face.delz};
-      const double dv[3] = {v[i][0] - wall_velocity[0], v[i][1] - wall_velocity[1],
-                            v[i][2] - wall_velocity[2]};
+      const double dv[3] = {v[i][0] - v_wall[0], v[i][1] - v_wall[1], v[i][2] - v_wall[2]};
       const auto kin = mn::wall_kinematics<DIM>(d, face.r, radius[i], dv, omega[i]);
       if (events) {
         events->update_record(record, began, kin.delta, kin.vn);
@@ -315,63 +350,160 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
   force_reduced = false;
 }
 
-// The region's velocity at this step. Region::set_velocity differences its displacement and
-// angle from the step before; Region::init, at every run, forgets that step, so the first force
-// evaluation of each run saw the region at rest: a sphere rolling on a moving floor got a kick
-// of mu m g for a step (LAMMPS's fix wall/gran/region has it so). The fix keeps the velocity
-// of the last step it evaluated, also in restart files, and gives it back at a run's first
-// evaluation of that same step, differencing from the displacement found then.
+// The velocity of the region's surface at `face` for an atom at x: the part's translation,
+// and its rotation about its axis through rpoint at the face's nearest point (as
+// Region::velocity_contact).
+void FixWallGranRegionMN::wall_velocity(const granmn::SurfaceContact &face, const double *x,
+                                        double *v_wall) const
+{
+  const Region *part = surface.parts()[face.part];
+  const Motion &motion = motions[face.part];
+  v_wall[0] = v_wall[1] = v_wall[2] = 0.0;
+  if (part->moveflag)
+    for (int c = 0; c < 3; c++) v_wall[c] = motion.v[c];
+  if (part->rotateflag) {
+    const double xc[3] = {x[0] - face.delx, x[1] - face.dely, x[2] - face.delz};
+    const double *w = motion.omega, *p = motion.rpoint;
+    v_wall[0] += w[1] * (xc[2] - p[2]) - w[2] * (xc[1] - p[1]);
+    v_wall[1] += w[2] * (xc[0] - p[0]) - w[0] * (xc[2] - p[2]);
+    v_wall[2] += w[0] * (xc[1] - p[1]) - w[1] * (xc[0] - p[0]);
+  }
+}
+
+// A part's displacement and angle as its move and rotate variables give them (prematch).
+static std::array<double, 4> displacement_of(const Region *part)
+{
+  return {part->moveflag ? part->dx : 0.0, part->moveflag ? part->dy : 0.0,
+          part->moveflag ? part->dz : 0.0, part->rotateflag ? part->theta : 0.0};
+}
+
+// A part's motion at this step, `at` its displacement and angle now, `before` a step earlier:
+// v = (at - before)/dt and the angular velocity along its unit axis, as Region::set_velocity
+// computes them (which takes the axis as given: a rotate axis of length 2 turned the wall's
+// surface twice as fast as the region).
+FixWallGranRegionMN::Motion FixWallGranRegionMN::motion_between(const Region *part,
+                                                               const double *at,
+                                                               const double *before) const
+{
+  Motion motion;
+  motion.step = update->ntimestep;
+  for (int k = 0; k < 4; k++) motion.at[k] = at[k];
+  if (part->moveflag)
+    for (int c = 0; c < 3; c++) motion.v[c] = (at[c] - before[c]) / update->dt;
+  if (part->rotateflag) {
+    const double *point = granmn::RegionSurface::rotation_point(part);
+    const double *axis = granmn::RegionSurface::rotation_axis(part);
+    const double angular_speed = (at[3] - before[3]) / update->dt;
+    for (int c = 0; c < 3; c++) {
+      motion.rpoint[c] = point[c] + at[c];
+      motion.omega[c] = angular_speed * axis[c];
+    }
+  }
+  return motion;
+}
+
+// The velocity of each moving part at this step. Region::set_velocity differences a part's
+// displacement and angle from the last step it was called at: it gives 0 at step 0 and at
+// every run's start (Region::init forgets that step: a sphere rolling on a moving floor got a
+// kick of mu m g), and a region defined (or defined again) while it moves takes its whole
+// displacement over one step for its velocity (a sphere resting on a floor rising at 0.01 was
+// launched at 14). Within a run the fix takes the displacement of the step before from its
+// own record; at a run's start it evaluates the part's variables at the step before (time -
+// dt). Where its record of this step still holds (the same displacement, and a velocity that
+// differs by rounding only: the variables unchanged) it keeps that record, so that a run
+// continued, also from a restart file, goes on as the uninterrupted one.
 void FixWallGranRegionMN::track_motion()
 {
   const bigint step = update->ntimestep;
-  if (update->setupflag && step == motion.step) {
-    for (int c = 0; c < 3; c++) {
-      region->v[c] = motion.v[c];
-      region->omega[c] = motion.omega[c];
-      region->rpoint[c] = motion.rpoint[c];
+  const std::vector<Region *> &parts = surface.parts();
+  const int nparts = static_cast<int>(parts.size());
+  bool recorded = !update->setupflag;
+  for (int p = 0; p < nparts; p++)
+    if (parts[p]->dynamic && motions[p].step != step - 1) recorded = false;
+  std::vector<std::array<double, 4>> earlier;    // at a run's start: a step before
+  if (!recorded) {
+    // on every process: a variable may sum over the atoms
+    update->ntimestep = step - 1;
+    surface.region()->prematch();
+    for (const Region *part : parts) earlier.push_back(displacement_of(part));
+    update->ntimestep = step;
+    surface.region()->prematch();
+  }
+  for (int p = 0; p < nparts; p++) {
+    if (!parts[p]->dynamic) continue;
+    const std::array<double, 4> at = displacement_of(parts[p]);
+    const double *before = recorded ? motions[p].at : earlier[p].data();
+    Motion now = motion_between(parts[p], at.data(), before);
+    const Motion &last = motions[p];
+    if (update->setupflag && last.step == step) {
+      // to the rounding of the displacements over dt: LAMMPS sums a variable's time anew at
+      // each run, and the step before, evaluated now, may round otherwise than it did
+      const double eps = std::numeric_limits<double>::epsilon();
+      bool same = true;
+      for (int k = 0; k < 4; k++) {
+        const double tolerance =
+            64.0 * eps * (std::fabs(at[k]) + std::fabs(before[k])) / update->dt;
+        same = same && at[k] == last.at[k];
+        if (k < 3 && parts[p]->moveflag)
+          same = same && std::fabs(now.v[k] - last.v[k]) <= tolerance;
+        if (k == 3 && parts[p]->rotateflag)
+          for (int c = 0; c < 3; c++)
+            same = same && std::fabs(now.omega[c] - last.omega[c]) <= tolerance;
+      }
+      if (same) now = last;
     }
-    region->prev[0] = region->dx;
-    region->prev[1] = region->dy;
-    region->prev[2] = region->dz;
-    region->prev[3] = region->theta;
-    region->vel_timestep = static_cast<int>(step);
-  } else {
-    region->set_velocity();
+    motions[p] = now;
   }
-  motion.step = step;
-  for (int c = 0; c < 3; c++) {
-    motion.v[c] = region->v[c];
-    motion.omega[c] = region->omega[c];
-    motion.rpoint[c] = region->rpoint[c];
-  }
-  for (int k = 0; k < 4; k++) motion.prev[k] = region->prev[k];
 }
 
+// The motion of the moving parts: one part's as the fix wrote it before it knew unions and
+// intersects (14 values, step >= -1), or -(1 + parts) and each part's 14.
 void FixWallGranRegionMN::write_restart(FILE *fp)
 {
   if (comm->me) return;
-  const double values[Motion::SIZE] = {
-      static_cast<double>(motion.step), motion.v[0],      motion.v[1],      motion.v[2],
-      motion.omega[0],                  motion.omega[1],  motion.omega[2],  motion.rpoint[0],
-      motion.rpoint[1],                 motion.rpoint[2], motion.prev[0],   motion.prev[1],
-      motion.prev[2],                   motion.prev[3]};
-  const int size = Motion::SIZE * sizeof(double);
+  std::vector<double> values;
+  std::vector<const Motion *> moving;
+  for (size_t p = 0; p < motions.size(); p++)
+    if (surface.parts()[p]->dynamic) moving.push_back(&motions[p]);
+  const Motion at_rest;
+  if (moving.size() > 1) values.push_back(-1.0 - moving.size());
+  if (moving.empty()) moving.push_back(&at_rest);
+  for (const Motion *motion : moving) {
+    values.push_back(static_cast<double>(motion->step));
+    values.insert(values.end(), motion->v, motion->v + 3);
+    values.insert(values.end(), motion->omega, motion->omega + 3);
+    values.insert(values.end(), motion->rpoint, motion->rpoint + 3);
+    values.insert(values.end(), motion->at, motion->at + 4);
+  }
+  const int size = values.size() * sizeof(double);
   fwrite(&size, sizeof(int), 1, fp);
-  fwrite(values, sizeof(double), Motion::SIZE, fp);
+  fwrite(values.data(), sizeof(double), values.size(), fp);
 }
 
+// Read where the region has as many moving parts as the file (else their velocities are found
+// at the run's start).
 void FixWallGranRegionMN::restart(char *buf)
 {
-  double values[Motion::SIZE];
-  memcpy(values, buf, sizeof(values));
-  motion.step = static_cast<bigint>(values[0]);
-  for (int c = 0; c < 3; c++) {
-    motion.v[c] = values[1 + c];
-    motion.omega[c] = values[4 + c];
-    motion.rpoint[c] = values[7 + c];
+  std::vector<Motion *> moving;
+  for (size_t p = 0; p < motions.size(); p++)
+    if (surface.parts()[p]->dynamic) moving.push_back(&motions[p]);
+  double first;
+  memcpy(&first, buf, sizeof(double));
+  const size_t written = first >= -1.0 ? 1 : static_cast<size_t>(-1.0 - first);
+  if (written != moving.size()) return;
+  const char *at = buf + (first >= -1.0 ? 0 : sizeof(double));
+  for (Motion *motion : moving) {
+    double values[Motion::SIZE];
+    memcpy(values, at, sizeof(values));
+    at += sizeof(values);
+    motion->step = static_cast<bigint>(values[0]);
+    for (int c = 0; c < 3; c++) {
+      motion->v[c] = values[1 + c];
+      motion->omega[c] = values[4 + c];
+      motion->rpoint[c] = values[7 + c];
+    }
+    for (int k = 0; k < 4; k++) motion->at[k] = values[10 + k];
   }
-  // the region of the restart is taken for the one the fix saw (init compares these)
-  for (int k = 0; k < 4; k++) region->prev[k] = motion.prev[k] = values[10 + k];
 }
 
 double FixWallGranRegionMN::compute_vector(int n)

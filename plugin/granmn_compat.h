@@ -16,6 +16,7 @@
 #include "modify.h"
 #include "neigh_request.h"
 #include "neighbor.h"
+#include "region.h"
 #include "utils.h"
 
 #include <string>
@@ -118,6 +119,25 @@ template <typename D> LAMMPS_NS::Region *region_lookup(D *domain, const std::str
 inline LAMMPS_NS::Region *region_by_id(LAMMPS_NS::Domain *domain, const std::string &id)
 {
   return region_lookup(domain, id, 0);
+}
+
+// Member k of a union or intersect region: Region::reglist where LAMMPS has it (the regions'
+// refactor of 2022), else its index into Domain::regions (Region::list). Chosen by what Region
+// declares, as region_by_id.
+template <typename R>
+auto member_lookup(LAMMPS_NS::Domain *, R *region, int k, int) -> decltype(region->reglist[k])
+{
+  return region->reglist[k];
+}
+template <typename R>
+LAMMPS_NS::Region *member_lookup(LAMMPS_NS::Domain *domain, R *region, int k, long)
+{
+  return domain->regions[region->list[k]];
+}
+inline LAMMPS_NS::Region *region_member(LAMMPS_NS::Domain *domain, LAMMPS_NS::Region *region,
+                                        int k)
+{
+  return member_lookup(domain, region, k, 0);
 }
 
 }    // namespace granmn

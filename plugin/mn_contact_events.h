@@ -18,8 +18,9 @@
 
    A publisher that remembers between force evaluations which contacts it has (a wall fix's
    flag per atom and side) also implements HeldContacts: the observer finds it among the
-   fixes at its init and asks it when it counts contacts anew (a run's setup, a step after
-   atoms were deleted), so that the count does not depend on the order of the fixes' setups.
+   fixes at its init and asks it when it counts contacts anew (a run's setup; every step where
+   the pair contacts are tallied; a step after atoms were deleted), so that the count depends
+   neither on the order of the fixes' setups nor on the processes.
 
    A new wall fix (a cylinder or region wall, say) plugs in as fix wall/gran/mn does: derive
    from HeldContacts, find the observer at init, keep a record and a touching flag per atom

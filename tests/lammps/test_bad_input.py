@@ -9,6 +9,8 @@ from granmn_run import HEADER, PLUGIN, installed_packages, run_lammps
 GOOD_PAIR = "pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5"
 # a box region around the two disks of deck(), its floor 0.5 below their centres
 REGION = "region inside block -2.5 2.5 0 2.5 -0.5 0.5 units box"
+# the same box moved down by v_drop, its floor 0.01 into the disks at the start
+MOVING_REGION = "region inside block -2.5 2.5 0.01 2.5 -0.5 0.5 move NULL v_drop NULL units box"
 
 
 def deck(pair=GOOD_PAIR, coeff="pair_coeff * *", fix="", timestep="timestep 5e-5",
@@ -121,8 +123,26 @@ ERRORS = {
     "wall fix stiffer than time step allows": (
         deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL kn 1e9"),
         "fix wall/gran/mn: timestep 5e-05 exceeds the stability limit"),
+    # at the start of a run no step has moved an atom: it was placed so (the message blamed
+    # the time step)
     "atom behind the wall": (deck(fix="fix floor all wall/gran/mn yplane 0.6 NULL"),
-                             "has passed through the wall at 0.6"),
+                             "atom 1 is behind the wall at 0.6 at the start of the run, its "
+                             "centre on the wall or beyond it (placed so?)"),
+    # faster than the contact can stop it (v >> r sqrt(kn)), as "atom through the region wall"
+    "atom through the wall": (
+        deck(fix="fix floor all wall/gran/mn yplane 0.0 NULL\nset atom 1 vy -3000"),
+        "atom 1 has passed through the wall at 0 (time step too large for the contact "
+        "stiffness?)"),
+    "atom through the zcylinder": (
+        deck(boundary="f f p", fix="fix drum all wall/gran/mn zcylinder NULL 2.5\n"
+                                   "set atom 2 vx 3000"),
+        "atom 2 has passed through the zcylinder of radius 2.5 (time step too large"),
+    "atom outside the zcylinder": (
+        deck(boundary="f f p", fix="fix drum all wall/gran/mn zcylinder NULL 0.3"),
+        "atom 1 is outside the outer zcylinder of radius 0.3 at the start of the run"),
+    "atom inside the inner zcylinder": (
+        deck(boundary="f f p", fix="fix drum all wall/gran/mn zcylinder 0.6 NULL"),
+        "atom 1 is inside the inner zcylinder of radius 0.6 at the start of the run"),
     # an atom re-entering through the periodic boundary came back inside the wall (and was shot
     # out at v = 233)
     "wall in a periodic dimension": (
@@ -190,6 +210,24 @@ ERRORS = {
     "atom through the region wall": (
         deck(fix=f"{REGION}\nfix cup all wall/gran/region/mn inside\nset atom 1 vy -3000"),
         "atom 1 has passed through the surface of region inside"),
+    "region wall face through an atom's centre": (
+        deck(fix=REGION.replace("0 2.5 -0.5", "0.5 2.5 -0.5") +
+             "\nfix cup all wall/gran/region/mn inside"),
+        "atom 1 has its centre on the surface of region inside at the start of the run "
+        "(placed so?)"),
+    # a region that jumps by more than a radius in a step: it leaves an atom that touched its
+    # floor outside it, or (counted) far from it
+    "region wall that jumps past an atom": (
+        deck(fix="variable drop equal -3*(step>5)\n" + MOVING_REGION +
+             "\nfix cup all wall/gran/region/mn inside"),
+        "has passed through the surface of region inside (time step too large for the contact "
+        "stiffness, or a move or rotate variable of the region that jumps?)"),
+    "region wall that jumps away from an atom, counted": (
+        deck(fix="variable drop equal -1*(step>5)\n" + MOVING_REGION +
+             "\nfix cup all wall/gran/region/mn inside\nfix c all contacts/mn"),
+        "by more than its radius within one step: the atom or the face moved that far in a "
+        "step (a time step far too large, or a move or rotate variable of the region that "
+        "jumps)"),
     "e near zero at tau_c/100": (
         deck(pair="pair_style gran/mn kn 2e5 e 1e-40 beta 0.7 mu 0.5",
              timestep="timestep $(v_mn_tau_c/100)"),

@@ -600,3 +600,74 @@ def test_a_deleted_partner_is_no_contact_any_more(tmp_path, deletion, map_array)
     assert t_multiple == pytest.approx(touched_steps * dt, rel=1e-12)
     assert t_boundary == pytest.approx(3000 * dt, rel=1e-12)
     assert window == pytest.approx(3000 * dt, rel=1e-12)
+
+
+def resting_on_walls(counters_first, map_array):
+    """Disk 1 resting on the floor (fix wall/gran/mn), disk 2 resting on disk 1, disk 3 resting
+    on the floor where a region wall's face (fix wall/gran/region/mn) lies on it too, each at
+    its static overlap: contacts now 2 (disk 1: the floor, disk 2), 1 (disk 2), 2 (disk 3: both
+    walls), 5 in all, at every step. fix contacts/mn is defined before the wall fixes or after them; with an atom map
+    or without."""
+    kn = 2e5
+    header = HEADER.format(plugin=PLUGIN)
+    if not map_array:
+        header = header.replace("atom_modify map array\n", "")
+    counters = "fix c all contacts/mn\n"
+    walls = ("fix floor all wall/gran/mn yplane 0.0 NULL\n"
+             "region shelf block 2 5 0 5 -0.5 0.5 units box\n"
+             "fix shelf all wall/gran/region/mn shelf\n")
+    return header + f"""
+boundary p f p
+processors * 1 1
+region box block -3 6 -1 5 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 {0.5 - 2.0 / kn!r} 0
+create_atoms 1 single 0 {1.5 - 2.0 / kn - 1.0 / kn!r} 0
+create_atoms 1 single 3.5 {0.5 - 0.5 / kn!r} 0
+set type 1 diameter 1.0
+set type 1 density/disc {DISC_DENSITY!r}
+pair_style gran/mn kn {kn!r} e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+timestep {law(kn, 0.7, 0.7)["tau_w"] / 50!r}
+fix integrate all nve/sphere disc
+fix gravity all gravity 1.0 vector 0 -1 0
+{counters + walls if counters_first else walls + counters}compute now all reduce sum f_c[6]
+thermo_style custom step f_c[6] c_now
+thermo_modify norm no
+thermo 1000
+run 100
+run 100
+run 0
+write_dump all custom now.txt id f_c[6] modify sort id
+group top id 2
+delete_atoms group top compress no
+run 0
+"""
+
+
+@pytest.mark.parametrize("nprocs", [1, 2])
+@pytest.mark.parametrize("map_array", [True, False])
+@pytest.mark.parametrize("counters_first", [True, False])
+def test_contacts_now_at_every_runs_start(tmp_path, counters_first, map_array, nprocs):
+    """The global "contacts now" (f_c[6]) and the sum of the per-atom column are the contacts
+    there are, 5, at the start (setup) and end of each of three runs, whatever the order of
+    the fixes, with or without an atom map, on one or two ranks (the stack on one, disk 3 on the
+    other); per atom 2, 1, 2; after disk 2 is deleted, 3 at the next run's start. Where the
+    counters were defined before the wall fixes, without an atom map or on two ranks, each
+    run's setup dropped the wall contacts (the walls had not evaluated yet), and a run that
+    started at the step the last one ended at gave the global value of that step (5)."""
+    run = run_lammps(resting_on_walls(counters_first, map_array), tmp_path, nprocs=nprocs,
+                     header=False)
+    rows, header = [], False
+    for line in run.output.splitlines():
+        words = line.split()
+        if words[:3] == ["Step", "f_c[6]", "c_now"]:
+            header = True
+        elif header and len(words) == 3 and words[0].isdigit():
+            rows.append([float(w) for w in words])
+        else:
+            header = False
+    print(rows)
+    assert [row[0] for row in rows] == [0, 100, 100, 200, 200, 200]
+    assert all(row[1:] == [5, 5] for row in rows[:-1]) and rows[-1][1:] == [3, 3]
+    assert list(run.atoms("now.txt")["f_c[6]"]) == [2, 1, 2]

@@ -339,7 +339,198 @@ comm_modify vel yes
     assert difference < 1e-12
 
 
-def test_a_ball_on_a_turntable_orbits_at_two_sevenths_of_its_rate(tmp_path):
+def resting_sphere(motion, g=1.0):
+    """A solid sphere (mass 1) at rest on the floor z = 0 at (5, 0), at its static overlap
+    g/kn, gravity g along -z, the law's pair style and fix nve/sphere; `motion`: the floor's
+    region and wall fix and what follows."""
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    return HEADER_3D.replace("boundary p p p\n", "") + f"""
+boundary p p f
+region box block -10 10 -10 10 -2 5
+create_box 1 box
+create_atoms 1 single 5 0 {0.5 - g / KN!r}
+set atom 1 diameter 1.0 density {SPHERE_DENSITY!r}
+pair_style gran/mn kn {KN} e {E} beta {BETA} mu 0.5 coulomb_cutback
+pair_coeff * *
+fix integrate all nve/sphere
+fix down all gravity {g} vector 0 0 -1
+timestep {dt!r}
+thermo 0
+""" + motion
+
+
+@pytest.mark.parametrize("motion", ["move", "rotate"])
+def test_a_moving_region_has_its_velocity_at_step_0(tmp_path, motion):
+    """A sphere at rest on a floor that moves from step 0 (a belt at U = 1 along x; a turntable
+    at Omega = 0.1, whose surface under the sphere moves at Omega rho = 0.5 along y) slides at
+    the first force evaluation: the force on the floor is the Coulomb limit mu m g, against the
+    floor's motion (the trial force m eta_t v_t is 20 times the limit). LAMMPS's
+    Region::set_velocity gives every region velocity 0 at step 0: no friction there."""
+    mu, g = 0.5, 1.0
+    assert law(KN, E, BETA, "sphere")["eta_t"] * 0.5 > 10 * mu * g
+    floor = {"move": "variable shift equal 1.0*time\nregion floor block -100 100 -100 100 -1 0 "
+                     "side out move v_shift NULL NULL units box\n",
+             "rotate": "variable angle equal 0.1*time\nregion floor block -100 100 -100 100 -1 0 "
+                       "side out rotate v_angle 0 0 0 0 0 1 units box\n"}[motion]
+    deck = resting_sphere(floor + "fix w all wall/gran/region/mn floor\nrun 0\n"
+                          'print "RESULT on_floor $(f_w[1]:%.15g) $(f_w[2]:%.15g)"\n', g)
+    on_floor = run_lammps(deck, tmp_path, header=False).result("on_floor")
+    expected = [-mu * g, 0.0] if motion == "move" else [0.0, -mu * g]
+    print(f"force on the floor at step 0: {on_floor}, expected {expected}")
+    assert np.allclose(on_floor, expected, rtol=0, atol=1e-9 * mu * g)
+
+
+RISE = 0.01    # the floor's speed up
+# A floor under the sphere at rest on it, defined or defined again at step 1000 rising at RISE:
+# the deck, and whether it rose from step 0 (else from step 1000).
+FLOOR_DEFINED_LATER = {
+    # a new fix on a region defined at step 1000, its move variable 0.01 time: its face placed
+    # 0.01 time below z = 0 then
+    "a region defined at a later step": ("""fix w all wall/gran/region/mn floor
+run 1000
+unfix w
+variable rise equal {rise!r}*time
+region lift block -100 100 -100 100 -1 $(-{rise!r}*time) side out move NULL NULL v_rise units box
+fix w all wall/gran/region/mn lift
+""", False),
+    # the fix kept, its region (rising from step 0) defined again between runs as it was
+    "a region defined again as it was between runs": ("""variable rise equal {rise!r}*time
+region lift block -100 100 -100 100 -1 0 side out move NULL NULL v_rise units box
+fix w all wall/gran/region/mn lift
+run 1000
+region lift delete
+region lift block -100 100 -100 100 -1 0 side out move NULL NULL v_rise units box
+""", True),
+    # the fix kept, its region defined again as a piston placed by an offset in its variable
+    "a piston placed by an offset in its move variable": ("""fix w all wall/gran/region/mn floor
+run 1000
+region floor delete
+variable rise equal 0.3+{rise!r}*(time-$(time))
+region floor block -100 100 -100 100 -1 -0.3 side out move NULL NULL v_rise units box
+""", False),
+}
+
+
+@pytest.mark.parametrize("case", sorted(FLOOR_DEFINED_LATER))
+def test_a_region_defined_while_it_moves_has_its_velocity_from_its_first_step(tmp_path, case):
+    """A floor rising at U = 0.01 under a sphere resting on it, its region defined (or defined
+    again) at step 1000. At the first force evaluation after, the normal force is
+    m (kn delta - eta_n (v_z - U)), from the sphere's overlap and velocity then (the force on
+    the floor, f_w[3], is its opposite), to 1e-6; afterwards the sphere rides on the floor at
+    U, its overlap g/kn to 5 % of it (the start's transient has decayed to below 1 %; a wall at
+    rest would press it 70 % deeper, eta_n U/kn). Region::set_velocity knew no displacement
+    before the region's definition and took its whole displacement over one step for the
+    velocity (about 10: the sphere was launched at 14 and lost); its rule for step 0 (velocity
+    0) would miss eta_n U = 0.7 of the force."""
+    g = 1.0
+    text, from_step_0 = FLOOR_DEFINED_LATER[case]
+    start = 0.0 if from_step_0 else 1000 * law(KN, E, BETA)["tau_c"] / 50
+    coefficients = law(KN, E, BETA, "sphere")
+    floor = ("region floor block -100 100 -100 100 -1 0 side out units box\n"
+             + text.format(rise=RISE) + "run 0\n"
+             'print "RESULT first $(f_w[3]:%.15g) $(z[1]:%.17g) $(vz[1]:%.17g) $(time:%.17g)"\n'
+             "run 2000\n"
+             'print "RESULT last $(z[1]:%.17g) $(vz[1]:%.17g) $(time:%.17g)"\n')
+    run = run_lammps(resting_sphere(floor, g), tmp_path, header=False)
+    on_floor, z, vz, time = run.result("first")
+    top = RISE * (time - start)    # the floor's face
+    expected = -(KN * (0.5 - (z - top)) - coefficients["eta_n"] * (vz - RISE))
+    print(f"{case}: force on the floor {on_floor:.10g}, expected {expected:.10g}")
+    assert on_floor == pytest.approx(expected, rel=1e-6)
+    z, vz, time = run.result("last")
+    print(f"after 2000 steps: v_z {vz:.8g}, above the face by {z - RISE * (time - start):.8g}")
+    assert vz == pytest.approx(RISE, rel=1e-3)
+    assert z - RISE * (time - start) == pytest.approx(0.5 - g / KN, abs=0.05 * g / KN)
+
+
+# A block region `table` (the sphere inside it, on its bottom face z = 0) that moves (a belt at
+# U = 1 along x) or rotates (a turntable at Omega = 0.1 about z), and the wall's region
+# `floor` made of it with static regions away from the sphere.
+MOVING_TABLES = {"move": "variable shift equal 1.0*time\nregion table block -50 50 -50 50 0 50 "
+                         "move v_shift NULL NULL units box\n",
+                 "rotate": "variable angle equal 0.1*time\nregion table block -50 50 -50 50 0 50 "
+                           "rotate v_angle 0 0 0 0 0 1 units box\n"}
+COMPOSITES = {
+    "union": "region far block 60 70 60 70 60 70 units box\n"
+             "region floor union 2 far table\n",
+    "intersect": "region around block -60 60 -60 60 -10 60 units box\n"
+                 "region floor intersect 2 around table\n",
+    "union in an intersect": "region far block 60 70 60 70 60 70 units box\n"
+                             "region around block -60 60 -60 60 -10 60 units box\n"
+                             "region both union 2 table far\n"
+                             "region floor intersect 2 around both\n",
+}
+
+
+@pytest.mark.parametrize("motion", sorted(MOVING_TABLES))
+@pytest.mark.parametrize("composite", sorted(COMPOSITES))
+def test_a_moving_member_of_a_union_or_intersect_moves_the_wall(tmp_path, composite, motion):
+    """A sphere at rest on the bottom face of a block region that moves or rotates is dragged
+    along (test_a_moving_floor_drags_a_sphere_to_two_sevenths_of_its_speed, and the turntable's
+    test). The block as a member of a union (with a static block away from it), of an intersect
+    (with a static block around it), or of a union in an intersect has the same faces near the
+    sphere, each contact takes the velocity of the member whose face it is: the trajectory
+    must be the block's own, bitwise. LAMMPS 29 Sep 2021's union and intersect pass no member's
+    velocity (the sphere stayed at rest), and its union applies a rotation of its own whose
+    angle and axis are never set."""
+    def run(name, wall):
+        deck = resting_sphere(MOVING_TABLES[motion] + COMPOSITES[composite]
+                              + f"fix w all wall/gran/region/mn {wall}\nrun 2000\n")
+        return run_lammps(deck + FINAL, tmp_path / name, header=False)
+
+    alone, member = run("alone", "table"), run("member", "floor")
+    atoms = alone.atoms()
+    print(f"{composite}, {motion}: v ({atoms['vx'][0]:.6f}, {atoms['vy'][0]:.6f})")
+    assert np.hypot(atoms["vx"][0], atoms["vy"][0]) > 0.01    # dragged
+    assert (member.workdir / "final.txt").read_text() == (alone.workdir / "final.txt").read_text()
+
+
+def test_a_union_of_moving_members_continues_across_a_restart(tmp_path):
+    """Two moving members of a union (the belt under the sphere and a block away from it that
+    moves too): the restart file holds each one's motion, and the run continued from it goes
+    on as the uninterrupted one, to rounding (1e-12 in the units of drum_state; LAMMPS 29 Sep
+    2021 starts the belt's time anew from the restart, which moves it along itself only)."""
+    regions = ("variable shift equal 1.0*time\n"
+               "region table block -50 50 -50 50 0 50 move v_shift NULL NULL units box\n"
+               "region far block 60 70 60 70 60 70 move NULL v_shift NULL units box\n"
+               "region floor union 2 far table\nfix w all wall/gran/region/mn floor\n")
+    through = run_lammps(resting_sphere(regions + "run 1000\nwrite_restart mid.restart\n"
+                                        "run 1000\n") + FINAL, tmp_path / "through",
+                         header=False)
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    resumed = run_lammps(HEADER_3D.replace("boundary p p p\n", "")
+                         + f"read_restart {through.workdir / 'mid.restart'}\n"
+                         f"neighbor 0.1 bin\ncomm_modify vel yes\nfix integrate all nve/sphere\n"
+                         f"fix down all gravity 1.0 vector 0 0 -1\ntimestep {dt!r}\nthermo 0\n"
+                         + regions + "run 1000\n" + FINAL, tmp_path / "resumed", header=False)
+    assert through.atoms()["vx"][0] > 0.05    # dragged by the belt (mu g t = 0.1; at rest 0)
+    difference = np.abs(drum_state(through) - drum_state(resumed)).max()
+    print(f"resumed: largest difference {difference:.1e}")
+    assert difference < 1e-12
+
+
+def test_an_exterior_union_is_the_exterior_of_its_members(tmp_path):
+    """A union with side out: the atoms outside both members. A sphere bouncing on the top of
+    one member (a post), away from the other, must bounce as on the post alone (side out),
+    bitwise. LAMMPS 29 Sep 2021's union gave such a contact the distance 0 (its surface_exterior
+    sets r from another field): the wall stopped the run at the first touch."""
+    def run(name, regions, wall):
+        deck = resting_sphere(regions + f"fix w all wall/gran/region/mn {wall}\n"
+                              "set atom 1 z 0.8 vz -1.0 vx 0.3\nrun 5000\n")
+        return run_lammps(deck + FINAL, tmp_path / name, header=False)
+
+    post = "region post block 3 7 -2 2 -5 0 side out units box\n"
+    alone = run("alone", post, "post")
+    member = run("member", post.replace(" side out", "") + "region far block -9 -8 -9 -8 -5 0 "
+                 "units box\nregion posts union 2 far post side out\n", "posts")
+    atoms = alone.atoms()
+    print(f"after the bounce: v_z {atoms['vz'][0]:.5f}")
+    assert atoms["vz"][0] > 0.5    # bounced off the post's top
+    assert (member.workdir / "final.txt").read_text() == (alone.workdir / "final.txt").read_text()
+
+
+@pytest.mark.parametrize("axis_length", [1, 2])
+def test_a_ball_on_a_turntable_orbits_at_two_sevenths_of_its_rate(tmp_path, axis_length):
     """A rotating region (region ... rotate): a solid sphere set at rest on a turntable (a
     floor turning at Omega about z) at distance rho from the axis is dragged until it rolls,
     and then, rolling without slipping, its centre obeys dv/dt = (q/(1+q)) Omega x v (q = 2/5):
@@ -347,7 +538,10 @@ def test_a_ball_on_a_turntable_orbits_at_two_sevenths_of_its_rate(tmp_path):
     sticking is 2/7 Omega rho along the table's motion). Measured over a third of an orbit
     after it sticks: the angular rate within 1 % of 2 Omega/7, the distance within 1 % of rho.
     A wall that took the region's translation only, or no wall velocity, would leave it at
-    rest; one that rolled it with the table's own rate would orbit at Omega."""
+    rest; one that rolled it with the table's own rate would orbit at Omega. The rotate axis
+    given with length 2 turns the region at the same rate (LAMMPS rotates about its unit
+    vector): LAMMPS's Region::set_velocity multiplies the rate by the axis as given, and the
+    wall's surface moved at 2 Omega (the ball orbited at 4 Omega/7)."""
     rate, rho = 0.1, 5.0
     dt = law(KN, E, BETA)["tau_c"] / 50
     deck = HEADER_3D.replace("boundary p p p\n", "") + f"""
@@ -361,7 +555,7 @@ pair_coeff * *
 fix integrate all nve/sphere
 fix down all gravity 1.0 vector 0 0 -1
 variable angle equal {rate!r}*time
-region table block -50 50 -50 50 -1 0 side out rotate v_angle 0 0 0 0 0 1 units box
+region table block -50 50 -50 50 -1 0 side out rotate v_angle 0 0 0 0 0 {axis_length} units box
 fix w all wall/gran/region/mn table
 timestep {dt!r}
 thermo 0
@@ -483,3 +677,107 @@ def test_a_disk_outside_an_open_region_meets_the_rim_of_its_side_face(tmp_path):
           f"{atoms['vy'][0]:.4f}), speed {speed:.4f} of {np.hypot(0.3, 1.0):.4f}")
     assert atoms["y"][0] > 5.0 and atoms["vy"][0] > 0.0
     assert speed < np.hypot(0.3, 1.0)
+
+
+@pytest.mark.parametrize("shape", ["block", "cylinder"])
+def test_a_disk_wider_than_the_slab_ignores_its_z_faces(tmp_path, shape):
+    """2D: the regions of a deck span the box's z, -0.5 to 0.5, and a disk of diameter 1.2
+    reaches both z faces, which are no wall (the disks lie in the plane). A disk spinning in a
+    block's corner (pressed into it by gravity along (-1, -1): friction on both faces), or
+    rolling to and fro along a z-cylinder's wall at its bottom, must move as against the same
+    region 6 thick in z, which reports no z face, bitwise, and stay on the faces. The region
+    wall counted the z faces among the faces it touched (4 of a block's 3, 3 of a cylinder's
+    2) and stopped the run."""
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    box = "boundary f f p\nregion box block -3 3 -3 3 -0.5 0.5\n"
+    if shape == "block":    # pressed into each face by g/sqrt(2)
+        corner = -2.5 + 0.6 - np.sqrt(0.5) / KN
+        start, motion, gravity = f"{corner!r} {corner!r} 0", "omega 0 0 1.0", "-1 -1 0"
+    else:
+        start, motion, gravity = f"0 {-2.5 + 0.6 - 1.0 / KN!r} 0", "vx -0.3", "0 -1 0"
+
+    def run(z_extent):
+        cup = (f"region cup block -2.5 2.5 -2.5 2.5 {z_extent} units box" if shape == "block"
+               else f"region cup cylinder z 0 0 2.5 {z_extent} units box")
+        deck = one_atom(2, box, start, motion, f"{cup}\nfix w all wall/gran/region/mn cup\n"
+                        f"fix down all gravity 1.0 vector {gravity}", dt)
+        deck = deck.replace("set atom 1 diameter 1.0", "set atom 1 diameter 1.2")
+        return run_lammps(deck + "run 20000\n" + FINAL, tmp_path / z_extent.replace(" ", "_"),
+                          header=False)
+
+    thin, thick = run("-0.5 0.5"), run("-3 3")
+    assert (thin.workdir / "final.txt").read_text() == (thick.workdir / "final.txt").read_text()
+    atoms = thin.atoms()
+    x, y = atoms["x"][0], atoms["y"][0]
+    print(f"{shape}: at ({x:.5f}, {y:.5f}), v ({atoms['vx'][0]:.4f}, {atoms['vy'][0]:.4f})")
+    if shape == "block":    # in the corner
+        assert x + 2.5 < 0.61 and y + 2.5 < 0.61
+    else:                   # on the wall, near its bottom
+        assert 2.5 - np.hypot(x, y) < 0.61 and y < -1.5
+
+
+# A cylinder (axis z, radius 2, bottom z = -2, top open) and a block beside it (its bottom z =
+# -2): sphere 1 rests on the cylinder's bottom, sphere 2 on the block's.
+OPENED = """
+boundary f f f
+region box block -3 6 -3 3 -8 3
+create_box 1 box
+create_atoms 1 single 0 0 {z!r}
+create_atoms 1 single 4 0 {z!r}
+set type 1 diameter 1.0
+set type 1 density {density!r}
+pair_style gran/mn kn {kn} e {e} beta {beta} mu 0.5
+pair_coeff * *
+fix integrate all nve/sphere
+fix down all gravity 1.0 vector 0 0 -1
+region pot cylinder z 0 0 2 -2 2 open 2 units box
+region beside block 3 5 -1 1 -2 2 units box
+region vessel union 2 pot beside
+fix w all wall/gran/region/mn vessel
+fix c all contacts/mn local 100
+dump rows all local 100 rows.txt f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6] f_c[7] f_c[8]
+dump_modify rows format float %.17g
+timestep {dt!r}
+thermo 0
+run 2000
+region pot delete
+region vessel delete
+region pot cylinder z 0 0 2 -2 2 open 1 open 2 units box
+region vessel union 2 {members}
+run 3000
+write_dump all custom counts.txt id z vz f_c[2] f_c[6] modify sort id format float %.17g
+"""
+
+
+@pytest.mark.parametrize("members", ["pot beside", "beside pot"])
+def test_a_face_opened_between_runs_ends_its_contacts(tmp_path, members):
+    """Sphere 1 rests on the bottom of a cylinder, sphere 2 on the bottom of a block, the two
+    regions a union (a funnel's cylinder and cone, examples/granregion), with fix contacts/mn.
+    Between runs the cylinder is defined again with its bottom open (open 1), the union again
+    of the same members: sphere 1's contact ends at the run's start and the sphere falls
+    freely (v_z = -g t after 3000 steps); its row has no normal velocity at the end (nan: the
+    face is gone), the duration of the first run. With the members in the same order the faces
+    keep their numbers, and sphere 2's contact carries on (one contact begun, no row); in the
+    other order (as the funnel example) they are numbered otherwise, and every contact ends
+    at the run's start (a row, nan) and begins again where a face is still touched. The region
+    wall stopped the run: "left face ... by more than its radius in one step (time step far too
+    large)"."""
+    dt = law(KN, E, BETA)["tau_c"] / 50
+    deck = HEADER_3D.replace("boundary p p p\n", "") + OPENED.format(
+        z=-1.5 - 1.0 / KN, density=SPHERE_DENSITY, kn=KN, e=E, beta=BETA, dt=dt,
+        members=members)
+    run = run_lammps(deck, tmp_path, header=False)
+    counts = run.atoms("counts.txt")
+    print({name: list(values) for name, values in counts.items()})
+    assert counts["vz"][0] == pytest.approx(-3000 * dt, rel=1e-6)    # falling freely
+    assert counts["f_c[6]"][0] == 0 and counts["f_c[2]"][0] == 1
+    renumbered = members == "beside pot"
+    assert counts["f_c[6]"][1] == 1 and counts["f_c[2]"][1] == (2 if renumbered else 1)
+    rows = [tuple(map(float, line.split())) for line in
+            (run.workdir / "rows.txt").read_text().splitlines()
+            if len(line.split()) == 8 and not line.startswith("ITEM")]
+    assert sorted(row[0] for row in rows) == ([1.0, 2.0] if renumbered else [1.0])
+    for tag_i, tag_j, kind, start, duration, vn_start, vn_end, peak in rows:
+        assert (tag_j, kind, start) == (0.0, 2.0, 0.0)
+        assert duration == pytest.approx(2000 * dt, rel=1e-12)
+        assert np.isnan(vn_end)
