@@ -122,6 +122,26 @@ inline double boundary_mass_scale(double mi)
   return mi;
 }
 
+// A run that starts with a pair overlapping by more than this fraction of the smaller radius
+// was, most likely, placed so (a lattice finer than the diameters, atoms created on others):
+// the hosts say so at a run's setup. Released, the spring drives the pair apart at up to
+// release_speed: at k_n = 2e5 an overlap of 0.06 gives 38, where a flow of unit spheres under
+// unit gravity moves at about 1.
+constexpr double DEEP_OVERLAP_FRACTION = 0.1;
+
+inline bool deep_overlap(double delta, double radius_i, double radius_j)
+{
+  return delta > DEEP_OVERLAP_FRACTION * (radius_i < radius_j ? radius_i : radius_j);
+}
+
+// The speed at which an overlap delta, released, drives its contact apart (undamped): delta
+// times the normal frequency, sqrt(2 k_n) between two particles (the relative motion feels 2M
+// (1/m_i + 1/m_j) = 2 of the spring), sqrt(k_n) against the boundary.
+inline double release_speed(const Law &law, double delta, bool boundary)
+{
+  return delta * std::sqrt((boundary ? 1.0 : 2.0) * law.material.kn);
+}
+
 // Relative motion at one contact.
 struct Kinematics {
   double nx, ny;   // unit normal, from partner to i
