@@ -11,12 +11,14 @@ LIGGGHTS's own lever arms (r - delta/2) change the outcomes at the 1e-3 to 1e-1 
 agreement rules them out; each test also checks the outcome against the law's own numbers,
 which rules out the two engines being wrong the same way."""
 import math
+import re
 
 import numpy as np
 import pytest
 
 from granmn_run import law, restitution_error_bound
-from liggghts_decks import LIGGGHTS, Particle, Scene, outcome, run_both, run_scene_liggghts
+from liggghts_decks import (LIGGGHTS, Particle, Scene, data_file, liggghts_deck, outcome,
+                            run_both, run_liggghts, run_scene_liggghts)
 
 pytestmark = pytest.mark.skipif(not LIGGGHTS, reason="LIGGGHTS was not built (GRANMN_LIGGGHTS unset)")
 
@@ -166,3 +168,46 @@ def test_counters_as_the_plugins(tmp_path):
     assert begun_particle >= 2 and begun_boundary >= 3 and time_multiple > 0   # all kinds seen
     assert window == pytest.approx(scene.steps * dt, rel=1e-12)
     assert theirs.counters == pytest.approx(ours.counters, rel=1e-12, abs=1e-12)
+
+
+def test_deep_overlap_is_said(tmp_path):
+    """Two spheres that start overlapping by 0.2 of the smaller radius (placed so): both engines
+    warn at the run's start, naming the atoms, the overlap, its fraction and the speed the
+    spring gives them, 0.1 sqrt(2 k_n) = 63; at 0.08 of the radius, below the stated 0.1,
+    neither does."""
+    said = "pair(s) of particles overlap by more than 0.1 of the smaller radius at the start of the run"
+    for overlap, deep in ((0.1, True), (0.04, False)):
+        centre = 0.5 - overlap / 2
+        scene = Scene([Particle((-centre, 0.0, 0.0)), Particle((centre, 0.0, 0.0))],
+                      dt=sphere_law()["tau_c"] / 100, steps=10, kn=KN, e=E, beta=BETA)
+        theirs, ours = run_both(scene, tmp_path / str(overlap))
+        for engine, output in (("model mn", theirs.output), ("pair_style gran/mn", ours.output)):
+            warnings = [line for line in output.splitlines() if said in line]
+            print(engine, warnings)
+            if not deep:
+                assert not warnings
+                continue
+            assert len(warnings) == 1, output[-3000:]
+            assert warnings[0].startswith(f"WARNING: {engine}: 1 {said}; the deepest, atoms 1 "
+                                          "and 2, by 0.1 (0.2 of radius 0.5): released, it "
+                                          "drives them apart at up to 63.2"), warnings[0]
+
+
+def test_neighbour_lists_as_liggghts_own(tmp_path):
+    """model mn sees a contact's end without widening LIGGGHTS's neighbour lists: a row of
+    spheres 1.2 apart, beyond the radii's sum plus the skin of 0.1, gives lists of no pairs,
+    as for LIGGGHTS's own hooke/stiffness (a contact distance factor of 1 + skin/r, as the
+    models once registered to see every listed pair, would list each neighbouring pair)."""
+    row = [Particle((1.2 * k, 0.0, 0.0)) for k in range(5)]
+    scene = Scene(row, dt=sphere_law()["tau_c"] / 100, steps=1, kn=KN, e=E, beta=BETA)
+    hooke = ("".join(f"fix {name} all property/global {name} peratomtypepair 1 1.0\n"
+                     for name in ("kn", "kt", "gamman", "gammat"))
+             + "pair_style gran model hooke/stiffness tangential history ")
+    pairs = {}
+    for model in ("mn", "hooke/stiffness"):
+        deck = liggghts_deck(scene)
+        if model != "mn":
+            deck = deck.replace("pair_style gran model mn tangential mn ", hooke)
+        _, output = run_liggghts(deck, tmp_path / model.replace("/", "_"), data_file(scene))
+        pairs[model] = int(re.search(r"Total # of neighbors = (\d+)", output).group(1))
+    assert pairs["mn"] == pairs["hooke/stiffness"] == 0, pairs
