@@ -152,18 +152,20 @@ inline bool i_is_boundary(const LIGGGHTS::ContactModels::SurfacesIntersectData &
 }
 
 // A contact's mass scale: against the boundary the mobile particle's own mass (LIGGGHTS's meff
-// there), else 2M of the two masses.
+// there), else 2M of the two masses, mn::pair_mass_scale's 2 m_i m_j/(m_i + m_j): twice
+// LIGGGHTS's meff = m_i m_j/(m_i + m_j) to the bit (a factor 2 is exact in each rounding),
+// without a division of its own.
 inline double mass_scale(const LIGGGHTS::ContactModels::SurfacesIntersectData &contact)
 {
   if (partner_is_boundary(contact) || i_is_boundary(contact))
     return mn::boundary_mass_scale(contact.meff);
-  return mn::pair_mass_scale(contact.mi, contact.mj);
+  return 2.0 * contact.meff;
 }
 
 // The contact's kinematics as the LAMMPS styles compute them: n from the partner to i, the
 // full radii as lever arms (LIGGGHTS's own models use the radii less half the overlap), from the
 // same centre distance LIGGGHTS found (delta = x_i - x_j, or from the wall's contact point to
-// the centre; radsum = r_i + r_j, or r_i against a wall).
+// the centre; r its length and rinv = 1.0 / r; radsum = r_i + r_j, or r_i against a wall).
 template <int DIM>
 using Kinematics = typename std::conditional<DIM == 2, mn::Kinematics, mn::Kinematics3>::type;
 
@@ -179,7 +181,8 @@ inline Kinematics<DIM> kinematics(const LIGGGHTS::ContactModels::SurfacesInterse
     const double *wj = contact.omega_j;
     for (int c = 0; c < 3; c++) lever[c] = contact.radi * wi[c] + contact.radj * wj[c];
   }
-  return mn::kinematics(mn::Dim<DIM>(), contact.delta, contact.r, contact.radsum, dv, lever);
+  return mn::kinematics(mn::Dim<DIM>(), contact.delta, contact.r, contact.rinv, contact.radsum, dv,
+                        lever);
 }
 
 // The normal model computes a contact's kinematics once and leaves them in LIGGGHTS's contact
