@@ -6,10 +6,12 @@ specialised; issue 46, docs/performance.md, docs/liggghts.md):
 
 - the scene: inputs/lib/chute_3d_start.lmp, the start of inputs/liggghts/chute_3d.lmp (500
   spheres of diameters 0.9-1.1 and mass d^3 from rest on a rough base of 100 spheres frozen by
-  fix freeze), sin(theta) = 0.40, STEPS steps of dt = tau_c x DT_FRACTION (k_n = 2e5; 0.05
-  by default, a preset of the sweeps: 40000 steps are 10 time units, in which the spheres land
-  on the base within 2 and flow densely, with about 2600 neighbour pairs, the rest), no outputs
-  and no counters (the chute deck's own are left out: LIGGGHTS's linear model has none);
+  fix freeze), sin(theta) = 0.40, STEPS steps of dt = min(DT_FRACTION tau_c, 1e-4) as the
+  decks take it (k_n = 2e5, tau_c = 0.005; DT_FRACTION 0.05 by default, a preset of the
+  sweeps, gives the cap: 40000 steps are 4 time units, in which the spheres land on the base
+  within 2 and then flow densely, with about 2200 neighbour pairs; at the chute deck's 0.01
+  they are 2 time units, mostly of free fall, with 1100), no outputs and no counters (the
+  chute deck's own are left out: LIGGGHTS's linear model has none);
 - mn: k_n = 2e5, e = beta = 0.7, mu = 0.5 (the chute deck's defaults);
 - hooke/stiffness: absolute kn = k_n, kt, gamman = eta_n and gammat = eta_t of the same law
   (bench/equivalent_laws.py): the two laws agree for a contact of mass scale 1, the spheres'
