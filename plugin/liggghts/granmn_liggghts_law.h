@@ -31,6 +31,17 @@
 #include "update.h"
 #include "variable.h"
 
+// A model's work of a contact is one function, the law's functions it calls inlined into it
+// (GCC left the kinematics and the tangential force calls, their results passed through
+// memory); what a run may not need (a deep overlap at setup, the counters) stays a call.
+#if defined(__GNUC__)
+#define GRANMN_CONTACT_WORK __attribute__((flatten))
+#define GRANMN_CALLED __attribute__((noinline))
+#else
+#define GRANMN_CONTACT_WORK
+#define GRANMN_CALLED
+#endif
+
 namespace granmn_liggghts {
 
 // The property/global (peratomtypepair) names of the law's four parameters. e and mu are
@@ -272,8 +283,9 @@ class DeepOverlaps {
     deepest = Deepest();
   }
 
-  void see(LAMMPS_NS::LAMMPS *lmp, const LIGGGHTS::ContactModels::SurfacesIntersectData &contact,
-           const mn::Law &law)
+  GRANMN_CALLED void see(LAMMPS_NS::LAMMPS *lmp,
+                         const LIGGGHTS::ContactModels::SurfacesIntersectData &contact,
+                         const mn::Law &law)
   {
     if (contact.is_wall || !mn::deep_overlap(contact.deltan, contact.radi, contact.radj)) return;
     // newton off: a pair with a ghost is seen by both of its processes; counted by one

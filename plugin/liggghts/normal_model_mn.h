@@ -38,7 +38,8 @@ class NormalModel<MN> : public NormalModelBase {
 
   double stressStrainExponent() { return 1.0; }
 
-  void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces, ForceData &j_forces)
+  GRANMN_CONTACT_WORK void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces,
+                                             ForceData &j_forces)
   {
     if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_NORMAL_MODEL;
     const mn::Law &pair_law = law.laws(sidata.itype, sidata.jtype);

@@ -47,8 +47,8 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
     counter = granmn_liggghts::find_counter(lmp);
   }
 
-  void surfacesIntersect(const SurfacesIntersectData &sidata, ForceData &i_forces,
-                         ForceData &j_forces)
+  GRANMN_CONTACT_WORK void surfacesIntersect(const SurfacesIntersectData &sidata,
+                                             ForceData &i_forces, ForceData &j_forces)
   {
     if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_TANGENTIAL_MODEL;
     const mn::Law &pair_law = law.laws(sidata.itype, sidata.jtype);
@@ -134,7 +134,7 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
 
   // i's share of a touching contact, and j's where j is owned here (newton off: a pair with a
   // ghost is computed by both processes)
-  void count(const SurfacesIntersectData &sidata, bool began)
+  GRANMN_CALLED void count(const SurfacesIntersectData &sidata, bool began)
   {
     const granmn::ContactTallies &tallies = counter->tallies();
     tallies.add(sidata.i, granmn_liggghts::partner_is_boundary(sidata), began);
