@@ -12,11 +12,12 @@ agreement rules them out; each test also checks the outcome against the law's ow
 which rules out the two engines being wrong the same way."""
 import math
 import re
+import subprocess
 
 import numpy as np
 import pytest
 
-from granmn_run import law, restitution_error_bound
+from granmn_run import MPIEXEC, law, restitution_error_bound
 from liggghts_decks import (LIGGGHTS, Particle, Scene, data_file, liggghts_deck, outcome,
                             run_both, run_liggghts, run_scene_liggghts)
 
@@ -191,6 +192,29 @@ def test_deep_overlap_is_said(tmp_path):
             assert warnings[0].startswith(f"WARNING: {engine}: 1 {said}; the deepest, atoms 1 "
                                           "and 2, by 0.1 (0.2 of radius 0.5): released, it "
                                           "drives them apart at up to 63.2"), warnings[0]
+
+
+def test_deep_overlap_counted_once_on_two_ranks(tmp_path):
+    """Two overlapping pairs, each across the two ranks' boundary (y = 0; newton off: both
+    ranks hold each pair): one warning, of 2 pairs (4 if each rank counted its own), the
+    deepest (by 0.2, against a sphere of radius 0.3) named, on one rank and on two alike."""
+    scene = Scene([Particle((0.0, -0.45, 0.0)), Particle((0.0, 0.45, 0.0)),
+                   Particle((10.0, -0.4, 0.0)), Particle((10.0, 0.2, 0.0), diameter=0.6)],
+                  dt=sphere_law()["tau_c"] / 100, steps=10, kn=KN, e=E, beta=BETA)
+    (tmp_path / "in.liggghts").write_text(liggghts_deck(scene))
+    (tmp_path / "atoms.data").write_text(data_file(scene))
+    said = []
+    for ranks in (1, 2):
+        proc = subprocess.run([MPIEXEC, "-np", str(ranks), LIGGGHTS, "-in", "in.liggghts",
+                               "-echo", "none", "-log", "none"], cwd=tmp_path, text=True,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=600)
+        assert proc.returncode == 0, proc.stdout[-3000:]
+        assert f"1 by {ranks} by 1 MPI processor grid" in proc.stdout
+        said.append([line.split(" (")[0] for line in proc.stdout.splitlines()
+                     if "overlap by more than" in line])
+    print(said)
+    assert said[0] == said[1] and len(said[0]) == 1
+    assert "model mn: 2 pair(s)" in said[0][0] and "atoms 3 and 4, by 0.2" in said[0][0]
 
 
 def test_neighbour_lists_as_liggghts_own(tmp_path):
