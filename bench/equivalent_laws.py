@@ -3,17 +3,19 @@ against a wall, so the forces are k_n delta - eta_n v_n and -k_t u_t - eta_t v_t
 header's coefficients (`law`: the output of build/plugin/mn-law)."""
 
 
-def liggghts_contacts(law, kn, mu):
+def liggghts_contacts(law, kn, mu, types=1):
     """LIGGGHTS 3.8 hooke/stiffness with absolute stiffness and damping between particles; its
-    wall model takes damping per unit effective mass, which is m_i = 1 there."""
+    wall model takes damping per unit effective mass, which is m_i = 1 there. The same values
+    for every pair of `types` atom types."""
+    table = lambda value: f"{types} " + " ".join([repr(value)] * types ** 2)
     return f"""
-fix m1 all property/global kn peratomtypepair 1 {kn!r}
-fix m2 all property/global kt peratomtypepair 1 {law['kt']!r}
-fix m3 all property/global gamman_abs peratomtypepair 1 {law['eta_n']!r}
-fix m4 all property/global gammat_abs peratomtypepair 1 {law['eta_t']!r}
-fix m5 all property/global gamman peratomtypepair 1 {law['eta_n']!r}
-fix m6 all property/global gammat peratomtypepair 1 {law['eta_t']!r}
-fix m7 all property/global coefficientFriction peratomtypepair 1 {mu!r}
+fix m1 all property/global kn peratomtypepair {table(kn)}
+fix m2 all property/global kt peratomtypepair {table(law['kt'])}
+fix m3 all property/global gamman_abs peratomtypepair {table(law['eta_n'])}
+fix m4 all property/global gammat_abs peratomtypepair {table(law['eta_t'])}
+fix m5 all property/global gamman peratomtypepair {table(law['eta_n'])}
+fix m6 all property/global gammat peratomtypepair {table(law['eta_t'])}
+fix m7 all property/global coefficientFriction peratomtypepair {table(mu)}
 pair_style gran model hooke/stiffness tangential history absolute_damping on
 pair_coeff * *
 """

@@ -122,6 +122,26 @@ inline double boundary_mass_scale(double mi)
   return mi;
 }
 
+// A run that starts with a pair overlapping by more than this fraction of the smaller radius
+// was, most likely, placed so (a lattice finer than the diameters, atoms created on others):
+// the hosts say so at a run's setup. Released, the spring drives the pair apart at up to
+// release_speed: at k_n = 2e5 an overlap of 0.06 gives 38, where a flow of unit spheres under
+// unit gravity moves at about 1.
+constexpr double DEEP_OVERLAP_FRACTION = 0.1;
+
+inline bool deep_overlap(double delta, double radius_i, double radius_j)
+{
+  return delta > DEEP_OVERLAP_FRACTION * (radius_i < radius_j ? radius_i : radius_j);
+}
+
+// The speed at which an overlap delta, released, drives its contact apart (undamped): delta
+// times the normal frequency, sqrt(2 k_n) between two particles (the relative motion feels 2M
+// (1/m_i + 1/m_j) = 2 of the spring), sqrt(k_n) against the boundary.
+inline double release_speed(const Law &law, double delta, bool boundary)
+{
+  return delta * std::sqrt((boundary ? 1.0 : 2.0) * law.material.kn);
+}
+
 // Relative motion at one contact.
 struct Kinematics {
   double nx, ny;   // unit normal, from partner to i
@@ -131,19 +151,25 @@ struct Kinematics {
 
 // Disk i against disk j (or a flat wall: radius_j = 0, omega_j = 0, v_j = wall velocity).
 // dx, dy = r_i - r_j for a disk, or the wall-to-centre vector along the wall normal;
-// dist = |(dx, dy)| > 0; contact_distance = radius_i + radius_j.
-inline Kinematics kinematics(double dx, double dy, double dist, double contact_distance,
-                             double dvx, double dvy, double lever_spin)
+// dist = |(dx, dy)| > 0; inv_dist = 1.0 / dist, the quotient as rounded (a host that has it
+// already, as LIGGGHTS, saves a division); contact_distance = radius_i + radius_j.
+inline Kinematics kinematics(double dx, double dy, double dist, double inv_dist,
+                             double contact_distance, double dvx, double dvy, double lever_spin)
 {
   Kinematics k;
-  const double inv = 1.0 / dist;
-  k.nx = dx * inv;
-  k.ny = dy * inv;
+  k.nx = dx * inv_dist;
+  k.ny = dy * inv_dist;
   k.delta = contact_distance - dist;
   k.vn = k.nx * dvx + k.ny * dvy;
   // v_ij = dv + n x (r_i w_i + r_j w_j) z; its t component is t.dv - lever_spin.
   k.vt = -k.ny * dvx + k.nx * dvy - lever_spin;
   return k;
+}
+
+inline Kinematics kinematics(double dx, double dy, double dist, double contact_distance,
+                             double dvx, double dvy, double lever_spin)
+{
+  return kinematics(dx, dy, dist, 1.0 / dist, contact_distance, dvx, dvy, lever_spin);
 }
 
 struct Force {
@@ -263,13 +289,13 @@ struct Kinematics3 {
 
 // Sphere i against sphere j (or a flat wall: radius_j = 0, omega_j = 0, v_j = wall velocity).
 // d = r_i - r_j for a sphere, or the wall-to-centre vector along the wall normal; dist = |d| > 0;
-// contact_distance = radius_i + radius_j; dv = v_i - v_j; lever = radius_i w_i + radius_j w_j.
-inline Kinematics3 kinematics3(const double d[3], double dist, double contact_distance,
-                               const double dv[3], const double lever[3])
+// inv_dist = 1.0 / dist, as in 2D; contact_distance = radius_i + radius_j; dv = v_i - v_j;
+// lever = radius_i w_i + radius_j w_j.
+inline Kinematics3 kinematics3(const double d[3], double dist, double inv_dist,
+                               double contact_distance, const double dv[3], const double lever[3])
 {
   Kinematics3 k;
-  const double inv = 1.0 / dist;
-  for (int c = 0; c < 3; c++) k.n[c] = d[c] * inv;
+  for (int c = 0; c < 3; c++) k.n[c] = d[c] * inv_dist;
   k.delta = contact_distance - dist;
   const double vij[3] = {dv[0] + k.n[1] * lever[2] - k.n[2] * lever[1],
                          dv[1] + k.n[2] * lever[0] - k.n[0] * lever[2],
@@ -277,6 +303,12 @@ inline Kinematics3 kinematics3(const double d[3], double dist, double contact_di
   k.vn = k.n[0] * vij[0] + k.n[1] * vij[1] + k.n[2] * vij[2];
   for (int c = 0; c < 3; c++) k.vt[c] = vij[c] - k.vn * k.n[c];
   return k;
+}
+
+inline Kinematics3 kinematics3(const double d[3], double dist, double contact_distance,
+                               const double dv[3], const double lever[3])
+{
+  return kinematics3(d, dist, 1.0 / dist, contact_distance, dv, lever);
 }
 
 // Keeps a contact's u_t in the tangent plane as the contact turns (Luding, Granular Matter 10,
@@ -391,6 +423,19 @@ inline Kinematics3 kinematics(Dim<3>, const double d[3], double dist, double con
                               const double dv[3], const double lever[3])
 {
   return kinematics3(d, dist, contact_distance, dv, lever);
+}
+
+// The same from 1.0 / dist where the host has it (inv_dist).
+inline Kinematics kinematics(Dim<2>, const double d[3], double dist, double inv_dist,
+                             double contact_distance, const double dv[3], const double lever[3])
+{
+  return kinematics(d[0], d[1], dist, inv_dist, contact_distance, dv[0], dv[1], lever[2]);
+}
+
+inline Kinematics3 kinematics(Dim<3>, const double d[3], double dist, double inv_dist,
+                              double contact_distance, const double dv[3], const double lever[3])
+{
+  return kinematics3(d, dist, inv_dist, contact_distance, dv, lever);
 }
 
 // contact_force of the 3D kinematics: contact_force3.

@@ -412,6 +412,60 @@ void PairGranMN::publish_law()
   }
 }
 
+// Pairs that overlap deeply (mn::deep_overlap) at a run's setup, from the list just built: a
+// warning with their number and the deepest (LAMMPS says nothing of them).
+void PairGranMN::warn_deep_overlaps()
+{
+  const double *x = granmn::rows(atom->x), *radius = atom->radius;
+  const tagint *tag = atom->tag;
+  const int dimension = domain->dimension, nlocal = atom->nlocal;
+  bigint count = 0;
+  // the deepest here: its overlap as a fraction of the smaller radius, the tags (the smaller
+  // first), the overlap, that radius, its release speed
+  double deepest[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = list->firstneigh[i][jj] & NEIGHMASK;
+      double rsq = 0.0;
+      for (int c = 0; c < dimension; c++) {
+        const double d = x[granmn::row_start(i, 3) + c] - x[granmn::row_start(j, 3) + c];
+        rsq += d * d;
+      }
+      const double delta = radius[i] + radius[j] - sqrt(rsq);
+      if (!mn::deep_overlap(delta, radius[i], radius[j])) continue;
+      // newton off: a pair with a ghost is listed by both of its processes; counted by one
+      if (!force->newton_pair && j >= nlocal && tag[i] > tag[j]) continue;
+      count++;
+      const double radius_min = MIN(radius[i], radius[j]);
+      if (delta / radius_min <= deepest[0]) continue;
+      const bool boundary = is_wall_type[atom->type[i]] || is_wall_type[atom->type[j]];
+      const double found[6] = {delta / radius_min, double(MIN(tag[i], tag[j])),
+                               double(MAX(tag[i], tag[j])), delta, radius_min,
+                               mn::release_speed(law, delta, boundary)};
+      for (int k = 0; k < 6; k++) deepest[k] = found[k];
+    }
+  }
+  bigint all = 0;
+  MPI_Allreduce(&count, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (all == 0) return;
+  // the deepest from the first process that holds it
+  double fraction = 0.0;
+  MPI_Allreduce(&deepest[0], &fraction, 1, MPI_DOUBLE, MPI_MAX, world);
+  const int mine = deepest[0] == fraction ? comm->me : comm->nprocs;
+  int holder = 0;
+  MPI_Allreduce(&mine, &holder, 1, MPI_INT, MPI_MIN, world);
+  MPI_Bcast(deepest, 6, MPI_DOUBLE, holder, world);
+  if (comm->me == 0)
+    error->warning(FLERR, "pair_style gran/mn: {} pair(s) of particles overlap by more than {:g} "
+                          "of the smaller radius at the start of the run; the deepest, atoms "
+                          "{:.0f} and {:.0f}, by {:.6g} ({:.3g} of radius {:.6g}): released, it "
+                          "drives them apart at up to {:.3g} (placed closer than their radii's "
+                          "sum?)",
+                   all, mn::DEEP_OVERLAP_FRACTION, deepest[1], deepest[2], deepest[3],
+                   deepest[0], deepest[4], deepest[5]);
+}
+
 // What is known only at a run's setup, after the domain's and the neighbor's init:
 // - a fix deform with remap v shifts the velocities of ghosts across a periodic boundary by
 //   the box's rate, in LAMMPS's own ghost communication only;
@@ -423,6 +477,7 @@ void PairGranMN::publish_law()
 //   this one.)
 void PairGranMN::setup()
 {
+  warn_deep_overlaps();
   if (sends_ghost_velocity && domain->deform_vremap)
     error->all(FLERR, "Pair style gran/mn with fix deform remap v requires comm_modify vel "
                       "yes (the ghosts' velocities then carry the box's rate)");

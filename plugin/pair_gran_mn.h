@@ -75,6 +75,7 @@ class PairGranMN : public Pair {
   void update_exclusions();
   void remove_exclusions();
   void report_passed_through(int, int, double);
+  void warn_deep_overlaps();
   template <int DIM> void report_end(int, int, const double *, double, const double *,
                                      const tagint *);
   template <int DIM> void compute_for(bool friction, bool observed);

@@ -5,6 +5,7 @@
 #ifndef GRANMN_LIGGGHTS_LAW_H
 #define GRANMN_LIGGGHTS_LAW_H
 
+#include <climits>
 #include <cstdio>
 #include <cstring>
 #include <mpi.h>
@@ -25,11 +26,28 @@
 #include "mn_integration.h"
 #include "mn_contact_events.h"
 #include "modify.h"
-#include "neighbor.h"
 #include "pair_gran.h"
 #include "property_registry.h"
 #include "update.h"
 #include "variable.h"
+
+// A model's work of a contact is one function, the law's functions it calls inlined into it
+// (GCC left the kinematics and the tangential force calls, their results passed through
+// memory), and without GCC's straight-line vectorisation (on by default at -O2 from GCC 12),
+// which paired a contact's lever arms and velocities into vectors through the stack and loaded
+// them back across two stores, a stall at every contact: 2/3 of the normal model's time in the
+// 3D chute (perf). Neither changes a result: the same operations on the same numbers. What a
+// run may not need (a deep overlap at setup, the counters) stays a call.
+#if defined(__GNUC__) && !defined(__clang__)
+#define GRANMN_CONTACT_WORK __attribute__((flatten, optimize("no-tree-slp-vectorize")))
+#define GRANMN_CALLED __attribute__((noinline))
+#elif defined(__GNUC__)
+#define GRANMN_CONTACT_WORK __attribute__((flatten))
+#define GRANMN_CALLED __attribute__((noinline))
+#else
+#define GRANMN_CONTACT_WORK
+#define GRANMN_CALLED
+#endif
 
 namespace granmn_liggghts {
 
@@ -152,18 +170,20 @@ inline bool i_is_boundary(const LIGGGHTS::ContactModels::SurfacesIntersectData &
 }
 
 // A contact's mass scale: against the boundary the mobile particle's own mass (LIGGGHTS's meff
-// there), else 2M of the two masses.
+// there), else 2M of the two masses, mn::pair_mass_scale's 2 m_i m_j/(m_i + m_j): twice
+// LIGGGHTS's meff = m_i m_j/(m_i + m_j) to the bit (a factor 2 is exact in each rounding),
+// without a division of its own.
 inline double mass_scale(const LIGGGHTS::ContactModels::SurfacesIntersectData &contact)
 {
   if (partner_is_boundary(contact) || i_is_boundary(contact))
     return mn::boundary_mass_scale(contact.meff);
-  return mn::pair_mass_scale(contact.mi, contact.mj);
+  return 2.0 * contact.meff;
 }
 
 // The contact's kinematics as the LAMMPS styles compute them: n from the partner to i, the
 // full radii as lever arms (LIGGGHTS's own models use the radii less half the overlap), from the
 // same centre distance LIGGGHTS found (delta = x_i - x_j, or from the wall's contact point to
-// the centre; radsum = r_i + r_j, or r_i against a wall).
+// the centre; r its length and rinv = 1.0 / r; radsum = r_i + r_j, or r_i against a wall).
 template <int DIM>
 using Kinematics = typename std::conditional<DIM == 2, mn::Kinematics, mn::Kinematics3>::type;
 
@@ -179,7 +199,8 @@ inline Kinematics<DIM> kinematics(const LIGGGHTS::ContactModels::SurfacesInterse
     const double *wj = contact.omega_j;
     for (int c = 0; c < 3; c++) lever[c] = contact.radi * wi[c] + contact.radj * wj[c];
   }
-  return mn::kinematics(mn::Dim<DIM>(), contact.delta, contact.r, contact.radsum, dv, lever);
+  return mn::kinematics(mn::Dim<DIM>(), contact.delta, contact.r, contact.rinv, contact.radsum, dv,
+                        lever);
 }
 
 // The normal model computes a contact's kinematics once and leaves them in LIGGGHTS's contact
@@ -256,23 +277,80 @@ inline void check_combination(LAMMPS_NS::LAMMPS *lmp)
       check_combination(lmp, std::string("fix ") + wall->id + " wall/gran", wall);
 }
 
-// LIGGGHTS evaluates the contact models' surfacesClose, where a contact's end is seen and its
-// history cleared, only for pairs closer than neighbor's contact distance factor times the
-// radii's sum (1 by default: never). The LAMMPS styles see every pair of the neighbour list at
-// every step, and clear a contact's history at the first evaluation after it ended. The same
-// here: a factor that covers every listed pair, 1 + 2 skin / (the smallest radii's sum) (a
-// pair drifts apart by at most a skin between two rebuilds, and leaves the list at the next),
-// registered at each init from the particles then present.
-inline void see_every_listed_pair(LAMMPS_NS::LAMMPS *lmp)
-{
-  const LAMMPS_NS::Atom *atom = lmp->atom;
-  double smallest = 1e300;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (atom->radius[i] > 0.0 && atom->radius[i] < smallest) smallest = atom->radius[i];
-  double all = smallest;
-  MPI_Allreduce(&smallest, &all, 1, MPI_DOUBLE, MPI_MIN, lmp->world);
-  if (all < 1e300) lmp->neighbor->register_contact_dist_factor(1.0 + lmp->neighbor->skin / all);
-}
+// Pairs of particles that overlap deeply (mn::deep_overlap) at a run's setup, said in one
+// warning after the setup's force evaluation of the pair style, with the deepest of them.
+class DeepOverlaps {
+ public:
+  // whether the pass beginning is a run's setup (LIGGGHTS evaluates forces there with
+  // shearupdate 0; compute pair/gran/local's passes have computeflag 0)
+  void begin(LAMMPS_NS::LAMMPS *lmp, const LIGGGHTS::ContactModels::SurfacesIntersectData &pass)
+  {
+    watching = pass.computeflag && lmp->update->setupflag;
+    count = 0;
+    deepest = Deepest();
+  }
+
+  GRANMN_CALLED void see(LAMMPS_NS::LAMMPS *lmp,
+                         const LIGGGHTS::ContactModels::SurfacesIntersectData &contact,
+                         const mn::Law &law)
+  {
+    if (contact.is_wall || !mn::deep_overlap(contact.deltan, contact.radi, contact.radj)) return;
+    // newton off: a pair with a ghost is seen by both of its processes; counted by one
+    const int *tag = lmp->atom->tag;
+    if (!lmp->force->newton_pair && contact.j >= lmp->atom->nlocal &&
+        tag[contact.i] > tag[contact.j])
+      return;
+    count++;
+    const double radius = contact.radi < contact.radj ? contact.radi : contact.radj;
+    if (contact.deltan / radius <= deepest.fraction) return;
+    const bool boundary = partner_is_boundary(contact) || i_is_boundary(contact);
+    deepest.fraction = contact.deltan / radius;
+    deepest.tag_i = tag[contact.i] < tag[contact.j] ? tag[contact.i] : tag[contact.j];
+    deepest.tag_j = tag[contact.i] < tag[contact.j] ? tag[contact.j] : tag[contact.i];
+    deepest.overlap = contact.deltan;
+    deepest.radius = radius;
+    deepest.speed = mn::release_speed(law, contact.deltan, boundary);
+  }
+
+  // after the pass, on every process
+  void report(LAMMPS_NS::LAMMPS *lmp, const char *caller)
+  {
+    if (!watching) return;
+    watching = false;
+    MPI_Comm world = lmp->world;
+    long long all = 0;
+    MPI_Allreduce(&count, &all, 1, MPI_LONG_LONG, MPI_SUM, world);
+    if (all == 0) return;
+    // the deepest from the first process that holds it
+    double fraction = 0.0;
+    MPI_Allreduce(&deepest.fraction, &fraction, 1, MPI_DOUBLE, MPI_MAX, world);
+    int me = 0, holder = 0;
+    MPI_Comm_rank(world, &me);
+    const int mine = deepest.fraction == fraction ? me : INT_MAX;
+    MPI_Allreduce(&mine, &holder, 1, MPI_INT, MPI_MIN, world);
+    MPI_Bcast(&deepest, sizeof(Deepest) / sizeof(double), MPI_DOUBLE, holder, world);
+    if (me != 0) return;
+    char message[512];
+    snprintf(message, sizeof(message),
+             "%s: %lld pair(s) of particles overlap by more than %g of the smaller radius at "
+             "the start of the run; the deepest, atoms %.0f and %.0f, by %.6g (%.3g of radius "
+             "%.6g): released, it drives them apart at up to %.3g (placed closer than their "
+             "radii's sum?)",
+             caller, all, mn::DEEP_OVERLAP_FRACTION, deepest.tag_i, deepest.tag_j,
+             deepest.overlap, deepest.fraction, deepest.radius, deepest.speed);
+    lmp->error->warning(FLERR, message);
+  }
+
+  bool watching = false;    // the pass is a run's setup
+
+ private:
+  // (doubles only: sent as one array)
+  struct Deepest {
+    double fraction, tag_i, tag_j, overlap, radius, speed;    // tag_i < tag_j
+  };
+  long long count = 0;
+  Deepest deepest = Deepest();
+};
 
 // What each of the two models holds of the law: the options its settings set, the laws of the
 // type pairs, and the dimension, made at each run's init (connectToProperties) after the

@@ -2,15 +2,13 @@
    spring-dashpot law (Phys. Rev. E 67, 021301 (2003)), with tangential model `mn`
    (docs/liggghts.md). The force is mn_contact.h's, as in the LAMMPS pair style gran/mn:
    fn = 2M (k_n delta - eta_n v_n), 2M -> m_i against walls and frozen particles.
-   Setting: limit_damping on|off (off): clamp fn at zero. With a fix contacts/mn defined, it
-   adds each touching contact to the fix's tallies at every evaluation (a flag per contact,
-   in the contact's history, tells those begun). */
+   Setting: limit_damping on|off (off): clamp fn at zero. At a run's setup it says which pairs
+   of particles start deeply overlapping (mn::deep_overlap). */
 #ifdef NORMAL_MODEL
 NORMAL_MODEL(MN,mn,20)
 #else
 #ifndef NORMAL_MODEL_MN_H_
 #define NORMAL_MODEL_MN_H_
-#include "atom.h"
 #include "contact_models.h"
 #include "granmn_liggghts_law.h"
 #include "normal_model_base.h"
@@ -22,8 +20,7 @@ template <>
 class NormalModel<MN> : public NormalModelBase {
  public:
   NormalModel(LAMMPS *lmp, IContactHistorySetup *hsetup, class ContactModelBase *c)
-      : NormalModelBase(lmp, hsetup, c),
-        touching_offset(hsetup->add_history_value("mn_touching", "0"))
+      : NormalModelBase(lmp, hsetup, c)
   {
   }
 
@@ -37,13 +34,12 @@ class NormalModel<MN> : public NormalModelBase {
   void connectToProperties(PropertyRegistry &registry)
   {
     law.connect(lmp, registry, "model mn");
-    counter = granmn_liggghts::find_counter(lmp);
-    granmn_liggghts::see_every_listed_pair(lmp);
   }
 
   double stressStrainExponent() { return 1.0; }
 
-  void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces, ForceData &j_forces)
+  GRANMN_CONTACT_WORK void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces,
+                                             ForceData &j_forces)
   {
     if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_NORMAL_MODEL;
     const mn::Law &pair_law = law.laws(sidata.itype, sidata.jtype);
@@ -71,34 +67,24 @@ class NormalModel<MN> : public NormalModelBase {
     for (int c = 0; c < 3; c++) i_forces.delta_F[c] += f * sidata.en[c];
     if (!sidata.is_wall)
       for (int c = 0; c < 3; c++) j_forces.delta_F[c] -= f * sidata.en[c];
-    if (counter) count(sidata);
+    if (deep_overlaps.watching) deep_overlaps.see(lmp, sidata, pair_law);
   }
 
-  // the contact has ended (it is in the neighbour list, not touching): the next one begins anew
-  void surfacesClose(SurfacesCloseData &scdata, ForceData &, ForceData &)
+  void surfacesClose(SurfacesCloseData &, ForceData &, ForceData &) {}
+
+  // (the pair style's passes only: a wall's evaluation has none)
+  void beginPass(SurfacesIntersectData &sidata, ForceData &, ForceData &)
   {
-    if (scdata.contact_history) scdata.contact_history[touching_offset] = 0.0;
+    deep_overlaps.begin(lmp, sidata);
   }
-  void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
-  void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
+  void endPass(SurfacesIntersectData &, ForceData &, ForceData &)
+  {
+    deep_overlaps.report(lmp, "model mn");
+  }
 
  private:
-  // i's share of a touching contact, and j's where j is owned here (newton off: a pair with a
-  // ghost is computed by both processes)
-  void count(const SurfacesIntersectData &sidata)
-  {
-    double &touching = sidata.contact_history[touching_offset];
-    const bool began = touching == 0.0;
-    touching = 1.0;
-    const granmn::ContactTallies &tallies = counter->tallies();
-    tallies.add(sidata.i, granmn_liggghts::partner_is_boundary(sidata), began);
-    if (!sidata.is_wall && sidata.j < atom->nlocal)
-      tallies.add(sidata.j, granmn_liggghts::i_is_boundary(sidata), began);
-  }
-
-  int touching_offset;
-  const granmn::ContactCounter *counter = nullptr;
   granmn_liggghts::ModelLaw law;
+  granmn_liggghts::DeepOverlaps deep_overlaps;
 };
 
 }    // namespace ContactModels

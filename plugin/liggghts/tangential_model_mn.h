@@ -3,12 +3,15 @@
    gran/mn: the trial force -2M (k_t u_t + eta_t v_t), capped at mu |fn|, with u_t the integral
    of v_t over the contact (3 history values; in 2D the first holds the scalar u_t along t).
    Setting: coulomb_cutback on|off (off: the paper's literal u_t; on: u_t cut back to the
-   Coulomb limit while sliding). */
+   Coulomb limit while sliding). It keeps the contact's history, and so tells when a contact
+   begins: u_t starts from zero there, and with a fix contacts/mn defined it adds each touching
+   contact to the fix's tallies at every evaluation, those begun counted as such. */
 #ifdef TANGENTIAL_MODEL
 TANGENTIAL_MODEL(TANGENTIAL_MN,mn,20)
 #else
 #ifndef TANGENTIAL_MODEL_MN_H_
 #define TANGENTIAL_MODEL_MN_H_
+#include "atom.h"
 #include "contact_models.h"
 #include "granmn_liggghts_law.h"
 #include "tangential_model_base.h"
@@ -23,6 +26,8 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
   TangentialModel(LAMMPS *lmp, IContactHistorySetup *hsetup, class ContactModelBase *c)
       : TangentialModelBase(lmp, hsetup, c)
   {
+    // the pass that last found the contact touching (begins): the same seen from j
+    seen_offset = hsetup->add_history_value("mn_seen", "0");
     // u_t is i's displacement relative to j: seen from j it changes sign (newton flag 1)
     ut_offset = hsetup->add_history_value("mn_ut_x", "1");
     hsetup->add_history_value("mn_ut_y", "1");
@@ -39,16 +44,21 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
   void connectToProperties(PropertyRegistry &registry)
   {
     law.connect(lmp, registry, "tangential mn");
+    counter = granmn_liggghts::find_counter(lmp);
   }
 
-  void surfacesIntersect(const SurfacesIntersectData &sidata, ForceData &i_forces,
-                         ForceData &j_forces)
+  GRANMN_CONTACT_WORK void surfacesIntersect(const SurfacesIntersectData &sidata,
+                                             ForceData &i_forces, ForceData &j_forces)
   {
     if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_TANGENTIAL_MODEL;
     const mn::Law &pair_law = law.laws(sidata.itype, sidata.jtype);
     const double scale =
         granmn_liggghts::mass_scale(sidata) * law.laws.force_per_mass_acceleration;
     double *ut = &sidata.contact_history[ut_offset];
+    const bool began = begins(sidata.contact_history[seen_offset]);
+    if (began)
+      for (int c = 0; c < 3; c++) ut[c] = 0.0;
+    if (counter) count(sidata, began);
     // LIGGGHTS re-evaluates forces without a step (setup) with shearupdate 0: u_t stays
     const double dt_history = sidata.computeflag && sidata.shearupdate ? update->dt : 0.0;
 
@@ -89,19 +99,53 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
     }
   }
 
-  // the contact has ended: its u_t starts from zero at the next one
+  // LIGGGHTS calls this for a pair that is apart but closer than the contact distance factor
+  // times the radii's sum (a factor above 1 only where a deck or another model asks for one),
+  // and for a wall's contact as far out: the contact has ended, the next begins anew
   void surfacesClose(SurfacesCloseData &scdata, ForceData &, ForceData &)
   {
     if (scdata.contact_flags) *scdata.contact_flags &= ~CONTACT_TANGENTIAL_MODEL;
     if (!scdata.contact_history) return;
+    scdata.contact_history[seen_offset] = 0.0;
     for (int c = 0; c < 3; c++) scdata.contact_history[ut_offset + c] = 0.0;
   }
 
-  void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
+  // a force evaluation of the pair style (walls evaluate without)
+  void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) { ++passes; }
   void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
 
  private:
-  int ut_offset;
+  // Whether the contact, touching at this evaluation, begins at it; `seen` is its history's
+  // record of the pass that last found it touching, set to this one. LIGGGHTS clears a pair's
+  // history when it builds a neighbour list with the pair apart, but calls surfacesClose,
+  // where a model could see a contact end in between, only for pairs closer than neighbor's
+  // contact distance factor times the radii's sum: 1 by default, never. (A factor that covers
+  // every listed pair widens the lists by as much: twice the pairs in the 3D chute.) So a
+  // pair's contact continues if the previous pass found it touching. A wall's evaluation has
+  // no passes: LIGGGHTS clears a wall contact's history each time it finds the particle apart,
+  // and a wall contact continues where its history holds any pass; so does a pair at the pair
+  // style's first pass, a run's setup, where its history is that of a restart file (or zero).
+  bool begins(double &seen) const
+  {
+    const bool continues = passes > 1 ? seen == passes - 1 : seen != 0.0;
+    seen = passes > 1 ? passes : 1;
+    return !continues;
+  }
+
+  // i's share of a touching contact, and j's where j is owned here (newton off: a pair with a
+  // ghost is computed by both processes)
+  GRANMN_CALLED void count(const SurfacesIntersectData &sidata, bool began)
+  {
+    const granmn::ContactTallies &tallies = counter->tallies();
+    tallies.add(sidata.i, granmn_liggghts::partner_is_boundary(sidata), began);
+    if (!sidata.is_wall && sidata.j < atom->nlocal)
+      tallies.add(sidata.j, granmn_liggghts::i_is_boundary(sidata), began);
+  }
+
+  int seen_offset, ut_offset;
+  // the pair style's passes so far: a history's record of one is exact in a double
+  long long passes = 0;
+  const granmn::ContactCounter *counter = nullptr;
   granmn_liggghts::ModelLaw law;
 };
 

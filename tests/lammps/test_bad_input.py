@@ -250,6 +250,27 @@ def test_coarse_time_step_warns_but_runs(tmp_path):
     assert "WARNING" in run.output and "fewer than 10 steps" in run.output
 
 
+@pytest.mark.parametrize("nprocs", [1, 2])
+def test_deep_overlap_at_the_start_is_said(tmp_path, nprocs):
+    """Two disks of radius 0.5 whose centres start 0.8 apart (overlap 0.2, 0.4 of the radius:
+    placed so): the run starts with a warning that names them, the overlap and the speed the
+    spring gives them, 0.2 sqrt(2 k_n) = 126; once, also on two ranks with newton off, where
+    the pair straddles the ranks' boundary (x = 0) and both ranks list it. 0.96 apart (0.08 of
+    the radius, below the stated 0.1) says nothing."""
+    said = ("pair_style gran/mn: 1 pair(s) of particles overlap by more than 0.1 of the smaller "
+            "radius at the start of the run; the deepest, atoms 1 and 2, by 0.2 (0.4 of radius "
+            "0.5): released, it drives them apart at up to 126 (placed closer than their "
+            "radii's sum?)")
+    for apart, deep in ((0.8, True), (0.96, False)):
+        run = run_lammps(deck(second=f"-{apart} 0.5 0", comm="comm_modify vel yes\nnewton off"),
+                         tmp_path / str(apart), nprocs=nprocs, header=False)
+        warnings = [line for line in run.output.splitlines() if "overlap by more than" in line]
+        if deep:
+            assert len(warnings) == 1 and warnings[0].startswith(f"WARNING: {said}"), warnings
+        else:
+            assert not warnings, warnings
+
+
 def test_elastic_collisions_under_the_papers_integrator_run_at_its_step(tmp_path):
     """e = 1 leaves the normal mode undamped; Adams-Bashforth 2 amplifies such a mode a little
     at every step and so has no strict stability limit. The paper's tau_c/100 (5e-5 here) is

@@ -11,12 +11,15 @@ LIGGGHTS's own lever arms (r - delta/2) change the outcomes at the 1e-3 to 1e-1 
 agreement rules them out; each test also checks the outcome against the law's own numbers,
 which rules out the two engines being wrong the same way."""
 import math
+import re
+import subprocess
 
 import numpy as np
 import pytest
 
-from granmn_run import law, restitution_error_bound
-from liggghts_decks import LIGGGHTS, Particle, Scene, outcome, run_both, run_scene_liggghts
+from granmn_run import MPIEXEC, law, restitution_error_bound
+from liggghts_decks import (LIGGGHTS, Particle, Scene, data_file, liggghts_deck, outcome,
+                            run_both, run_liggghts, run_scene_liggghts)
 
 pytestmark = pytest.mark.skipif(not LIGGGHTS, reason="LIGGGHTS was not built (GRANMN_LIGGGHTS unset)")
 
@@ -166,3 +169,69 @@ def test_counters_as_the_plugins(tmp_path):
     assert begun_particle >= 2 and begun_boundary >= 3 and time_multiple > 0   # all kinds seen
     assert window == pytest.approx(scene.steps * dt, rel=1e-12)
     assert theirs.counters == pytest.approx(ours.counters, rel=1e-12, abs=1e-12)
+
+
+def test_deep_overlap_is_said(tmp_path):
+    """Two spheres that start overlapping by 0.2 of the smaller radius (placed so): both engines
+    warn at the run's start, naming the atoms, the overlap, its fraction and the speed the
+    spring gives them, 0.1 sqrt(2 k_n) = 63; at 0.08 of the radius, below the stated 0.1,
+    neither does."""
+    said = "pair(s) of particles overlap by more than 0.1 of the smaller radius at the start of the run"
+    for overlap, deep in ((0.1, True), (0.04, False)):
+        centre = 0.5 - overlap / 2
+        scene = Scene([Particle((-centre, 0.0, 0.0)), Particle((centre, 0.0, 0.0))],
+                      dt=sphere_law()["tau_c"] / 100, steps=10, kn=KN, e=E, beta=BETA)
+        theirs, ours = run_both(scene, tmp_path / str(overlap))
+        for engine, output in (("model mn", theirs.output), ("pair_style gran/mn", ours.output)):
+            warnings = [line for line in output.splitlines() if said in line]
+            print(engine, warnings)
+            if not deep:
+                assert not warnings
+                continue
+            assert len(warnings) == 1, output[-3000:]
+            assert warnings[0].startswith(f"WARNING: {engine}: 1 {said}; the deepest, atoms 1 "
+                                          "and 2, by 0.1 (0.2 of radius 0.5): released, it "
+                                          "drives them apart at up to 63.2"), warnings[0]
+
+
+def test_deep_overlap_counted_once_on_two_ranks(tmp_path):
+    """Two overlapping pairs, each across the two ranks' boundary (y = 0; newton off: both
+    ranks hold each pair): one warning, of 2 pairs (4 if each rank counted its own), the
+    deepest (by 0.2, against a sphere of radius 0.3) named, on one rank and on two alike."""
+    scene = Scene([Particle((0.0, -0.45, 0.0)), Particle((0.0, 0.45, 0.0)),
+                   Particle((10.0, -0.4, 0.0)), Particle((10.0, 0.2, 0.0), diameter=0.6)],
+                  dt=sphere_law()["tau_c"] / 100, steps=10, kn=KN, e=E, beta=BETA)
+    (tmp_path / "in.liggghts").write_text(liggghts_deck(scene))
+    (tmp_path / "atoms.data").write_text(data_file(scene))
+    said = []
+    for ranks in (1, 2):
+        proc = subprocess.run([MPIEXEC, "-np", str(ranks), LIGGGHTS, "-in", "in.liggghts",
+                               "-echo", "none", "-log", "none"], cwd=tmp_path, text=True,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=600)
+        assert proc.returncode == 0, proc.stdout[-3000:]
+        assert f"1 by {ranks} by 1 MPI processor grid" in proc.stdout
+        said.append([line.split(" (")[0] for line in proc.stdout.splitlines()
+                     if "overlap by more than" in line])
+    print(said)
+    assert said[0] == said[1] and len(said[0]) == 1
+    assert "model mn: 2 pair(s)" in said[0][0] and "atoms 3 and 4, by 0.2" in said[0][0]
+
+
+def test_neighbour_lists_as_liggghts_own(tmp_path):
+    """model mn sees a contact's end without widening LIGGGHTS's neighbour lists: a row of
+    spheres 1.2 apart, beyond the radii's sum plus the skin of 0.1, gives lists of no pairs,
+    as for LIGGGHTS's own hooke/stiffness (a contact distance factor of 1 + skin/r, as the
+    models once registered to see every listed pair, would list each neighbouring pair)."""
+    row = [Particle((1.2 * k, 0.0, 0.0)) for k in range(5)]
+    scene = Scene(row, dt=sphere_law()["tau_c"] / 100, steps=1, kn=KN, e=E, beta=BETA)
+    hooke = ("".join(f"fix {name} all property/global {name} peratomtypepair 1 1.0\n"
+                     for name in ("kn", "kt", "gamman", "gammat"))
+             + "pair_style gran model hooke/stiffness tangential history ")
+    pairs = {}
+    for model in ("mn", "hooke/stiffness"):
+        deck = liggghts_deck(scene)
+        if model != "mn":
+            deck = deck.replace("pair_style gran model mn tangential mn ", hooke)
+        _, output = run_liggghts(deck, tmp_path / model.replace("/", "_"), data_file(scene))
+        pairs[model] = int(re.search(r"Total # of neighbors = (\d+)", output).group(1))
+    assert pairs["mn"] == pairs["hooke/stiffness"] == 0, pairs
