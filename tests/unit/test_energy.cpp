@@ -215,7 +215,7 @@ template <int DIM> class System {
     return s;
   }
 
-  // The energies of the live contact (i, j) (j = -1: the floor), or of the one that ended last.
+  // The energies of the live contact (i, j) (j = -1: the floor).
   mn::ContactEnergy live(int i, int j) const
   {
     const History &h = contacts_.at(std::make_pair(i, j));
@@ -229,8 +229,6 @@ template <int DIM> class System {
   long sliding() const { return sliding_; }
   long sticking() const { return sticking_; }
   long multiple() const { return multiple_; }    // evaluations where a particle had two or more
-  const std::vector<mn::EnergyStep> &steps() const { return steps_; }
-  const Particle &operator[](int i) const { return p_[i]; }
   std::size_t contacts() const { return contacts_.size(); }
 
  private:
@@ -329,7 +327,7 @@ template <int DIM> class System {
   double g_[3];
   std::map<std::pair<int, int>, History> contacts_;
   std::vector<mn::ContactEnergy> ended_;
-  std::vector<mn::EnergyStep> steps_;
+  std::vector<mn::EnergyStep> steps_;    // this evaluation's bookings
   double taken_ended_ = 0.0, gravity_work_ = 0.0, q_start_ = 0.0, budget_start_ = 0.0;
   double power_ = 0.0, power_previous_ = 0.0, dt_ = 0.0;    // for the work in flight
   bool started_ = false;
