@@ -454,20 +454,41 @@ inline Force3 contact_force(const Law &law, double force_scale, const Kinematics
 #define MN_ALWAYS_INLINE inline
 #endif
 
-// The contact's force on i into force (Cartesian; 0 along z in 2D), and its torque added to
+// A contact's force f on i into force (Cartesian; 0 along z in 2D), and its torque added to
 // torque_i (lever arm radius_i) and, where torque_j is given, to torque_j (radius_j).
-MN_ALWAYS_INLINE void force_and_torques(const Law &law, double force_scale, const Kinematics &k, double *ut,
-                              double dt_history, Integrator integrator, double *vt_previous,
-                              double force[3], double radius_i, double *torque_i,
-                              double radius_j, double *torque_j)
+MN_ALWAYS_INLINE void apply_force(const Kinematics &k, const Force &f, double force[3],
+                                  double radius_i, double *torque_i, double radius_j,
+                                  double *torque_j)
 {
-  const Force f = contact_force(law, force_scale, k, ut, dt_history, integrator, vt_previous);
   const Cartesian fxy = cartesian(k, f);
   force[0] = fxy.fx;
   force[1] = fxy.fy;
   force[2] = 0.0;
   torque_i[2] += torque(f, radius_i);
   if (torque_j) torque_j[2] += torque(f, radius_j);
+}
+
+MN_ALWAYS_INLINE void apply_force(const Kinematics3 &k, const Force3 &f, double force[3],
+                                  double radius_i, double *torque_i, double radius_j,
+                                  double *torque_j)
+{
+  cartesian3(k, f, force);
+  double t[3];
+  torque3(k, f, radius_i, t);
+  for (int c = 0; c < 3; c++) torque_i[c] += t[c];
+  if (!torque_j) return;
+  torque3(k, f, radius_j, t);
+  for (int c = 0; c < 3; c++) torque_j[c] += t[c];
+}
+
+// The contact's force (contact_force), applied so.
+MN_ALWAYS_INLINE void force_and_torques(const Law &law, double force_scale, const Kinematics &k, double *ut,
+                              double dt_history, Integrator integrator, double *vt_previous,
+                              double force[3], double radius_i, double *torque_i,
+                              double radius_j, double *torque_j)
+{
+  const Force f = contact_force(law, force_scale, k, ut, dt_history, integrator, vt_previous);
+  apply_force(k, f, force, radius_i, torque_i, radius_j, torque_j);
 }
 
 // The same in 3D, where the integrator is velocity Verlet (Adams-Bashforth 2 is a 2D integrator:
@@ -478,13 +499,7 @@ MN_ALWAYS_INLINE void force_and_torques(const Law &law, double force_scale, cons
                               double *torque_j)
 {
   const Force3 f = contact_force3(law, force_scale, k, ut, dt_history);
-  cartesian3(k, f, force);
-  double t[3];
-  torque3(k, f, radius_i, t);
-  for (int c = 0; c < 3; c++) torque_i[c] += t[c];
-  if (!torque_j) return;
-  torque3(k, f, radius_j, t);
-  for (int c = 0; c < 3; c++) torque_j[c] += t[c];
+  apply_force(k, f, force, radius_i, torque_i, radius_j, torque_j);
 }
 
 // A particle of the given radius against a wall, whose own radius and spin are 0 (a plane, a
