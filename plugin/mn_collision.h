@@ -6,7 +6,7 @@
 // partner -J_n n - J_t t; a tangential impulse turns both disks the same way, as the law's torque
 // does (mn::torque: d omega = -radius J_t / I).
 //
-// Two rules (docs/model.md section 10):
+// Two rules (docs/model.md section 8):
 // (a) the paper's (section II.A, eqs. (2)-(5)): v_n' = -e v_n; a sticking collision has
 //     v_t' = -beta v_t; the tangential impulse is capped at mu |J_n|.
 // (b) the soft law's binary collision with the normal held fixed and no gravity, integrated with

@@ -1,4 +1,4 @@
-// Where a contact's energy goes (docs/model.md section 11), in the terms of mn_contact.h's law
+// Where a contact's energy goes (docs/model.md section 9), in the terms of mn_contact.h's law
 // and free of LAMMPS, so that every host (the pair style, the wall fixes, LIGGGHTS's model) books
 // it alike. A host that does not ask for energies calls none of this.
 //

@@ -1,4 +1,4 @@
-// The event-driven engine of hard disks (docs/model.md section 10): disks of any sizes with
+// The event-driven engine of hard disks (docs/model.md section 8): disks of any sizes with
 // rotation under gravity at the slope's inclination, periodic along the slope (x), on a flat
 // floor and/or fixed bumps, colliding instantaneously by rule (a) or (b) of mn_collision.h.
 //

@@ -1,4 +1,4 @@
-// Unit tests of mn_energy.h: where a contact's energy goes (docs/model.md section 11), booked as
+// Unit tests of mn_energy.h: where a contact's energy goes (docs/model.md section 9), booked as
 // the styles will book it, on a few disks (2D) or spheres (3D) integrated as LAMMPS integrates
 // them (velocity Verlet as fix nve/sphere, Adams-Bashforth 2 as fix nve/ab2), with a floor (the
 // plane y = 0 in 2D, z = 0 in 3D) and gravity.
@@ -201,7 +201,7 @@ template <int DIM> class System {
   double residual() const { return budget() - budget_start_; }
   double gravity_work() const { return gravity_work_; }
 
-  // Velocity Verlet's residual in closed form (docs/model.md section 11).
+  // Velocity Verlet's residual in closed form (docs/model.md section 9).
   double verlet_residual(double dt) const { return dt * dt / 8 * (force_squares() - q_start_); }
 
   // sum |F|^2/m + |T|^2/I of the last evaluation.
@@ -705,7 +705,7 @@ mn::Law budget_law(bool cutback, bool limit_damping)
 }    // namespace
 
 // Velocity Verlet: the residual is (dt^2/8)(sum |F|^2/m + |T|^2/I now - at the start) to
-// rounding at every step (docs/model.md section 11), second order; AB2: second order. Both
+// rounding at every step (docs/model.md section 9), second order; AB2: second order. Both
 // readings of u_t, and the normal force clamped at zero.
 TEST(EnergyBudget, ClosesAtSecondOrder2D)
 {
