@@ -37,6 +37,10 @@ the older one tried, then a fresh start; the run so far is kept in
 --checkpoint-interval T checkpoints the points that set no checkpoint_interval every T time
 units; it is not part of a point (its name, point.json), and the interval a point was begun
 with (runner.json) is the one it resumes with.
+--done-in DIR (repeatable) counts as done a point whose run summary in DIR
+(`python3 -m postprocess summarize --to DIR`: DIR/<scene>/<point>.json) says its run ended
+(flowing or stopped): a long series carried from one machine to the next by its committed
+summaries, whose run directories are gone, resumes where the summaries stop.
 
 The runner owns its lmp processes: they die with it (kill -9 included), SIGTERM or SIGINT
 stops them and the sweep (exit status 128 + the signal); it refuses to start while a point's
@@ -86,6 +90,29 @@ from granmn_sweep.points import check_names, check_output, check_path, foreign, 
     unlock_output
 from granmn_sweep.schedule import check_slots, run_points
 from postprocess.rundir import completed     # scripts/postprocess links the package
+from postprocess.summary import read_summary
+from postprocess.io import DataError
+
+
+def summarized_points(directories, plan):
+    """The point directories of `plan` whose run summary in one of `directories` says the run
+    ended (flowing or stopped): a series carried from machine to machine by its committed
+    summaries resumes where they stop. A summary there that cannot be read is refused."""
+    done = set()
+    for directory in directories:
+        if not directory.is_dir():
+            raise SweepError(f"--done-in {directory}: not a directory of run summaries")
+        for _, point_dir, _ in plan:
+            path = directory / point_dir.parent.name / (point_dir.name + ".json")
+            if not path.exists():
+                continue
+            try:
+                record = read_summary(path, selection=None)
+            except DataError as error:
+                raise SweepError(f"--done-in {directory}: {error}")
+            if record.ended in ("flowing", "stopped"):
+                done.add(point_dir)
+    return done
 
 
 def main(argv=None):
@@ -115,6 +142,10 @@ def main(argv=None):
     parser.add_argument("--dry-run", action="store_true",
                         help="list the points and the predicted cost, run nothing")
     parser.add_argument("--build", type=Path, default=ROOT / "build")
+    parser.add_argument("--done-in", type=Path, action="append", default=[], metavar="DIR",
+                        help="run summaries (`python3 -m postprocess summarize --to DIR`): a "
+                        "point whose summary there ended (flowing or stopped) is done and not "
+                        "run; repeatable")
     args = parser.parse_args(argv)
     if args.ranks < 1:
         parser.error(f"--ranks {args.ranks}: the MPI ranks per point must be >= 1")
@@ -154,7 +185,12 @@ def main(argv=None):
 
     model = CostModel()
     plan = [(p, output / p["scene"] / point_name(p), s) for p, s in zip(points, steps)]
-    todo = [(p, d, s) for p, d, s in plan if not completed(d)]
+    try:
+        summarized = summarized_points(args.done_in, plan)
+    except SweepError as error:
+        print(f"sweep: {error}", file=sys.stderr)
+        return 2
+    todo = [(p, d, s) for p, d, s in plan if not completed(d) and d not in summarized]
     # the runner's variables of each point: the checkpoint interval, where the point sets none
     extra = {d: ({"checkpoint_interval": args.checkpoint_interval}
                  if args.checkpoint_interval > 0 and "checkpoint_interval" not in p else {})
@@ -180,7 +216,8 @@ def main(argv=None):
               "share them (use fewer --jobs or --ranks to give each its own)", flush=True)
     if args.dry_run:
         for p, d, s in plan:
-            print(f"  {'done' if completed(d) else 'todo'} {d.relative_to(output)} "
+            state = "done" if completed(d) else "summarized" if d in summarized else "todo"
+            print(f"  {state} {d.relative_to(output)} "
                   f"{s} steps ~{format_seconds(model.predict(p, s))}")
         return 0
 

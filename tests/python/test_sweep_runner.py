@@ -266,3 +266,35 @@ def children(command):
         except OSError:
             pass
     return found
+
+
+# ---- a series carried from machine to machine by its committed summaries (--done-in)
+
+WIDE = ROOT / "data" / "confirm_frictional_wide" / "frictional_flow"
+
+
+def test_a_point_whose_summary_says_it_ended_is_not_run_again(tmp_path):
+    """--done-in: a flowing run's summary makes its point done, an incomplete run's does not
+    (its run is lost with the machine it ran on), a point with no summary is run; a summary
+    that is not one is refused, not taken as "not done"."""
+    from granmn_sweep.cli import summarized_points
+    flowing = sorted(WIDE.glob("*.json"))[0]
+    summaries = tmp_path / "summaries" / "frictional_flow"
+    summaries.mkdir(parents=True)
+    (summaries / flowing.name).write_text(flowing.read_text())
+    incomplete = json.loads(flowing.read_text())
+    incomplete.update(point=incomplete["point"].replace("seed301", "seed399"),
+                      ended="incomplete", params=None, measured=None, energy=None,
+                      cpu_seconds=None, reason="did not complete (no done.txt)")
+    incomplete["variables"]["seed"] = 399
+    (summaries / flowing.name.replace("seed301", "seed399")).write_text(json.dumps(incomplete))
+    output = tmp_path / "out" / "frictional_flow"
+    plan = [({}, output / name.replace(".json", ""), 0)
+            for name in (flowing.name, flowing.name.replace("seed301", "seed399"),
+                         flowing.name.replace("seed301", "seed398"))]
+    assert summarized_points([tmp_path / "summaries"], plan) == {plan[0][1]}
+    (summaries / flowing.name).write_text("{}")
+    with pytest.raises(SweepError, match=r"--done-in .*: not a run summary"):
+        summarized_points([tmp_path / "summaries"], plan)
+    with pytest.raises(SweepError, match=r"--done-in .*absent: not a directory of run summaries"):
+        summarized_points([tmp_path / "absent"], plan)
