@@ -2,7 +2,7 @@
 """LIGGGHTS 3.8's `model mn tangential mn` against LIGGGHTS's own linear model, `model
 hooke/stiffness tangential history` at the law's stiffness and damping, on the project's 3D
 chute, both in the project's LIGGGHTS build (plugin/liggghts: both combinations compiled in,
-specialised; issue 46, docs/performance.md, docs/liggghts.md):
+specialised; docs/performance.md, docs/liggghts.md):
 
 - the scene: inputs/lib/chute_3d_start.lmp, the start of inputs/liggghts/chute_3d.lmp (500
   spheres of diameters 0.9-1.1 and mass d^3 from rest on a rough base of 100 spheres frozen by
@@ -23,7 +23,7 @@ Each round runs every variant once (the order turned round each round), and reco
 time of the process (user + system), LIGGGHTS's Pair and Neigh times (the share of the loop
 time, times the CPU), the neighbour pairs at the end (LIGGGHTS's "Total # of neighbors") and
 the kinetic energy at the end. Then mn's ratios to hooke/stiffness of the same round, median and
-range, and issue 46's goal (mn's CPU at most 1.1x hooke/stiffness's) judged on those by the
+range, and the goal of docs/performance.md (mn's CPU at most 1.1x hooke/stiffness's) judged on those by the
 sign test of bench/paired.py (15 rounds of 21 decide).
 
     bench/liggghts_chute.py [--steps 40000] [--dt-fraction 0.05] [--rounds 21] [--build build]
@@ -45,7 +45,7 @@ from paired import against_goal, median_and_range, paired_ratios
 ROOT = Path(__file__).resolve().parent.parent
 KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5
 SIN_THETA = 0.40
-GOAL = 1.1    # issue 46: mn's CPU at most this many times hooke/stiffness's
+GOAL = 1.1    # docs/performance.md's goal: mn's CPU at most this many times hooke/stiffness's
 MN, HOOKE, BASELINE = "mn", "hooke/stiffness", "mn, baseline"
 SECTIONS = ("Pair", "Neigh")
 

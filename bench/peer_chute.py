@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """LAMMPS's own granular benchmark, bench/in.chute (32000 spheres, a 3D chute on a frozen base),
-from the LAMMPS tree the build uses, in four variants side by side (issue 33,
-docs/performance.md):
+from the LAMMPS tree the build uses, in four variants side by side
+(docs/performance.md):
 
 - as LAMMPS ships it: pair_style gran/hooke/history 200000 NULL 50 NULL 0.5 0;
 - with gran/mn at matched stiffness and damping: kn = 2e5 / m per unit mass scale (m = pi/6,
@@ -24,7 +24,7 @@ m: 0.08 % below gran/hooke's 2/7 k_n, so their energies agree closely, not exact
 Then each variant's CPU and Pair time against gran/hooke/history's of the same round, the
 median over the rounds with their range: on a machine whose speed drifts (a shared one: its
 best-of times can come from rounds of different speed) the paired ratio is the steadier one.
-Last, issue 33's goals for gran/mn (at most 1.0x gran/hooke/history's CPU, at most 0.7x pair
+Last, the goals of docs/performance.md for gran/mn (at most 1.0x gran/hooke/history's CPU, at most 0.7x pair
 granular's) judged on those paired ratios: met, not met or undecided by a one-sided sign test
 (bench/paired.py; 7 rounds of 7, 8 of 9 or 15 of 21 decide).
 
@@ -47,7 +47,7 @@ SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
 MASS = math.pi / 6           # data.chute: diameter 1, density 1
 KN, GAMMA_N, MU = 2e5, 50.0, 0.5
 BASELINE = "gran/mn, baseline"    # the variant of --baseline-plugin
-# issue 33's goals for gran/mn's CPU per step, judged on the paired ratios (bench/paired.py)
+# the goals of docs/performance.md for gran/mn's CPU per step, judged on the paired ratios (bench/paired.py)
 GOALS = {"gran/hooke/history": 1.0, "granular": 0.7}
 
 

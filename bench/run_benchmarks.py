@@ -20,9 +20,9 @@
 
 Each figure is the best of --repeat runs, the variants interleaved so that drifts in the
 machine's load hit all of them; the scenes' ratios to the reference loop are also given paired
-round by round (median and range over the rounds), and issue 33's goals for them (frictional
-at most 1.5x, collisional 2x, counters and outputs on) judged on those: met, not met or
-undecided by a one-sided sign test (bench/paired.py: 7 rounds of 7, 8 of 9 decide)."""
+round by round (median and range over the rounds), and the goals of docs/performance.md for
+them (frictional at most 1.5x, collisional 2x, counters and outputs on) judged on those: met,
+not met or undecided by a one-sided sign test (bench/paired.py: 7 rounds of 7, 8 of 9 decide)."""
 import argparse
 import os
 import re
@@ -40,8 +40,8 @@ from paired import against_goal, median_and_range, paired_ratios
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENES = {"frictional_flow": "frictional", "collisional_flow": "collisional"}
-# issue 33's goals: a scene as the study runs it (counters and outputs) at most this many times
-# the reference loop's CPU per step, judged on the paired ratios (bench/paired.py)
+# docs/performance.md's goals: a scene as the study runs it (counters and outputs) at most this
+# many times the reference loop's CPU per step, judged on the paired ratios (bench/paired.py)
 GOALS = {"frictional_flow": 1.5, "collisional_flow": 2.0}
 TIMER_SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
 KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5

@@ -1,4 +1,4 @@
-"""inputs/chute_3d.lmp, the 3D chute (issue 23, docs/scenes.md): a small chute runs in 3D, its
+"""inputs/chute_3d.lmp, the 3D chute (docs/scenes.md): a small chute runs in 3D, its
 outputs are read by the post-processing (N_c, N_w, t_c, t_w per sphere per unit time), its
 kinetic energies are those of solid spheres, and refused variables stop it with a message;
 the sweep runner's preset is known and within its budget; two MPI ranks give the one-rank run's
@@ -110,7 +110,7 @@ def test_bad_chute_variables_stop_with_a_message(tmp_path, case):
 def test_the_chute_preset_is_known_to_the_runner_and_within_budget(tmp_path):
     """inputs/sweeps/chute_3d.toml: every point is a chute_3d point the runner accepts; the
     predicted cost (its cost model: spheres + base atoms, the 3D per-atom cost) stays under
-    the issue's ~3 CPU-hours."""
+    the preset's budget of ~3 CPU-hours."""
     build = Path(PLUGIN).resolve().parents[1]    # as tests/lammps/test_sweep.py
     proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"),
                            str(ROOT / "inputs" / "sweeps" / "chute_3d.toml"), "--output",

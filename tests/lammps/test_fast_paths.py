@@ -1,4 +1,4 @@
-"""The per-step savings of issue 11 leave the trajectory alone: a scene gives bitwise the same
+"""The per-step fast paths leave the trajectory alone: a scene gives bitwise the same
 final state with the counters off (fix contacts/mn is passive) and with the fix enforce2d the
 decks no longer define (it zeroed what was already zero). The counters' own serial path (a
 ghost's tallies added to the disk it images) is checked against the reverse-communication path

@@ -53,7 +53,7 @@ def test_single_disk_on_a_gentle_slope_comes_to_rest(tmp_path):
 
 
 def test_single_disk_above_the_steady_window(tmp_path):
-    """The issue expected the energy to keep growing at sin(theta) = 0.18. It does not here:
+    """One might expect the energy to keep growing at sin(theta) = 0.18. It does not here:
     above the steady window (0.11-0.14 in the paper, reproduced) the disk hops irregularly over
     the bumps until it lands in a valley, where it is trapped at rest: a disk at rest between two
     bumps stays there while tan(theta) < (0.866 - ... ) ~ 0.27 (it would have to climb 0.135 in

@@ -1,4 +1,4 @@
-"""Independent cross-check of the 3D law with Yade 2023.02 (Debian's `yade`; issue 23 item 3).
+"""Independent cross-check of the 3D law with Yade 2023.02 (Debian's `yade`).
 
 Yade's ViscElMat (tc, en, et) builds, for two solid spheres and for a sphere on a wall or facet,
 the same forces as this project's sphere mapping with (tau_c, e, beta) = (tc, en, et)

@@ -1,4 +1,4 @@
-"""LAMMPS in 3D against Yade (issue 23 item 3, the LAMMPS side; docs/cross_checks_3d.md).
+"""LAMMPS in 3D against Yade (the LAMMPS side; docs/cross_checks_3d.md).
 
 pair_style gran/mn and fix wall/gran/mn run the scenes of yade_reference.py (yade_lammps_scenes:
 the same masses, radii, velocities, spins and (tau_c, e, beta) = (tc, en, et); Yade's wall and

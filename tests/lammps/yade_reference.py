@@ -2,7 +2,7 @@
 #     yade -n -x tests/lammps/yade_reference.py OUT.json [TC EN ET STEPS_PER_TC]
 # (-n: no GUI, -x: exit when the script ends.) Yade 2023.02 (Debian's `yade`).
 #
-# The independent reference for the 3D law (issue 23, item 3): ViscElMat with (tc, en, et),
+# The independent reference for the 3D law: ViscElMat with (tc, en, et),
 # Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator without
 # numerical damping, dt = tc / STEPS_PER_TC. It measures and writes as JSON:
 #   pair_equal, pair_unequal: an oblique, spinning impact of two solid spheres (no gravity);

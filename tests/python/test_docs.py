@@ -39,9 +39,9 @@ def relative_links(path):
 
 
 def test_readme_is_one_screen_and_its_links_resolve():
-    """README.md is the one-screen overview (issue 31: it had grown to 265 lines, a changelog and
-    results that drift among them; those belong to docs/status.md and the pages that own the
-    results); every page it or docs/index.md links exists."""
+    """README.md is the one-screen overview: a changelog and results drift there, so they belong
+    to docs/history.md and the pages that own the results; every page it or docs/index.md links
+    exists."""
     readme = ROOT / "README.md"
     assert len(readme.read_text().splitlines()) <= 100
     for page in (readme, ROOT / "docs" / "index.md"):

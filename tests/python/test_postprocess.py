@@ -500,7 +500,7 @@ def test_a_run_that_came_to_rest_has_no_steady_motion_to_average(tmp_path):
         point_observables(point)
 
 
-# ---- points the report cannot use are each a 'left out: why' line (issue 18)
+# ---- points the report cannot use are each a 'left out: why' line
 
 def sweep_of(tmp_path, points):
     """A sweep directory of synthetic points: {(scene, name): writer(point directory)}; each

@@ -188,7 +188,7 @@ def test_a_resolution_the_summaries_do_not_hold_is_refused(summarized, capsys):
     ("split", "corrupt summary: measured.contacts.split has the thresholds ['3', 'x'], not "
               "['10', '3']"),
     ("split part", "corrupt summary: measured.contacts.split.10 has no bursts"),
-    # hand-edited or damaged values that were averaged (issue 28): a negative rate, a span (a
+    # hand-edited or damaged values that would be averaged: a negative rate, a span (a
     # seed's weight) of zero or below, a run that did not complete with values
     ("negative rate", "corrupt summary: measured.window.blocks.N_w[2] is -0.5, negative: it is "
                       "an energy, a rate, a time fraction or a count"),
@@ -198,12 +198,12 @@ def test_a_resolution_the_summaries_do_not_hold_is_refused(summarized, capsys):
     ("failed with values", "corrupt summary: params is there, but the run failed: it has no "
                            "values"),
     ("flowing and stopped", "corrupt summary: stopped_at is there, but the run ended flowing"),
-    # what raised KeyError, AttributeError and TypeError in the report (issue 28)
+    # what would otherwise raise KeyError, AttributeError or TypeError in the report
     ("unknown scene", "corrupt summary: the summary names an unknown scene 'avalanche' "
                       "(expected one of single_disk, collisional_flow"),
     ("variables null", "corrupt summary: measured is there without variables"),
     ("list variable", "variables: variable kn is [100000, 200000], not a number or a word"),
-    # issue 46: what the raw reader refuses too (io: one rule, one check for both)
+    # what the raw reader refuses too (io: one rule, one check for both)
     ("huge block", "corrupt summary: measured.window.blocks.E_total[0] is 1e+308, beyond "
                    "1e+150 in magnitude"),
     ("disagreeing params", "corrupt summary: variables gives kn = 100000.0, but params gives "

@@ -98,7 +98,7 @@ def test_names_that_fit_are_kept_whole_and_one_byte_more_is_refused(tmp_path, mo
                                              ("single_disk", "k" * 17)])
 
 
-# ---- a run whose outputs could not be written, a point whose files cannot be (issue 46)
+# ---- a run whose outputs could not be written, a point whose files cannot be
 
 TOKEN = "0123456789abcdef"
 
