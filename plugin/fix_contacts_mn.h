@@ -52,16 +52,16 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   void boundary_ended(int i, const double *record, double vn) override;
 
  private:
-  // The state per atom: the output columns (granmn::output::Counter, the per-atom array;
-  // the global vector adds the window's length and the group's size), then what the times
-  // are made of. The times
-  // change only when an atom's contacts do: `ACCUMULATED_*` hold each time up to the clock
-  // time `SINCE` of the atom's last change, `CONTACTS_*` its contacts since then. The output's
-  // time columns are those plus the time since, written at each change and whenever they are
-  // read (every `every` steps, at the end of a run), so that no step costs work per contact
-  // or per atom; reading them never rounds the sums (the output is a copy).
-  enum { ACCUMULATED_PARTICLE = granmn::output::COUNTERS, ACCUMULATED_BOUNDARY, ACCUMULATED_MULTIPLE, SINCE,
-         CONTACTS_PARTICLE, CONTACTS_BOUNDARY, STATE_COLS };
+  // The state per atom: the output columns (granmn::output::Counter, mn_output_schema.h: the
+  // per-atom array; the global vector adds the window's length and the group's size), then
+  // what the times are made of. The times change only when an atom's contacts do:
+  // `ACCUMULATED_*` hold each time up to the clock time `SINCE` of the atom's last change,
+  // `CONTACTS_*` its contacts since then. The output's time columns are those plus the time
+  // since, written at each change and whenever they are read (every `every` steps, at the end
+  // of a run), so that no step costs work per contact or per atom; reading them never rounds
+  // the sums (the output is a copy).
+  enum { ACCUMULATED_PARTICLE = granmn::output::COUNTERS, ACCUMULATED_BOUNDARY,
+         ACCUMULATED_MULTIPLE, SINCE, CONTACTS_PARTICLE, CONTACTS_BOUNDARY, STATE_COLS };
   // Tallies of this step's pair contacts (owned + ghost), where contacts are counted anew at
   // a step: at every step on more than one process or without an atom map (brought home by
   // reverse communication, then compared with each atom's contacts), at a run's setup on one.

@@ -46,7 +46,7 @@ void FixContactsMN::post_create()
 {
   const std::string name = std::string("contacts_mn_") + id;
   const char *fixarg[9 + COUNTERS] = {name.c_str(), group->names[igroup], "property/atom",
-                                     name.c_str(), "vector", "no", "no", "no"};
+                                      name.c_str(), "vector", "no", "no", "no"};
   for (int c = 0; c < COUNTERS; c++) fixarg[8 + c] = "0.0";
   accumulated = modify->add_fix_property_atom(8 + COUNTERS, const_cast<char **>(fixarg),
                                               style);

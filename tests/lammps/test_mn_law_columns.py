@@ -27,10 +27,10 @@ def test_the_post_processing_reads_the_headers_schema(tmp_path):
 
 
 def test_the_pair_style_publishes_the_schemas_variables(tmp_path):
-    """Each published variable is defined once the pair style is given, with the value mn-law derives for it
-    (mn-law prints the same values under the names less mn_): a name the pair style did not
-    define would stop the deck (LAMMPS: variable not defined), a value of another law differs in
-    its leading digits."""
+    """Each published variable is defined once the pair style is given, with the value mn-law
+    derives for it (mn-law prints the same values under the names less mn_): a name the pair
+    style did not define would stop the deck (LAMMPS: variable not defined), a value of another
+    law differs in its leading digits."""
     names = SCHEMA["published"]
     deck = f"""
 region box block 0 10 0 10 -0.5 0.5

@@ -12,7 +12,8 @@ from liggghts_decks import LIGGGHTS, run_liggghts
 from postprocess.io import SCHEMA
 from test_minimal_input import documented_input
 
-pytestmark = pytest.mark.skipif(not LIGGGHTS, reason="LIGGGHTS was not built (GRANMN_LIGGGHTS unset)")
+pytestmark = pytest.mark.skipif(not LIGGGHTS,
+                                reason="LIGGGHTS was not built (GRANMN_LIGGGHTS unset)")
 
 
 def test_the_model_publishes_the_schemas_variables(tmp_path):

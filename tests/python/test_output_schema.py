@@ -10,8 +10,9 @@ from postprocess.io import (COUNTER_COLUMNS, CONTACT_KINDS, ENERGY_COLUMNS, ROW_
                             read_counts, read_energy, read_rows)
 
 ROOT = Path(__file__).resolve().parents[2]
-ENERGY_DECKS = (ROOT / "inputs" / "lib" / "energy.lmp", ROOT / "inputs" / "liggghts" / "chute_3d.lmp")
-COUNTS_DECKS = (ROOT / "inputs" / "lib" / "run.lmp", ROOT / "inputs" / "liggghts" / "chute_3d.lmp")
+LIGGGHTS_CHUTE = ROOT / "inputs" / "liggghts" / "chute_3d.lmp"
+ENERGY_DECKS = (ROOT / "inputs" / "lib" / "energy.lmp", LIGGGHTS_CHUTE)
+COUNTS_DECKS = (ROOT / "inputs" / "lib" / "run.lmp", LIGGGHTS_CHUTE)
 
 
 def fix_columns(text):
