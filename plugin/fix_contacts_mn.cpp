@@ -19,8 +19,7 @@
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
-
-static constexpr int ROW_COLS = 8;          // tag_i tag_j kind start duration vn_start vn_end peak
+using namespace granmn::output;
 
 // fix ID group contacts/mn [local N] [every M]
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
@@ -52,16 +51,18 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
   // or after a deletion; on more it compares every step's tallies with the atoms' contacts
   nevery = 1;
   peratom_flag = 1;
-  size_peratom_cols = NCOLS;
+  size_peratom_cols = COUNTERS;
   peratom_freq = 1;
   vector_flag = 1;
   size_vector = VECTOR_SIZE;
   global_freq = 1;
   extvector = -1;
-  extlist = new int[size_vector]{1, 1, 1, 1, 1, 1, 0, 1};
+  // sums and the group's size are extensive, the window's length is not
+  extlist = new int[size_vector];
+  for (int k = 0; k < size_vector; k++) extlist[k] = k != WINDOW;
   if (rows_every) {
     local_flag = 1;
-    size_local_cols = ROW_COLS;
+    size_local_cols = ROW_COLUMNS;
     size_local_rows = 0;
     local_freq = rows_every;
   }
@@ -121,7 +122,7 @@ void FixContactsMN::advance_clock()
 void FixContactsMN::drop_handed_rows()
 {
   if (rows_handed && update->ntimestep != handed_step) {
-    rows.erase(rows.begin(), rows.begin() + (size_t) rows_handed * ROW_COLS);
+    rows.erase(rows.begin(), rows.begin() + (size_t) rows_handed * ROW_COLUMNS);
     rows_handed = 0;
   }
 }
@@ -239,7 +240,7 @@ void FixContactsMN::boundary_touching(int i, bool began)
 void FixContactsMN::boundary_ended(int i, const double *record, double vn)
 {
   change(i, 0.0, -1.0);
-  if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, ROW_BOUNDARY, vn);
+  if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, KIND_BOUNDARY, vn);
 }
 
 void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary,
@@ -256,7 +257,7 @@ void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_bound
   if (i_is_boundary) std::swap(i, j);
   const bool boundary = i_is_boundary || j_is_boundary;
   const bool swap = !boundary && tag[j] < tag[i];
-  ended(record, tag[swap ? j : i], tag[swap ? i : j], boundary ? ROW_BOUNDARY : ROW_DISKS, vn);
+  ended(record, tag[swap ? j : i], tag[swap ? i : j], boundary ? KIND_BOUNDARY : KIND_DISKS, vn);
 }
 
 // A completed contact's row: IDs, kind, start, duration, v_n in and out, peak overlap.
@@ -264,11 +265,16 @@ void FixContactsMN::ended(const double *record, double tag_i, double tag_j, doub
                           double vn_end)
 {
   if (!rows_every) return;
-  const double row[ROW_COLS] = {tag_i, tag_j, kind, record[granmn::RECORD_START],
-                                now - record[granmn::RECORD_START],
-                                record[granmn::RECORD_VN_START], vn_end,
-                                record[granmn::RECORD_PEAK]};
-  rows.insert(rows.end(), row, row + ROW_COLS);
+  double row[ROW_COLUMNS];
+  row[ROW_ID_I] = tag_i;
+  row[ROW_ID_J] = tag_j;
+  row[ROW_KIND] = kind;
+  row[ROW_START] = record[granmn::RECORD_START];
+  row[ROW_DURATION] = now - record[granmn::RECORD_START];
+  row[ROW_VN_START] = record[granmn::RECORD_VN_START];
+  row[ROW_VN_END] = vn_end;
+  row[ROW_PEAK] = record[granmn::RECORD_PEAK];
+  rows.insert(rows.end(), row, row + ROW_COLUMNS);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -366,14 +372,14 @@ void FixContactsMN::post_run()
 void FixContactsMN::publish_rows(bool hand)
 {
   if (!rows_every) return;
-  const int n = rows.size() / ROW_COLS;
+  const int n = rows.size() / ROW_COLUMNS;
   if (n > nmax_rows) {
     nmax_rows = n;
     memory->destroy(row_array);
-    memory->create(row_array, nmax_rows, ROW_COLS, "contacts/mn:rows");
+    memory->create(row_array, nmax_rows, ROW_COLUMNS, "contacts/mn:rows");
   }
   for (int r = 0; r < n; r++)
-    for (int c = 0; c < ROW_COLS; c++) row_array[r][c] = rows[ROW_COLS * r + c];
+    for (int c = 0; c < ROW_COLUMNS; c++) row_array[r][c] = rows[ROW_COLUMNS * r + c];
   array_local = row_array;
   size_local_rows = n;
   // dump local N writes them at this step
@@ -429,7 +435,7 @@ double FixContactsMN::compute_vector(int n)
 {
   if (vector_step != update->ntimestep) {
     // the times as of now (update_outputs' sums, without writing them)
-    double local[NCOLS] = {0.0};
+    double local[COUNTERS] = {0.0};
     const int *mask = atom->mask;
     for (int i = 0; i < atom->nlocal; i++) {
       const double *s = state[i];
@@ -444,7 +450,7 @@ double FixContactsMN::compute_vector(int n)
           s[ACCUMULATED_MULTIPLE] + (particle + boundary >= 2.0 ? elapsed : 0.0);
       local[NOW] += s[NOW];
     }
-    MPI_Allreduce(local, vector_sums, NCOLS, MPI_DOUBLE, MPI_SUM, world);
+    MPI_Allreduce(local, vector_sums, COUNTERS, MPI_DOUBLE, MPI_SUM, world);
     vector_sums[WINDOW] = now - window_start;
     vector_sums[GROUP_SIZE] = group->count(igroup);
     vector_step = update->ntimestep;
@@ -460,7 +466,7 @@ double FixContactsMN::memory_usage()
       (double) rows.capacity() * sizeof(double);
 }
 
-// The per-atom output is the first NCOLS columns of the state.
+// The per-atom output is the first COUNTERS columns of the state.
 void FixContactsMN::grow_arrays(int nmax)
 {
   FixPerAtomState::grow_arrays(nmax);
@@ -479,7 +485,7 @@ static constexpr int CLOCK_VALUES = 4;
 void FixContactsMN::write_restart(FILE *fp)
 {
   // rows handed to a dump are in its file already
-  const int skip = rows_handed * ROW_COLS;
+  const int skip = rows_handed * ROW_COLUMNS;
   const int mine = (int) rows.size() - skip;
   std::vector<int> counts(comm->nprocs), offsets(comm->nprocs, 0);
   MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
@@ -496,7 +502,7 @@ void FixContactsMN::write_restart(FILE *fp)
     values[1] = now;
     values[2] = (double) clock_step;
     values[3] = window_start;
-    values[4] = total / ROW_COLS;
+    values[4] = total / ROW_COLUMNS;
     const int size = values.size() * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
     fwrite(values.data(), sizeof(double), values.size(), fp);
@@ -523,7 +529,7 @@ void FixContactsMN::restart(char *buf)
   rows.clear();
   rows_handed = 0;
   if (comm->me == 0 && rows_every) {
-    rows.resize((size_t) clock[CLOCK_VALUES] * ROW_COLS);
+    rows.resize((size_t) clock[CLOCK_VALUES] * ROW_COLUMNS);
     memcpy(rows.data(), buf + sizeof(clock), rows.size() * sizeof(double));
   }
 }

@@ -12,6 +12,7 @@
 #include "update.h"
 
 #include "mn_contact_events.h"
+#include "mn_output_schema.h"
 
 #include <vector>
 
@@ -19,13 +20,6 @@ namespace LAMMPS_NS {
 
 class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
  public:
-  // Columns of the per-atom array (the output; the state has more, see below), then the
-  // global vector's two more: the window's length and the group's size.
-  enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, NCOLS };
-  enum { WINDOW = NCOLS, GROUP_SIZE, VECTOR_SIZE };
-  // The kind column of a contact's row: between two disks, of a disk with the boundary.
-  enum { ROW_DISKS = 1, ROW_BOUNDARY = 2 };
-
   FixContactsMN(class LAMMPS *, int, char **);
   ~FixContactsMN() override;
   int setmask() override;
@@ -58,14 +52,16 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   void boundary_ended(int i, const double *record, double vn) override;
 
  private:
-  // The state per atom: the NCOLS output columns, then what the times are made of. The times
-  // change only when an atom's contacts do: `ACCUMULATED_*` hold each time up to the clock
-  // time `SINCE` of the atom's last change, `CONTACTS_*` its contacts since then. The output's
-  // time columns are those plus the time since, written at each change and whenever they are
-  // read (every `every` steps, at the end of a run), so that no step costs work per contact
-  // or per atom; reading them never rounds the sums (the output is a copy).
-  enum { ACCUMULATED_PARTICLE = NCOLS, ACCUMULATED_BOUNDARY, ACCUMULATED_MULTIPLE, SINCE,
-         CONTACTS_PARTICLE, CONTACTS_BOUNDARY, STATE_COLS };
+  // The state per atom: the output columns (granmn::output::Counter, mn_output_schema.h: the
+  // per-atom array; the global vector adds the window's length and the group's size), then
+  // what the times are made of. The times change only when an atom's contacts do:
+  // `ACCUMULATED_*` hold each time up to the clock time `SINCE` of the atom's last change,
+  // `CONTACTS_*` its contacts since then. The output's time columns are those plus the time
+  // since, written at each change and whenever they are read (every `every` steps, at the end
+  // of a run), so that no step costs work per contact or per atom; reading them never rounds
+  // the sums (the output is a copy).
+  enum { ACCUMULATED_PARTICLE = granmn::output::COUNTERS, ACCUMULATED_BOUNDARY,
+         ACCUMULATED_MULTIPLE, SINCE, CONTACTS_PARTICLE, CONTACTS_BOUNDARY, STATE_COLS };
   // Tallies of this step's pair contacts (owned + ghost), where contacts are counted anew at
   // a step: at every step on more than one process or without an atom map (brought home by
   // reverse communication, then compared with each atom's contacts), at a run's setup on one.
@@ -97,14 +93,14 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   // The publishers that remember their contacts (wall fixes), asked at a count anew
   std::vector<const granmn::HeldContacts *> holders;
   int rows_every;              // local rows: contacts completed in the last N steps (0: none)
-  std::vector<double> rows;    // 8 values per completed contact, not yet dumped
+  std::vector<double> rows;    // the columns of each completed contact, not yet dumped
   double **row_array;
   int nmax_rows;
   // The first rows_handed rows were handed to dump local at step handed_step (a multiple of N);
   // they go at the next step, whatever its number (reset_timestep may move it either way).
   int rows_handed;
   bigint handed_step;
-  double vector_sums[VECTOR_SIZE];
+  double vector_sums[granmn::output::VECTOR_SIZE];
   bigint vector_step;
 
   void set_recounting(bool);
@@ -127,6 +123,7 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
 // last change goes to its times as its contacts were, then the output columns are current.
 inline void FixContactsMN::change(int i, double particle, double boundary)
 {
+  using namespace granmn::output;
   double *s = state[i];
   if (atom->mask[i] & groupbit) {
     const double elapsed = change_time - s[SINCE];

@@ -1,16 +1,40 @@
 // mn-law: prints the coefficients docs/model.md section 3 derives from (kn, e, beta, mu), and the
-// stability limits, one "name value" per line, so that scripts use the header's numbers.
+// stability limits, one "name value" per line, so that scripts use the header's numbers: q, kn,
+// then the values the styles publish, under their names less the prefix mn_.
 //   mn-law [--shape disc|sphere] KN E BETA [MU]
 // The shape is the particles' inertia (section 3.1): discs (the 2D styles, the default) or solid
 // spheres (the 3D styles).
-#include "mn_integration.h"
+//   mn-law --columns
+// prints the styles' output schema (mn_output_schema.h), one table a line: its name, then its
+// columns' names in order (kinds: name code pairs).
+#include "mn_output_schema.h"
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
+static void print_columns()
+{
+  using namespace granmn::output;
+  std::printf("counters");
+  for (const char *name : COUNTER_NAMES) std::printf(" %s", name);
+  std::printf("\nvector_extras");
+  for (const char *name : EXTRA_NAMES) std::printf(" %s", name);
+  std::printf("\nrows");
+  for (const char *name : ROW_NAMES) std::printf(" %s", name);
+  std::printf("\nkinds");
+  for (const KindName &kind : KINDS) std::printf(" %s %d", kind.name, kind.code);
+  std::printf("\npublished");
+  for (const char *name : PUBLISHED_NAMES) std::printf(" %s", name);
+  std::printf("\n");
+}
+
 int main(int argc, char **argv)
 {
+  if (argc == 2 && std::strcmp(argv[1], "--columns") == 0) {
+    print_columns();
+    return 0;
+  }
   double q = mn::DISC_Q;
   if (argc > 2 && std::strcmp(argv[1], "--shape") == 0) {
     if (std::strcmp(argv[2], "sphere") == 0)
@@ -41,11 +65,10 @@ int main(int argc, char **argv)
     return 2;
   }
   const mn::Law law = mn::derive(material, mn::Options(), q);
-  std::printf("q %.17g\n", law.q);
-  std::printf("kn %.17g\neta_n %.17g\nkt %.17g\neta_t %.17g\ntau_c %.17g\ntau_w %.17g\n"
-              "e_w %.17g\ndt_max_verlet %.17g\ndt_max_ab2 %.17g\n",
-              law.material.kn, law.eta_n, law.kt, law.eta_t, law.tau_c, law.tau_w, law.e_w,
-              mn::max_stable_dt(law, mn::Integrator::VelocityVerlet),
-              mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
+  std::printf("q %.17g\nkn %.17g\n", law.q, law.material.kn);
+  const std::size_t prefix = std::strlen(granmn::output::PUBLISHED_PREFIX);
+  granmn::output::for_each_published(law, [prefix](const char *name, double value) {
+    std::printf("%s %.17g\n", name + prefix, value);
+  });
   return 0;
 }

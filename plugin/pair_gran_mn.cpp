@@ -19,6 +19,7 @@
 #include "granmn_run_checks.h"
 #include "input.h"
 #include "memory.h"
+#include "mn_output_schema.h"
 #include "modify.h"
 #include "neigh_list.h"
 #include "neigh_request.h"
@@ -394,22 +395,17 @@ void PairGranMN::publish_law()
   law_reported = false;
 
   // Decks read the derived scales from here, e.g. timestep $(v_mn_tau_c/100).
-  const std::pair<const char *, double> published[] = {
-      {"mn_tau_c", law.tau_c}, {"mn_tau_w", law.tau_w}, {"mn_e_w", law.e_w},
-      {"mn_eta_n", law.eta_n}, {"mn_kt", law.kt}, {"mn_eta_t", law.eta_t},
-      {"mn_dt_max_verlet", mn::max_stable_dt(law, mn::Integrator::VelocityVerlet)},
-      {"mn_dt_max_ab2", mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2)}};
   Variable *variables = input->variable;
-  for (const auto &entry : published) {
-    const int ivar = variables->find(entry.first);
+  granmn::output::for_each_published(law, [&](const char *name, double value) {
+    const int ivar = variables->find(name);
     if (ivar < 0)
-      variables->set(fmt::format("{} internal {:.17g}", entry.first, entry.second));
+      variables->set(fmt::format("{} internal {:.17g}", name, value));
     else if (variables->internalstyle(ivar))
-      variables->internal_set(ivar, entry.second);
+      variables->internal_set(ivar, value);
     else
       error->all(FLERR, "pair_style gran/mn: variable {} is defined by the deck; pair_style "
-                        "gran/mn publishes its derived values under that name", entry.first);
-  }
+                        "gran/mn publishes its derived values under that name", name);
+  });
 }
 
 // Pairs that overlap deeply (mn::deep_overlap) at a run's setup, from the list just built: a

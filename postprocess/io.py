@@ -13,19 +13,30 @@ class DataError(Exception):
     """A point's output is missing, truncated or inconsistent."""
 
 
-# The per-atom columns of fix contacts/mn in its documented order (docs/fix_contacts_mn.rst):
-# counts.txt's header names them by number (f_c[1] ...). The cumulative ones grow over the
-# counters' window; contacts_now is a count at one moment.
-CUMULATIVE_COUNTERS = ("begun_disk", "begun_boundary", "time_disk", "time_boundary",
-                       "time_multiple")
-COUNTER_COLUMNS = CUMULATIVE_COUNTERS + ("contacts_now",)
-# the columns of energy.txt the analysis uses
+def output_schema(path=Path(__file__).with_name("output_schema.txt")):
+    """The styles' output schema (plugin/mn_output_schema.h, through `mn-law --columns`): its
+    tables by name, each the words of its line."""
+    return {words[0]: tuple(words[1:]) for words in
+            (line.split() for line in path.read_text(encoding="utf-8").splitlines())
+            if words and not words[0].startswith("#")}
+
+
+SCHEMA = output_schema()
+# The per-atom columns of fix contacts/mn in order: counts.txt's header names them by number
+# (f_c[1] ...). The cumulative ones grow over the counters' window; contacts_now is a count at
+# one moment.
+COUNTER_COLUMNS = SCHEMA["counters"]
+CUMULATIVE_COUNTERS = tuple(name for name in COUNTER_COLUMNS if name != "contacts_now")
+# the columns of energy.txt the analysis uses, by name (energy.txt's header names them; others
+# are let be): the counters' sums over the group, the window's length
 ENERGY_COLUMNS = ("step", "e_trans", "e_rot", "e_total", *COUNTER_COLUMNS, "window")
-# the columns of fix contacts/mn's rows (contacts.txt, whose header names them f_c[1] ...)
-ROW_COLUMNS = ("id_i", "id_j", "kind", "start", "duration", "vn_start", "vn_end", "peak")
+# the columns of fix contacts/mn's rows in order (contacts.txt, whose header names them f_c[1]
+# ...)
+ROW_COLUMNS = SCHEMA["rows"]
 # the codes of contacts.txt's kind column: a contact between two disks, of a disk with the
-# boundary (docs/fix_contacts_mn.rst)
-CONTACT_KINDS = {"disk": 1, "boundary": 2}
+# boundary
+CONTACT_KINDS = {name: int(code) for name, code in zip(SCHEMA["kinds"][0::2],
+                                                       SCHEMA["kinds"][1::2])}
 
 # The largest magnitude of a value the analysis takes: far beyond any energy, rate, time or count
 # of a run, and small enough that the sums of squares its errors are made of stay finite in

@@ -16,13 +16,13 @@
 #include "modify.h"
 #include "update.h"
 
+#include "mn_output_schema.h"
+
 using namespace LAMMPS_NS;
 using namespace FixConst;
-
-// the per-atom columns (the plugin's fix contacts/mn's): begun with particles, begun with the
-// boundary, time touching particles, time touching the boundary, time with two or more,
-// contacts now
-enum { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW, COLUMNS };
+// the per-atom columns and the global vector's, the plugin's fix contacts/mn's (its group's
+// size aside)
+using namespace granmn::output;
 
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg)
     : Fix(lmp, narg, arg), accumulated(NULL), window(0.0)
@@ -31,11 +31,11 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg)
   if (modify->find_fix_style("contacts/mn", 0))
     error->all(FLERR, "Only one fix contacts/mn may be defined");
   vector_flag = 1;
-  size_vector = COLUMNS + 1;
+  size_vector = WINDOW + 1;
   global_freq = 1;
   extvector = 0;
   peratom_flag = 1;
-  size_peratom_cols = COLUMNS;
+  size_peratom_cols = COUNTERS;
   peratom_freq = 1;
 }
 
@@ -45,10 +45,10 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg)
 void FixContactsMN::post_create()
 {
   const std::string name = std::string("contacts_mn_") + id;
-  const char *fixarg[9 + COLUMNS] = {name.c_str(), group->names[igroup], "property/atom",
-                                     name.c_str(), "vector", "no", "no", "no"};
-  for (int c = 0; c < COLUMNS; c++) fixarg[8 + c] = "0.0";
-  accumulated = modify->add_fix_property_atom(8 + COLUMNS, const_cast<char **>(fixarg),
+  const char *fixarg[9 + COUNTERS] = {name.c_str(), group->names[igroup], "property/atom",
+                                      name.c_str(), "vector", "no", "no", "no"};
+  for (int c = 0; c < COUNTERS; c++) fixarg[8 + c] = "0.0";
+  accumulated = modify->add_fix_property_atom(8 + COUNTERS, const_cast<char **>(fixarg),
                                               style);
 }
 
@@ -102,10 +102,10 @@ void FixContactsMN::end_of_step()
   window += dt;
 }
 
-// the sums over the group (columns 1-6) and the window's length (7)
+// the sums over the group and the window's length
 double FixContactsMN::compute_vector(int n)
 {
-  if (n == COLUMNS) return window;
+  if (n == WINDOW) return window;
   double **counters = accumulated->array_atom;
   const int *mask = atom->mask;
   double local = 0.0;
@@ -130,6 +130,6 @@ void FixContactsMN::reset_window()
 {
   double **counters = accumulated->array_atom;
   for (int i = 0; i < atom->nlocal; i++)
-    for (int c = 0; c < COLUMNS; c++) counters[i][c] = 0.0;
+    for (int c = 0; c < COUNTERS; c++) counters[i][c] = 0.0;
   window = 0.0;
 }

@@ -4,8 +4,8 @@
    the boundary (walls, particles in fix freeze's group), the time touching at least one other
    particle, the time touching the boundary, the time with two or more contacts, and the
    contacts now; a global vector of their sums over the group, the contacts now and the
-   window's length, since the fix was defined or `fix_modify ID reset`. The same columns as the
-   plugin's fix, so that the decks write the same files. No per-contact rows here.
+   window's length, since the fix was defined or `fix_modify ID reset`. The plugin's fix's
+   columns (mn_output_schema.h), so that the decks write the same files. No per-contact rows.
      fix ID group-ID contacts/mn */
 #ifdef FIX_CLASS
 FixStyle(contacts/mn,FixContactsMN)

@@ -25,6 +25,7 @@
 #include "mn_contact.h"
 #include "mn_integration.h"
 #include "mn_contact_events.h"
+#include "mn_output_schema.h"
 #include "modify.h"
 #include "pair_gran.h"
 #include "property_registry.h"
@@ -135,20 +136,16 @@ class LawTable {
   }
 
   // The law of atom types 1 and 1 as equal-style variables, under the names the LAMMPS pair
-  // style publishes them (mn_tau_c, ...): a deck's time step or output can read them after a
-  // run (LIGGGHTS derives the law at a run's init; a deck runs `run 0` first).
+  // style publishes them (mn_output_schema.h): a deck's time step or output can read them after
+  // a run (LIGGGHTS derives the law at a run's init; a deck runs `run 0` first).
   static void publish(LAMMPS_NS::LAMMPS *lmp, const mn::Law &law)
   {
-    const std::pair<const char *, double> published[] = {
-        {"mn_tau_c", law.tau_c}, {"mn_tau_w", law.tau_w}, {"mn_e_w", law.e_w},
-        {"mn_eta_n", law.eta_n}, {"mn_kt", law.kt}, {"mn_eta_t", law.eta_t},
-        {"mn_dt_max_verlet", mn::max_stable_dt(law, mn::Integrator::VelocityVerlet)}};
-    for (const auto &entry : published) {
+    granmn::output::for_each_published(law, [lmp](const char *name, double number) {
       char value[32];
-      snprintf(value, sizeof(value), "%.17g", entry.second);
-      char *args[3] = {const_cast<char *>(entry.first), const_cast<char *>("equal"), value};
+      snprintf(value, sizeof(value), "%.17g", number);
+      char *args[3] = {const_cast<char *>(name), const_cast<char *>("equal"), value};
       lmp->input->variable->set(3, args);
-    }
+    });
   }
 
   int stride = 0;

@@ -7,9 +7,12 @@ import pytest
 from collision_decks import DISC_DENSITY, bounces, disk_over_floor, two_disks
 from granmn_run import HEADER, PLUGIN, law, restitution_error_bound, run_lammps, run_scene
 from pile_decks import BETA, BOUNDARY, E, FIXES, KN, styles
+from postprocess.io import CONTACT_KINDS, COUNTER_COLUMNS, ROW_COLUMNS, SCHEMA
 
 COUNTS = "id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]"
 SUMS = "$(f_c[1]) $(f_c[2]) $(f_c[3]) $(f_c[4]) $(f_c[5]) $(f_c[6]) $(f_c[7]) $(f_c[8])"
+# the global vector's entries by name (plugin/mn_output_schema.h)
+VECTOR = (*COUNTER_COLUMNS, *SCHEMA["vector_extras"])
 
 
 @pytest.mark.parametrize("mu", [0.5, 0.0])
@@ -33,10 +36,10 @@ def test_binary_collision_is_one_contact_per_disk_lasting_tau_c(tmp_path, mu):
     rows = [l.split() for l in (tmp_path / "rows.txt").read_text().splitlines()
             if l and not l.startswith("ITEM") and len(l.split()) == 8]
     assert len(rows) == 1                              # one completed contact, one row
-    tag_i, tag_j, kind, start, duration, vn_start, vn_end, peak = map(float, rows[0])
-    assert {tag_i, tag_j} == {1, 2} and kind == 1
-    assert abs(duration - tau) <= dt
-    assert abs(-vn_end / vn_start - 0.7) < 0.01        # the collision's restitution
+    row = dict(zip(ROW_COLUMNS, map(float, rows[0])))
+    assert {row["id_i"], row["id_j"]} == {1, 2} and row["kind"] == CONTACT_KINDS["disk"]
+    assert abs(row["duration"] - tau) <= dt
+    assert abs(-row["vn_end"] / row["vn_start"] - 0.7) < 0.01     # the collision's restitution
     # peak overlap of delta'' + 2 eta_n delta' + 2 kn delta = 0 from delta'(0) = 1:
     # (1/w) exp(-eta_n t*) sin(w t*) with w = pi/tau_c and tan(w t*) = w/eta_n; the sampled peak
     # carries the first-order error of the contact's start, as e does
@@ -44,7 +47,7 @@ def test_binary_collision_is_one_contact_per_disk_lasting_tau_c(tmp_path, mu):
     w = np.pi / tau
     t_peak = np.arctan2(w, c["eta_n"]) / w
     expected_peak = np.exp(-c["eta_n"] * t_peak) * np.sin(w * t_peak) / w
-    assert abs(peak / expected_peak - 1) <= restitution_error_bound(0.7, dt / tau)
+    assert abs(row["peak"] / expected_peak - 1) <= restitution_error_bound(0.7, dt / tau)
     sums = run.result("sums")
     assert sums[0] == 2 and sums[7] == 2
 
@@ -62,10 +65,10 @@ run 10000
 print "RESULT sums {SUMS}"
 """
     sums = run_lammps(deck, tmp_path).result("sums")
-    begun_particle, begun_boundary, t_particle, t_boundary, t_multiple, now, window, n = sums
-    assert begun_boundary == 1 and begun_particle == 0
-    assert t_boundary / window == pytest.approx(1.0, abs=1e-12)
-    assert now == 1 and n == 1
+    sums = dict(zip(VECTOR, sums))
+    assert sums["begun_boundary"] == 1 and sums["begun_disk"] == 0
+    assert sums["time_boundary"] / sums["window"] == pytest.approx(1.0, abs=1e-12)
+    assert sums["contacts_now"] == 1 and sums["group_size"] == 1
 
 
 def test_a_timestep_changed_within_a_run_counts_each_step_with_its_own(tmp_path):

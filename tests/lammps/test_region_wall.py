@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from granmn_run import HEADER, PLUGIN, law, restitution_error_bound, run_lammps
+from postprocess.io import CONTACT_KINDS, ROW_COLUMNS
 from test_three_d import HEADER_3D, SPHERE_DENSITY
 
 KN, E, BETA = 2e5, 0.7, 0.7
@@ -777,7 +778,7 @@ def test_a_face_opened_between_runs_ends_its_contacts(tmp_path, members):
             (run.workdir / "rows.txt").read_text().splitlines()
             if len(line.split()) == 8 and not line.startswith("ITEM")]
     assert sorted(row[0] for row in rows) == ([1.0, 2.0] if renumbered else [1.0])
-    for tag_i, tag_j, kind, start, duration, vn_start, vn_end, peak in rows:
-        assert (tag_j, kind, start) == (0.0, 2.0, 0.0)
-        assert duration == pytest.approx(2000 * dt, rel=1e-12)
-        assert np.isnan(vn_end)
+    for row in (dict(zip(ROW_COLUMNS, values)) for values in rows):
+        assert (row["id_j"], row["kind"], row["start"]) == (0.0, CONTACT_KINDS["boundary"], 0.0)
+        assert row["duration"] == pytest.approx(2000 * dt, rel=1e-12)
+        assert np.isnan(row["vn_end"])

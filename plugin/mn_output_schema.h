@@ -1,0 +1,69 @@
+// What the styles write and publish, by name and position: the columns of fix contacts/mn's
+// counters and of its contact rows, the codes of a row's kind, and the variables the law's
+// styles publish. The LAMMPS and LIGGGHTS styles take positions from here, `mn-law --columns`
+// prints the names (for the post-processing, postprocess/output_schema.txt, and the tests that
+// check the decks' titles against them). Free of any host.
+#ifndef MN_OUTPUT_SCHEMA_H
+#define MN_OUTPUT_SCHEMA_H
+
+#include "mn_integration.h"
+
+namespace granmn {
+namespace output {
+
+// fix contacts/mn's per-atom columns (f_c[1] ... of a dump), and the first entries of its
+// global vector, their sums over the group. A "disk" is a flowing particle (a disc in 2D, a
+// sphere in 3D); contacts_now is a count at one moment, the others grow over the window.
+enum Counter { BEGUN_PARTICLE, BEGUN_BOUNDARY, TIME_PARTICLE, TIME_BOUNDARY, TIME_MULTIPLE, NOW,
+               COUNTERS };
+constexpr const char *COUNTER_NAMES[COUNTERS] = {"begun_disk", "begun_boundary", "time_disk",
+                                                 "time_boundary", "time_multiple",
+                                                 "contacts_now"};
+
+// The global vector's entries after the sums: the window's length (both hosts), the group's
+// size (LAMMPS's fix only).
+enum VectorExtra { WINDOW = COUNTERS, GROUP_SIZE, VECTOR_SIZE };
+constexpr const char *EXTRA_NAMES[VECTOR_SIZE - COUNTERS] = {"window", "group_size"};
+
+// The columns of a completed contact's row (fix contacts/mn local N, for dump local).
+enum RowColumn { ROW_ID_I, ROW_ID_J, ROW_KIND, ROW_START, ROW_DURATION, ROW_VN_START,
+                 ROW_VN_END, ROW_PEAK, ROW_COLUMNS };
+constexpr const char *ROW_NAMES[ROW_COLUMNS] = {"id_i", "id_j", "kind", "start", "duration",
+                                                "vn_start", "vn_end", "peak"};
+
+// The codes of a row's kind column: between two disks, of a disk with the boundary.
+enum ContactKind { KIND_DISKS = 1, KIND_BOUNDARY = 2 };
+struct KindName {
+  ContactKind code;
+  const char *name;
+};
+constexpr KindName KINDS[] = {{KIND_DISKS, "disk"}, {KIND_BOUNDARY, "boundary"}};
+
+// The law's derived values under the names the styles publish them as equal-style variables
+// (a deck's `timestep $(v_mn_tau_c/100)`), in this order.
+enum Published { PUBLISHED_TAU_C, PUBLISHED_TAU_W, PUBLISHED_E_W, PUBLISHED_ETA_N, PUBLISHED_KT,
+                 PUBLISHED_ETA_T, PUBLISHED_DT_MAX_VERLET, PUBLISHED_DT_MAX_AB2, PUBLISHED };
+constexpr const char *PUBLISHED_NAMES[PUBLISHED] = {
+    "mn_tau_c", "mn_tau_w", "mn_e_w", "mn_eta_n", "mn_kt", "mn_eta_t", "mn_dt_max_verlet",
+    "mn_dt_max_ab2"};
+constexpr const char *PUBLISHED_PREFIX = "mn_";
+
+// publish(name, value) for each published value of the law.
+template <class Publish> void for_each_published(const mn::Law &law, Publish &&publish)
+{
+  double value[PUBLISHED];
+  value[PUBLISHED_TAU_C] = law.tau_c;
+  value[PUBLISHED_TAU_W] = law.tau_w;
+  value[PUBLISHED_E_W] = law.e_w;
+  value[PUBLISHED_ETA_N] = law.eta_n;
+  value[PUBLISHED_KT] = law.kt;
+  value[PUBLISHED_ETA_T] = law.eta_t;
+  value[PUBLISHED_DT_MAX_VERLET] = mn::max_stable_dt(law, mn::Integrator::VelocityVerlet);
+  value[PUBLISHED_DT_MAX_AB2] = mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2);
+  for (int k = 0; k < PUBLISHED; k++) publish(PUBLISHED_NAMES[k], value[k]);
+}
+
+}    // namespace output
+}    // namespace granmn
+
+#endif
