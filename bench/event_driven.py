@@ -19,8 +19,14 @@ costs"):
    time) and the event-driven run from the same start under rule (b) with t_c = tau_c(k_n)
    (the engine's CPU seconds, its setup included), one after the other on the same core.
    Printed: both CPU seconds and their ratio.
+3. The bouncing ball: a unit disk dropped from 1.3 above a flat floor (rule (a), collapse =
+   stop) comes to rest at t_0 + 2 e_w v_0 / (g (1 - e_w)) (t_0, v_0: its first impact); printed
+   per e_w: the engine's collapse time (the collapse is detected when a bounce interval falls
+   below collapse_time / collapse_count), the closed form, their relative difference and the
+   bounces.
 """
 import argparse
+import math
 import re
 import subprocess
 import sys
@@ -102,6 +108,18 @@ def main():
                          f"kn={kn!r}", "sin_theta=0.45", f"run_time={args.soft_span!r}"])
         hard = float(s["setup_cpu_seconds"]) + float(s["cpu_seconds"])
         print(f"{kn:g} {soft:.3f} {hard:.3f} {s['events']} {soft / hard:.1f}", flush=True)
+    print("# 3. bouncing ball from 1.3 above the floor, rule (a)\n"
+          "# e_w collapse_time closed_form relative_difference bounces")
+    height = 1.3
+    t0, v0 = math.sqrt(2 * height), math.sqrt(2 * height)
+    for e_w in (0.5, 0.7777, 0.9, 0.99):
+        out = work / f"ball{e_w:g}"
+        out.mkdir(parents=True, exist_ok=True)
+        (out / START).write_text(f"box -3 3\nfloor 0\ndisk 0 {0.5 + height!r} 0 0 0 1\n")
+        s = engine(out, ["scene=bouncing_ball", "rule=paper", f"e_w={e_w!r}", "run_time=1e4"])
+        rest = t0 + 2 * e_w * v0 / (1 - e_w)
+        print(f"{e_w:g} {float(s['time']):.15g} {rest:.15g} "
+              f"{abs(float(s['time']) - rest) / rest:.2g} {s['boundary_collisions']}", flush=True)
 
 
 if __name__ == "__main__":
