@@ -47,6 +47,19 @@ def engine_of(run):
     return (run.variables or {}).get("engine", ENGINE_DEFAULT)
 
 
+def left_out(runs):
+    """{(scene, engine): [(run's point, why it has no averages)]} of the runs compare_engines
+    cannot use: said, not dropped silently (a frictional run whose steady parts the selection
+    does not keep has none, and its engine's side of a comparison then has fewer runs, or
+    none)."""
+    out = {}
+    for run in runs:
+        if not run.observables:
+            out.setdefault((run.scene, engine_of(run)), []).append(
+                (getattr(run, "point", None), getattr(run, "reason", None)))
+    return out
+
+
 def compare_engines(runs):
     """The comparisons of every (scene, k_n) that runs of two engines share, for COMPARED."""
     groups = {}
