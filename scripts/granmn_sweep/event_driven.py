@@ -12,10 +12,11 @@ variables are the deck's that the engine takes (DECK_VARIABLES: the physics, the
 outputs), the deck's that make the start (its geometry, seed), and the engine's own (VARIABLES,
 mn-event-driven's parameters with its defaults); a deck variable only LAMMPS reads (LAMMPS_ONLY:
 the integrator, the time step, checkpoints, the pile's stop) is refused by the runner, since no
-value of it changes the run. A run that ends before run_time (a detected collapse, or the events
-cap) has completed: its stopped.txt says when, as a LAMMPS run whose pile stopped, so that
-postprocess averages up to there; summary.txt says why (end collapse: its report in
-collapse.txt; end events)."""
+value of it changes the run. A run that a detected collapse ends before run_time has completed:
+its stopped.txt says when, as a LAMMPS run whose pile stopped, so that postprocess averages up to
+there; summary.txt says "end collapse", and collapse.txt holds the report. A run that reaches its
+events cap has completed too, but its outputs end early: postprocess calls them truncated and
+averages nothing (summary.txt: "end events")."""
 import argparse
 import subprocess
 import sys
@@ -134,7 +135,7 @@ def main(argv=None):
     if status not in (0, 3):
         return status
     summary = dict(line.split(None, 1) for line in (out / "summary.txt").read_text().splitlines())
-    if summary["end"].strip() != "time":
+    if summary["end"].strip() == "collapse":
         (out / "stopped.txt").write_text(f"stopped_at {float(summary['time']):.10g}\n")
     (out / "done.txt").write_text(f"kn {variables.get('kn', defaults.get('kn'))} events "
                                   f"{summary['events'].strip()} end {summary['end'].strip()} "
