@@ -1,6 +1,9 @@
 #include "outputs.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <fstream>
 #include <vector>
 
@@ -8,6 +11,18 @@ namespace mn {
 namespace ed {
 
 namespace {
+
+// A value with the fewest digits (up to 17) that read back as the same double: postprocess checks
+// params.txt's values against the point's own (point.json).
+std::string exact(double v)
+{
+  char text[32];
+  for (int digits = 10; digits <= 17; digits++) {
+    std::snprintf(text, sizeof text, "%.*g", digits, v);
+    if (std::strtod(text, nullptr) == v) break;
+  }
+  return text;
+}
 
 const char *rule_name(RuleKind rule) { return rule == RuleKind::Paper ? "paper" : "soft"; }
 
@@ -17,30 +32,29 @@ void write_params(const std::string &path, const Engine &engine, const RunReques
   const OutputSettings &o = run.outputs;
   const Law law = law_at(o.kn, s.disk);
   std::ofstream out(path);
-  out.precision(10);
   out << "scene " << run.scene << "\n"
       << "engine event_driven\n"
       << "rule " << rule_name(s.rule) << "\n"
       << "tangential " << (s.coulomb_cutback ? "cutback" : "literal") << "\n"
-      << "kn " << o.kn << "\n"
-      << "e " << s.disk.e << "\n"
-      << "beta " << s.disk.beta << "\n"
-      << "mu " << s.disk.mu << "\n"
-      << "e_w " << s.boundary.e << "\n"
-      << "beta_w " << s.boundary.beta << "\n"
-      << "sin_theta " << s.sin_theta << "\n"
+      << "kn " << exact(o.kn) << "\n"
+      << "e " << exact(s.disk.e) << "\n"
+      << "beta " << exact(s.disk.beta) << "\n"
+      << "mu " << exact(s.disk.mu) << "\n"
+      << "e_w " << exact(s.boundary.e) << "\n"
+      << "beta_w " << exact(s.boundary.beta) << "\n"
+      << "sin_theta " << exact(s.sin_theta) << "\n"
       << "collapse " << (s.on_collapse == OnCollapse::TC ? "tc" : "stop") << "\n"
-      << "tc_time " << s.tc_time << "\n"
+      << "tc_time " << exact(s.tc_time) << "\n"
       << "collapse_count " << s.collapse_count << "\n"
-      << "collapse_time " << s.collapse_time << "\n"
-      << "dt " << o.interval << "\n"
-      << "output_interval " << o.interval << "\n"
-      << "profile_bin " << o.profile_bin << "\n"
-      << "tau_c " << law.tau_c << "\n"
-      << "tau_w " << law.tau_w << "\n";
+      << "collapse_time " << exact(s.collapse_time) << "\n"
+      << "dt " << exact(o.interval) << "\n"
+      << "output_interval " << exact(o.interval) << "\n"
+      << "profile_bin " << exact(o.profile_bin) << "\n"
+      << "tau_c " << exact(law.tau_c) << "\n"
+      << "tau_w " << exact(law.tau_w) << "\n";
   if (!o.seed.empty()) out << "seed " << o.seed << "\n";
-  out << "run_time " << run.run_time << "\n"
-      << "average_start " << o.average_start << "\n"
+  out << "run_time " << exact(run.run_time) << "\n"
+      << "average_start " << exact(o.average_start) << "\n"
       << "n_mobile " << engine.disks() << "\n"
       << "dimension 2\n";
 }

@@ -25,6 +25,8 @@ collapse = "tc"
 kn = 1.28e7
 run_time = 30
 average_start = 10
+# a value of 14 digits: params.txt must give it back as the same number (postprocess compares)
+mu = 0.50000000000001
 [[grid]]
 seed = [1, 2]
 """
@@ -71,6 +73,7 @@ def test_an_event_driven_point_runs_from_the_decks_start_and_postprocess_reads_i
         # every disk is in a bin of profile.txt at each sample: the mean counts, written to 10
         # digits, sum to 50
         assert abs(read_profile(point)["count"].sum() - 50) < 1e-7
+        # params.txt agrees with point.json (mu of every digit included), the outputs read
         record = read_run(point)
         assert record.ended == "flowing" and record.reason is None, record.reason
         summary = dict(l.split() for l in (point / "summary.txt").read_text().splitlines())
