@@ -44,7 +44,12 @@ def mean_and_error(values):
 
 
 def engine_of(run):
-    return (run.variables or {}).get("engine", ENGINE_DEFAULT)
+    """The engine a run ran in; an event-driven run's with its collision rule (params.txt's
+    rule: paper, (a), or soft, (b)), so that the two rules compare as two engines."""
+    engine = (run.variables or {}).get("engine", ENGINE_DEFAULT)
+    if engine == HARD and getattr(run, "params", None):
+        return f"{HARD} ({run.params.get('rule')})"
+    return engine
 
 
 def left_out(runs):
@@ -72,7 +77,8 @@ def compare_engines(runs):
     for (scene, kn), by_engine in sorted(groups.items()):
         if len(by_engine) != 2:
             continue
-        for quantity in HARD_COMPARED if HARD in by_engine else COMPARED:
+        hard = any(engine.startswith(HARD) for engine in by_engine)
+        for quantity in HARD_COMPARED if hard else COMPARED:
             stats = {engine: mean_and_error([r.observables[quantity] for r in group])
                      for engine, group in sorted(by_engine.items())}
             comparison = Comparison(scene, kn, quantity,

@@ -56,6 +56,12 @@ def test_against_the_hard_engine_the_rates_are_compared_and_runs_without_average
         r.observables.update(N_w=1.0)
     comparisons = compare_engines(hard + soft)
     assert [c.quantity for c in comparisons] == list(HARD_COMPARED)
+    # the two collision rules of the event-driven engine compare as two engines
+    for rule, group in (("paper", hard), ("soft", hard[:1] * 2)):
+        for r in group:
+            r.params = {"rule": rule}
+    assert {tuple(sorted(c.means)) for c in compare_engines(hard)} == \
+        {("event_driven (paper)", "event_driven (soft)")}
     empty = SimpleNamespace(scene="frictional_flow", variables={}, observables=None,
                             point="p", reason="no steady part kept")
     assert left_out(hard + soft + [empty]) == {("frictional_flow", "lammps"):
