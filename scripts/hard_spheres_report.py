@@ -49,7 +49,7 @@ def collapse(data):
             continue
         groups.setdefault((r.scene, float(r.params["e_w"])), []).append(r)
     print("| scene | e_w | runs | collapsed | t to collapse (min, median, max) | partners of the "
-          "collapsing disk | CPU-s |")
+          "collapsing disk | engine CPU-s (setup apart) |")
     print("|---|---|---|---|---|---|---|")
     for (scene, e_w), runs in sorted(groups.items()):
         times = sorted(r.stopped_at for r in runs if r.stopped_at is not None)
