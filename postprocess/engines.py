@@ -60,7 +60,9 @@ def left_out(runs):
     out = {}
     for run in runs:
         if not run.observables:
-            out.setdefault((run.scene, engine_of(run)), []).append(
+            # a summary that could not be read (another selection's) has no variables either
+            engine = engine_of(run) if run.variables is not None else "unknown: not read"
+            out.setdefault((run.scene, engine), []).append(
                 (getattr(run, "point", None), getattr(run, "reason", None)))
     return out
 
