@@ -66,3 +66,7 @@ def test_against_the_hard_engine_the_rates_are_compared_and_runs_without_average
                             point="p", reason="no steady part kept")
     assert left_out(hard + soft + [empty]) == {("frictional_flow", "lammps"):
                                                [("p", "no steady part kept")]}
+    # a summary read with another selection than its own: not read, its engine unknown
+    unread = SimpleNamespace(scene="collisional_flow", variables=None, observables=None,
+                             point="q", reason="its steady parts were found with ...")
+    assert list(left_out([unread])) == [("collisional_flow", "unknown: not read")]
