@@ -19,8 +19,9 @@ events cap has completed too, but its outputs end early: postprocess calls them 
 averages nothing (summary.txt: "end events")."""
 import argparse
 import subprocess
-import sys
 from pathlib import Path
+
+from granmn_sweep.decks import deck_defaults
 
 # mn-event-driven's parameters a point may set (their defaults are the engine's: main.cpp)
 VARIABLES = ("rule", "collapse", "tc_time", "tc_beta", "e_w", "beta_w", "collapse_count",
@@ -100,7 +101,6 @@ def main(argv=None):
     parser.add_argument("--deck", required=True, type=Path)
     parser.add_argument("variables", nargs="*", metavar="NAME=VALUE")
     args = parser.parse_args(argv)
-    from granmn_sweep.decks import deck_defaults    # the runner's reading of the decks
     variables = dict(v.split("=", 1) for v in args.variables)
     out = Path(variables["out"])
     defaults = deck_defaults(args.deck)

@@ -563,7 +563,8 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
 
 
 # scripts/granmn_sweep's modules in the order of docs/index.md: each imports only those before it
-RUNNER_MODULES = ["decks", "config", "cost", "processes", "points", "schedule", "cli"]
+RUNNER_MODULES = ["decks", "event_driven", "config", "cost", "processes", "points", "schedule",
+                  "cli"]
 
 
 @pytest.mark.parametrize("module", RUNNER_MODULES)
