@@ -279,7 +279,7 @@ BAD_CONFIGS = {
     "a grid of the scene alone": ('[[grid]]\nscene = "single_disk"\n',
                                   "a point of scene single_disk with no variable but the scene"),
     "unknown engine": ('[[grid]]\nscene = "single_disk"\nengine = "yade"\nkn = 2e5\n',
-                       "unknown engine 'yade' (expected one of lammps, liggghts)"),
+                       "unknown engine 'yade' (expected one of lammps, liggghts, event_driven)"),
     "a scene the engine has no deck for": (
         '[[grid]]\nscene = "single_disk"\nengine = "liggghts"\nkn = 2e5\n',
         "unknown scene 'single_disk' of engine liggghts (expected one of chute_3d)"),
@@ -563,7 +563,8 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
 
 
 # scripts/granmn_sweep's modules in the order of docs/index.md: each imports only those before it
-RUNNER_MODULES = ["decks", "config", "cost", "processes", "points", "schedule", "cli"]
+RUNNER_MODULES = ["decks", "event_driven", "config", "cost", "processes", "points", "schedule",
+                  "cli"]
 
 
 @pytest.mark.parametrize("module", RUNNER_MODULES)
