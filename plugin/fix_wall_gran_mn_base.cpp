@@ -139,12 +139,6 @@ void FixWallGranMNBase::list_near_wall()
     if (every || holds_state(i) || within_reach(i, radius[i] + skin)) near_wall.push_back(i);
 }
 
-void FixWallGranMNBase::forces_evaluated(const double *on_walls)
-{
-  for (int c = 0; c < size_vector; c++) wall_force[c] = on_walls[c];
-  force_reduced = false;
-}
-
 double FixWallGranMNBase::compute_vector(int n)
 {
   if (!force_reduced) {

@@ -50,7 +50,11 @@ class FixWallGranMNBase : public FixPerAtomState, public granmn::HeldContacts {
   virtual bool surface_moves() const { return false; }
 
   // Ends a force evaluation: the force the atoms exerted on the wall (x, y[, z]).
-  void forces_evaluated(const double *on_walls);
+  void forces_evaluated(const double *on_walls)
+  {
+    for (int c = 0; c < size_vector; c++) wall_force[c] = on_walls[c];
+    force_reduced = false;
+  }
 
   granmn::LawArguments parsed;    // the law keywords given on the fix line
   mn::Law law;
