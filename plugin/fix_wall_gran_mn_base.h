@@ -35,16 +35,17 @@ class FixWallGranMNBase : public FixPerAtomState, public granmn::HeldContacts {
  protected:
   // Refuses an atom style without the attributes the law needs.
   FixWallGranMNBase(class LAMMPS *, int, char **);
-  // The law keywords arg[iarg...] (the fix's geometry comes before them), and `slots` per atom
-  // (the wall elements one atom can touch at once); `keyed`: the slots' keys and the count are
-  // kept in every run (a wall that matches its contacts to slots by key), else only with an
-  // observer.
-  void define_law_and_slots(int narg, char **arg, int iarg, int slots, bool keyed);
+  // The law keywords arg[iarg...] (the fix's geometry comes before them), and `nslots` slots
+  // per atom (the wall elements one atom can touch at once); `keyed_slots`: the slots' keys and
+  // the count are kept in every run (a wall that matches its contacts to slots by key), else
+  // only with an observer.
+  void define_law_and_slots(int narg, char **arg, int iarg, int nslots, bool keyed_slots);
 
   // The geometry's checks at init, before the law's.
   virtual void init_geometry() = 0;
-  // Whether an element of the wall lies within `reach` of atom i's centre (at a neighbour-list
-  // build).
+  // Whether atom i can touch the wall before the next neighbour-list build: an element of the
+  // wall lies within `reach` (its radius and the skin) of its centre, or the geometry says so
+  // for another reason (an atom outside a region).
   virtual bool within_reach(int i, double reach) = 0;
   // A wall that moves: every atom is visited.
   virtual bool surface_moves() const { return false; }
