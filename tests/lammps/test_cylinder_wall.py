@@ -208,9 +208,9 @@ def rows_after(run, step):
 
 
 @pytest.mark.skipif(os.environ.get("GRANMN_LAMMPS_GENERATION", "debian12") != "debian12",
-                    reason="the file is of LAMMPS 29 Sep 2021: LAMMPS 4 Jul 2026 continues it "
-                           "into another trajectory than the uninterrupted run (which is 2021's), "
-                           "with the plugin that wrote it as with this one; 4 Feb 2025 untried")
+                    reason="the file is of LAMMPS 29 Sep 2021: LAMMPS 4 Feb 2025 and 4 Jul 2026 "
+                           "continue it into another trajectory than the uninterrupted run "
+                           "(which is 2021's), with the plugin that wrote it as with this one")
 def test_a_restart_file_of_the_layout_before_continues_the_run(tmp_path):
     """A restart file whose wall rows are of restart layout 1 is read into the slots: the run
     continued from it gives the uninterrupted run's contact rows and final state to the bit.
