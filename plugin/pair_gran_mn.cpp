@@ -452,7 +452,8 @@ void PairGranMN::warn_deep_overlaps()
   // the deepest from the first process that holds it
   double fraction = 0.0;
   MPI_Allreduce(&deepest[0], &fraction, 1, MPI_DOUBLE, MPI_MAX, world);
-  const int mine = deepest[0] == fraction ? comm->me : comm->nprocs;
+  // not const: a serial LAMMPS's STUBS mpi.h declares the send buffers `void *`
+  int mine = deepest[0] == fraction ? comm->me : comm->nprocs;
   int holder = 0;
   MPI_Allreduce(&mine, &holder, 1, MPI_INT, MPI_MIN, world);
   MPI_Bcast(deepest, 6, MPI_DOUBLE, holder, world);
