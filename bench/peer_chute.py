@@ -17,7 +17,8 @@ docs/performance.md):
 - with --baseline-plugin PLUGIN, the gran/mn deck again with another build's plugin (built
   against the same LAMMPS): a change of the plugin against the code before it.
 
-Each variant runs STEPS steps, interleaved, best of --repeat: the loop time times LAMMPS's CPU
+Each variant runs STEPS steps, interleaved (every other round in the reverse order), best of
+--repeat: the loop time times LAMMPS's CPU
 share, the Pair time, LAMMPS's timer breakdown, memory per rank, and the final kinetic energy
 (they simulate the same flow: gran/mn's k_t is (2 k_n - eta_n^2)/7 per unit mass, times
 m: 0.08 % below gran/hooke's 2/7 k_n, so their energies agree closely, not exactly).
@@ -180,9 +181,12 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
         shutil.copy(tree / "bench" / "data.chute", work)
-        for _ in range(args.repeat):
+        for round_number in range(args.repeat):
             rounds.append({})
-            for name, deck in decks.items():
+            # every other round in the reverse order: a variant's place in the round (the one
+            # run after another, with its files cached) weighs on no ratio one way only
+            order = list(decks.items())
+            for name, deck in order[::-1] if round_number % 2 else order:
                 try:
                     result = run(lmp, plugins[name], deck, args.steps, work, args.replicate)
                 except RuntimeError as error:
