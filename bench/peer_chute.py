@@ -37,6 +37,7 @@ read chute (2 2 1: 128000 spheres) before the run.
                         [--baseline-plugin PLUGIN] [--variants NAME ...] [--replicate NX NY NZ]"""
 import argparse
 import math
+import os
 import re
 import shutil
 import subprocess
@@ -153,7 +154,8 @@ def main():
     tree = Path(re.search(r"^LAMMPS_SOURCE_DIR:PATH=(.*)$", cache, re.M).group(1))
     version = re.search(r'LAMMPS_VERSION "(.*)"', (tree / "src" / "version.h").read_text())
     print(f"LAMMPS {version.group(1)} ({tree}); {args.steps} steps" +
-          ("" if args.decks else f", best of {args.repeat}"))
+          ("" if args.decks else f", best of {args.repeat}; load average "
+                                 f"{os.getloadavg()[0]:.2f} at the start"))
     decks = variants((tree / "bench" / "in.chute").read_text(),
                      gran_mn_style(build / "plugin" / "mn-law"))
     if args.variants:
@@ -226,6 +228,7 @@ def main():
             cpu = paired_ratios(rounds, "gran/mn", against, lambda result: result["cpu"])
             print(f"goal: gran/mn's CPU at most {goal:g}x {against}'s: "
                   f"{against_goal(cpu, goal)}")
+    print(f"load average {os.getloadavg()[0]:.2f} at the end")
     return 0
 
 
