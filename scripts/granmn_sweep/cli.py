@@ -78,6 +78,7 @@ under way are stopped, <output>/sweep.lock is let go and removed, the same comma
 import argparse
 import math
 import os
+import re
 import shutil
 import signal
 import sys
@@ -116,6 +117,13 @@ def summarized_points(directories, plan):
             if record.ended in ("flowing", "stopped"):
                 done.add(point_dir)
     return done
+
+
+def serial_build(build):
+    """Whether the build's LAMMPS is serial (its CMake cache's GRANMN_MPI, CMakeLists.txt)."""
+    cache = build / "CMakeCache.txt"
+    return cache.exists() and re.search(r"^GRANMN_MPI:BOOL=(OFF|NO|FALSE|0)$",
+                                        cache.read_text(errors="replace"), re.M | re.I) is not None
 
 
 def main(argv=None):
@@ -189,6 +197,12 @@ def main(argv=None):
         for key in sorted(engines | {"mn_law"} | needs_lammps):
             if not paths[key].exists():
                 raise SweepError(f"{paths[key]} is missing: run ./scripts/build.sh first")
+        if (args.partitions or args.ranks > 1) and serial_build(args.build):
+            raise SweepError(f"--{'partitions' if args.partitions else 'ranks'} runs lmp under "
+                             f"mpirun, and {args.build} is a serial LAMMPS (built with "
+                             "GRANMN_MPI=OFF, LAMMPS's STUBS MPI): each rank would run the whole "
+                             "point on its own; run the points as processes (--jobs), or build "
+                             "with MPI (scripts/build.sh without --serial)")
         steps = [predicted_steps(p, paths["mn_law"]) for p in points]
     except SweepError as error:
         print(f"sweep: {error}", file=sys.stderr)

@@ -18,7 +18,7 @@ from test_sweep import (BUILD, ROOT, SWEEP, kill_processes_mentioning, kill_sess
                         processes_mentioning, signal_all, sweep, wait_for)
 
 import checkpoints
-from granmn_run import PLUGIN, run_lammps
+from granmn_run import PLUGIN, SERIAL, SERIAL_REASON, run_lammps
 
 # A contact-rich stretch: the frictional pile falls and flows (friction, multiple contacts,
 # the floor wall); the single disk bounces over its bumps. Checkpoints every 2 time units, the
@@ -208,6 +208,8 @@ def test_a_checkpoint_that_cannot_be_resumed_is_passed_over(tmp_path, case, mode
     either (cut short; a file of another step than checkpoint.txt names, which the deck
     refuses), starts the point afresh, saying so; the point ends with the uninterrupted run's
     outputs (a fresh start repeats the run to the bit)."""
+    if mode == "partitions" and SERIAL:
+        pytest.skip(SERIAL_REASON)
     damage, resumed = CUT_SHORT[case]
     options = ("--jobs", "1") if mode == "jobs" else ("--partitions", "1")
     config = write_config(tmp_path, "single_disk")
