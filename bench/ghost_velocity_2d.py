@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The ghosts' velocities in 2D on one rank (issue 46, docs/performance.md): the frictional
+"""The ghosts' velocities in 2D on one rank (docs/performance.md): the frictional
 scene (inputs/frictional_flow.lmp, 100 disks) as committed, where pair gran/mn sends the ghosts'
 vx, vy and omega_z itself (no comm_modify vel yes), against the same deck from a copy of inputs/
 whose inputs/lib/begin.lmp adds `comm_modify vel yes` (LAMMPS's own: x, v and omega, three

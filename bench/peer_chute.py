@@ -30,7 +30,7 @@ granular's) judged on those paired ratios: met, not met or undecided by a one-si
 (bench/paired.py; 7 rounds of 7, 8 of 9 or 15 of 21 decide).
 
 --variants NAME ... runs those only (e.g. `--variants gran/mn "gran/mn, comm_modify vel no"`:
-the ghosts' velocities sent or not by the deck, issue 46); --replicate NX NY NZ replicates the
+the ghosts' velocities sent or not by the deck); --replicate NX NY NZ replicates the
 read chute (2 2 1: 128000 spheres) before the run.
 
     bench/peer_chute.py [--steps 400] [--repeat 3] [--build build] [--decks DIR]

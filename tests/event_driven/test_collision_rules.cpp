@@ -369,11 +369,11 @@ TEST(SoftLimit, SoftCollisionsApproachItAtFirstOrderInTauC)
     }
 }
 
-// The issue's numbers for two equal disks at v_t/v_n = 3 (literal u_t): the outgoing normal
+// Two equal disks at v_t/v_n = 3 (literal u_t), as stated before this code existed: the outgoing normal
 // speed, measured along the normal at impact, is 0.661 of the incoming at k_n = 1e5 and 0.696
 // at 1e7, tending to the limit's 0.700 (along the normal at the contact's end it is 0.6993 and
 // 0.69993 there: the turn of the normal makes most of the difference).
-TEST(SoftLimit, IssueNumbersAlongTheNormalAtImpact)
+TEST(SoftLimit, OutgoingNormalSpeedAlongTheNormalAtImpact)
 {
   const double expected[2] = {0.661, 0.696};
   const double kns[2] = {1e5, 1e7};

@@ -74,7 +74,7 @@ def test_a_line_twice_is_refused():
 
 def test_replicate_follows_the_read_data():
     """--replicate 2 2 1: the chute of 32000 spheres becomes 128000 before anything else acts
-    on the atoms (issue 46's measurement)."""
+    on the atoms (the measurement of docs/performance.md's ghost velocities)."""
     deck = commands(peer_chute.deck_text("P.so", SHIPPED, 50, replicate=(2, 2, 1)))
     at = deck.index("read_data data.chute")
     assert deck[at + 1] == "replicate 2 2 1" and deck.count("replicate 2 2 1") == 1
