@@ -58,9 +58,13 @@ def test_the_docs_name_the_columns_and_variables_in_order():
     page = (ROOT / "docs" / "fix_contacts_mn.rst").read_text()
     listed = re.findall(r"^(\d+)\. ``(\w+)``", page, re.MULTILINE)
     names = [name for _, name in listed]
-    assert names == [*COUNTER_COLUMNS, *ROW_COLUMNS]
-    assert [int(n) for n, _ in listed] == [*range(1, len(COUNTER_COLUMNS) + 1),
-                                           *range(1, len(ROW_COLUMNS) + 1)]
+    energy_columns, row_energy = SCHEMA["energy_sums"][:-1], SCHEMA["row_energy"]
+    assert names == [*COUNTER_COLUMNS, *ROW_COLUMNS, *energy_columns, *row_energy]
+    assert [int(n) for n, _ in listed] == [
+        *range(1, len(COUNTER_COLUMNS) + 1), *range(1, len(ROW_COLUMNS) + 1),
+        *range(len(COUNTER_COLUMNS) + 1, len(COUNTER_COLUMNS) + len(energy_columns) + 1),
+        *range(len(ROW_COLUMNS) + 1, len(ROW_COLUMNS) + len(row_energy) + 1)]
+    assert f"``{SCHEMA['energy_sums'][-1]}``" in page
     kinds = re.search(r"``kind``: (.*)", page).group(1)
     assert re.findall(r"``(\w+)`` (\d+)", kinds) == [(k, str(c)) for k, c in CONTACT_KINDS.items()]
     for extra in SCHEMA["vector_extras"]:
