@@ -932,6 +932,16 @@ void PairGranMN::GRANMN_TRANSFER_HISTORY(source, target)
   for (int k = 0; k < layout.size; k++) target[k] = source[k];
   if (layout.ut >= 0 && layout.ut_width == 3)
     for (int k = layout.ut; k < layout.ut + 3; k++) target[k] = -source[k];
+  // The energy history's last force under velocity Verlet: its normal flips with the pair, its
+  // f_n (and in 2D f_t, a component along t, which flips too) does not; in 3D the tangential
+  // force on j is minus that on i. Energies and Adams-Bashforth 2's powers are the pair's.
+  if (layout.energy >= 0 && integrator == mn::Integrator::VelocityVerlet) {
+    const int previous = layout.energy + mn::ENERGY_PREVIOUS_FORCE;
+    const int dimension = domain->dimension;
+    for (int c = 0; c < dimension; c++) target[previous + c] = -source[previous + c];
+    if (dimension == 3)
+      for (int c = 4; c < 7; c++) target[previous + c] = -source[previous + c];
+  }
 }
 
 // For compute pair/local: fforce*(dx,dy) is the normal force; svector = ft, delta, vn, vt, ut

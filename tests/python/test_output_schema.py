@@ -28,14 +28,30 @@ def test_the_energy_titles_name_the_counters_the_lines_print():
     for deck in ENERGY_DECKS:
         lines = [line for line in deck.read_text().splitlines()
                  if "fix energy all print" in line and "f_c[" in line]
-        assert len(lines) == 1, deck
+        counters = [line for line in lines if "dissipated" not in line]
+        assert len(counters) == 1, deck
         values, title = re.fullmatch(r".*print \S+ (['\"])(.*?)\1 .* title (['\"])# (.*?)\3.*",
-                                     lines[0]).group(2, 4)
+                                     counters[0]).group(2, 4)
         names = title.split()
         assert names[:4] == ["step", "e_trans", "e_rot", "e_total"], deck
         assert names[4:] == [*COUNTER_COLUMNS, SCHEMA["vector_extras"][0]], deck
         assert fix_columns(values) == list(range(1, len(names) - 3)), deck
         assert set(ENERGY_COLUMNS) <= set(names), deck
+    # energies = yes (LAMMPS's decks): the same, then the energy sums under the schema's names,
+    # after the global vector's extras (window, group_size: f_c[9] on), then the deck's own
+    lines = [line for line in ENERGY_DECKS[0].read_text().splitlines()
+             if "fix energy all print" in line and "dissipated" in line]
+    assert len(lines) == 1
+    values, title = re.fullmatch(r".*print \S+ (['\"])(.*?)\1 .* title (['\"])# (.*?)\3.*",
+                                 lines[0]).group(2, 4)
+    names = title.split()
+    first = len(COUNTER_COLUMNS) + len(SCHEMA["vector_extras"]) + 1
+    energy_names = SCHEMA["energy_sums"]
+    assert names[:4 + len(COUNTER_COLUMNS) + 1] == [
+        "step", "e_trans", "e_rot", "e_total", *COUNTER_COLUMNS, SCHEMA["vector_extras"][0]]
+    assert names[4 + len(COUNTER_COLUMNS) + 1:] == [*energy_names, "e_gravity", "e_budget"]
+    assert fix_columns(values) == [*range(1, len(COUNTER_COLUMNS) + 2),
+                                   *range(first, first + len(energy_names))]
 
 
 def test_the_dumps_write_every_column_of_the_schema():
