@@ -7,7 +7,7 @@ import pytest
 from collision_decks import two_disks
 from granmn_run import (HEADER, ORDER_RATIO, PLUGIN, convergence_ratio, law, run_scene,
                         restitution_error_bound, run_lammps)
-from postprocess.io import SCHEMA
+from postprocess.io import SCHEMA, read_rows
 
 # the global vector's entries (1-based, as f_c[k]) and a row's columns by the schema's names
 VECTOR = {name: k + 1 for k, name in enumerate(
@@ -341,10 +341,13 @@ def test_the_collisional_scenes_budget(tmp_path):
     (the pair (j, i) then keeps the last force with its normal flipped) or spanned the split of
     the run at average_start. A contact's tail lost or booked twice, or a normal kept unflipped
     at a rebuild, leaves a jump of the order of a collision's energy times dt/tau (1e-3 here).
-    And the trajectory is that of energies = no, to the bit."""
+    And the trajectory is that of energies = no, to the bit. The rows (contacts.txt, read by
+    postprocess.io.read_rows with their energy columns) of the contacts ended by a quiet line
+    hold all that was dissipated by then: each contact's total once, the global sum two halves
+    of each (a half lost or counted twice differs by a collision's loss, 1e-2)."""
     common = dict(kn=2e5, run_time=3, average_start=1, output_interval=0.05,
                   integration="separate")
-    run_scene("collisional_flow", tmp_path / "on", energies="yes", **common)
+    run_scene("collisional_flow", tmp_path / "on", energies="yes", rows="yes", **common)
     run_scene("collisional_flow", tmp_path / "off", **common)
     on, off = energy_table(tmp_path / "on" / "energy.txt"), energy_table(
         tmp_path / "off" / "energy.txt")
@@ -355,3 +358,11 @@ def test_the_collisional_scenes_budget(tmp_path):
     assert np.any(quiet & (dissipated > 1.0))    # lines after many collisions
     assert np.all(on["stored"][quiet] == 0.0)
     assert on["e_budget"][quiet] == pytest.approx(on["e_budget"][0], rel=1e-10)
+    rows = read_rows(tmp_path / "on")
+    dt = float(dict(line.split() for line in (tmp_path / "on" / "params.txt").read_text()
+                    .splitlines())["dt"])
+    last = np.flatnonzero(quiet & (dissipated > 1.0))[-1]
+    ended = rows["start"] + rows["duration"] <= on["step"][last] * dt * (1 + 1e-12)
+    assert np.sum(rows["dissipated"][ended]) == pytest.approx(dissipated[last], rel=1e-8)
+    assert np.sum(rows["dissipated_sliding"][ended]) == pytest.approx(
+        on["dissipated_sliding"][last], rel=1e-8, abs=1e-9)

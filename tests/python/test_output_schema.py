@@ -64,7 +64,12 @@ def test_the_dumps_write_every_column_of_the_schema():
         assert fix_columns(lines[0]) == list(range(1, len(COUNTER_COLUMNS) + 1)), deck
     rows = [line for line in (ROOT / "inputs" / "lib" / "outputs.lmp").read_text().splitlines()
             if "contacts.txt" in line and "dump rows" in line]
-    assert len(rows) == 1
+    assert len(rows) == 2    # with energies = yes, and without
+    with_energy = [line for line in rows if f"f_c[{len(ROW_COLUMNS) + 1}]" in line]
+    assert len(with_energy) == 1
+    assert fix_columns(with_energy[0]) == list(range(1, len(ROW_COLUMNS) +
+                                                    len(SCHEMA["row_energy"]) + 1))
+    rows.remove(with_energy[0])
     assert fix_columns(rows[0]) == list(range(1, len(ROW_COLUMNS) + 1))
 
 
@@ -128,3 +133,14 @@ def test_the_readers_take_columns_by_header_and_let_others_be(tmp_path):
     rows = read_rows(tmp_path)
     assert [rows[name].tolist() for name in ROW_COLUMNS] == \
         [[float(k)] for k in range(1, len(ROW_COLUMNS) + 1)]
+    assert set(rows) == set(ROW_COLUMNS)    # f_c[9] alone is not the energy columns
+
+    # a run with energies = yes: its rows' energy columns too, by name
+    width = len(ROW_COLUMNS) + len(SCHEMA["row_energy"])
+    header = "ITEM: ENTRIES " + " ".join(f"f_c[{k}]" for k in range(1, width + 1))
+    (tmp_path / "contacts.txt").write_text(
+        "ITEM: TIMESTEP\n10\nITEM: NUMBER OF ENTRIES\n1\nITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n"
+        f"0 1\n{header}\n" + " ".join(str(k) for k in range(1, width + 1)) + "\n")
+    rows = read_rows(tmp_path)
+    assert [rows[name].tolist() for name in (*ROW_COLUMNS, *SCHEMA["row_energy"])] == \
+        [[float(k)] for k in range(1, width + 1)]
