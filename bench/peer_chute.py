@@ -17,7 +17,8 @@ from the LAMMPS tree the build uses, in four variants side by side
 - with --baseline-plugin PLUGIN, the gran/mn deck again with another build's plugin (built
   against the same LAMMPS): a change of the plugin against the code before it.
 
-Each variant runs STEPS steps, interleaved, best of --repeat: the loop time times LAMMPS's CPU
+Each variant runs STEPS steps, interleaved (every other round in the reverse order), best of
+--repeat: the loop time times LAMMPS's CPU
 share, the Pair time, LAMMPS's timer breakdown, memory per rank, and the final kinetic energy
 (they simulate the same flow: gran/mn's k_t is (2 k_n - eta_n^2)/7 per unit mass, times
 m: 0.08 % below gran/hooke's 2/7 k_n, so their energies agree closely, not exactly).
@@ -28,10 +29,15 @@ Last, the goals of docs/performance.md for gran/mn (at most 1.0x gran/hooke/hist
 granular's) judged on those paired ratios: met, not met or undecided by a one-sided sign test
 (bench/paired.py; 7 rounds of 7, 8 of 9 or 15 of 21 decide).
 
+--variants NAME ... runs those only (e.g. `--variants gran/mn "gran/mn, comm_modify vel no"`:
+the ghosts' velocities sent or not by the deck, issue 46); --replicate NX NY NZ replicates the
+read chute (2 2 1: 128000 spheres) before the run.
+
     bench/peer_chute.py [--steps 400] [--repeat 3] [--build build] [--decks DIR]
-                        [--baseline-plugin PLUGIN]"""
+                        [--baseline-plugin PLUGIN] [--variants NAME ...] [--replicate NX NY NZ]"""
 import argparse
 import math
+import os
 import re
 import shutil
 import subprocess
@@ -96,15 +102,19 @@ def variants(shipped, mn_style):
             "granular": granular}
 
 
-def deck_text(plugin, deck, steps):
-    """A variant's deck as run: the plugin loaded, `steps` steps, thermo at the last."""
+def deck_text(plugin, deck, steps, replicate=None):
+    """A variant's deck as run: the plugin loaded, the chute replicated (NX, NY, NZ; None: as
+    read), `steps` steps, thermo at the last."""
     text = with_command(with_command(deck, "run 100", f"run {steps}"), "thermo 100",
                         f"thermo {steps}")
+    if replicate:
+        text = with_command(text, "read_data data.chute", "read_data data.chute\nreplicate " +
+                            " ".join(str(n) for n in replicate))
     return f"plugin load {plugin}\n" + text
 
 
-def run(lmp, plugin, deck, steps, work):
-    (work / "in.bench").write_text(deck_text(plugin, deck, steps))
+def run(lmp, plugin, deck, steps, work, replicate=None):
+    (work / "in.bench").write_text(deck_text(plugin, deck, steps, replicate))
     proc = subprocess.run([str(lmp), "-in", "in.bench", "-log", "log.bench", "-nocite"],
                           cwd=work, capture_output=True, text=True, errors="replace")
     if proc.returncode != 0:
@@ -132,6 +142,11 @@ def main():
     parser.add_argument("--decks", type=Path, metavar="DIR",
                         help="write the decks (in.<variant>, STEPS steps) and data.chute "
                              "into DIR and run nothing: for callgrind (docs/performance.md)")
+    parser.add_argument("--variants", nargs="+", metavar="NAME",
+                        help="run these variants only (default: all; the first is the "
+                             "reference of the ratios where gran/hooke/history is not run)")
+    parser.add_argument("--replicate", type=int, nargs=3, metavar=("NX", "NY", "NZ"),
+                        help="replicate the chute before the run (2 2 1: 128000 spheres)")
     args = parser.parse_args()
     build = args.build.resolve()
     lmp, plugin = build / "lammps" / "lmp", build / "plugin" / "granmnplugin.so"
@@ -139,9 +154,16 @@ def main():
     tree = Path(re.search(r"^LAMMPS_SOURCE_DIR:PATH=(.*)$", cache, re.M).group(1))
     version = re.search(r'LAMMPS_VERSION "(.*)"', (tree / "src" / "version.h").read_text())
     print(f"LAMMPS {version.group(1)} ({tree}); {args.steps} steps" +
-          ("" if args.decks else f", best of {args.repeat}"))
+          ("" if args.decks else f", best of {args.repeat}; load average "
+                                 f"{os.getloadavg()[0]:.2f} at the start"))
     decks = variants((tree / "bench" / "in.chute").read_text(),
                      gran_mn_style(build / "plugin" / "mn-law"))
+    if args.variants:
+        unknown = [name for name in args.variants if name not in decks]
+        if unknown:
+            sys.exit(f"peer_chute.py: --variants {', '.join(map(repr, unknown))}: not a variant "
+                     f"({', '.join(map(repr, decks))})")
+        decks = {name: decks[name] for name in args.variants}
     plugins = {name: plugin for name in decks}
     if args.baseline_plugin:
         if not args.baseline_plugin.is_file():
@@ -153,7 +175,7 @@ def main():
         shutil.copy(tree / "bench" / "data.chute", args.decks)
         for name, deck in decks.items():
             (args.decks / f"in.{re.sub(r'[/, ]+', '_', name)}").write_text(
-                deck_text(plugins[name], deck, args.steps))
+                deck_text(plugins[name], deck, args.steps, args.replicate))
         print(f"decks: {', '.join(sorted(p.name for p in args.decks.glob('in.*')))} in "
               f"{args.decks}")
         return 0
@@ -161,11 +183,14 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
         shutil.copy(tree / "bench" / "data.chute", work)
-        for _ in range(args.repeat):
+        for round_number in range(args.repeat):
             rounds.append({})
-            for name, deck in decks.items():
+            # every other round in the reverse order: a variant's place in the round (the one
+            # run after another, with its files cached) weighs on no ratio one way only
+            order = list(decks.items())
+            for name, deck in order[::-1] if round_number % 2 else order:
                 try:
-                    result = run(lmp, plugins[name], deck, args.steps, work)
+                    result = run(lmp, plugins[name], deck, args.steps, work, args.replicate)
                 except RuntimeError as error:
                     if name == "granular":    # an older LAMMPS's pair granular takes other words
                         print(f"{name}: {str(error).splitlines()[-1]}", file=sys.stderr)
@@ -175,33 +200,35 @@ def main():
                 rounds[-1][name] = result
                 if name not in best or result["cpu"] < best[name]["cpu"]:
                     best[name] = result
-    reference = best["gran/hooke/history"]
-    print(f"{'variant':<28} {'CPU s':>8} {'/hooke':>7} {'Pair s':>8} {'/hooke':>7} "
+    first = "gran/hooke/history" if "gran/hooke/history" in best else next(iter(best))
+    reference = best[first]
+    short = "/hooke" if first == "gran/hooke/history" else "/first"
+    print(f"{'variant':<28} {'CPU s':>8} {short:>7} {'Pair s':>8} {short:>7} "
           f"{'MB/rank':>8} {'KE':>14}  " + " ".join(f"{s:>6}" for s in SECTIONS) + "  (% loop)")
     for name, r in best.items():
         print(f"{name:<28} {r['cpu']:8.3f} {r['cpu'] / reference['cpu']:7.3f} {r['pair']:8.3f} "
               f"{r['pair'] / reference['pair']:7.3f} {r['memory']:8.2f} {r['ke']:14.8g}  " +
               " ".join(f"{r['sections'][s]:6.1f}" for s in SECTIONS))
-    if "granular" in best:
+    if "granular" in best and "gran/mn" in best:
         print(f"gran/mn / granular: CPU {best['gran/mn']['cpu'] / best['granular']['cpu']:.3f}")
-    print(f"paired with gran/hooke/history in each of the {len(rounds)} rounds: median (min-max)")
-    pairs = [(name, "gran/hooke/history") for name in best if name != "gran/hooke/history"]
-    pairs.append(("gran/mn, comm_modify vel no", "gran/mn"))
-    if BASELINE in best:
-        pairs.append(("gran/mn", BASELINE))
-    if "granular" in best:
-        pairs.append(("gran/mn", "granular"))
+    print(f"paired with {first} in each of the {len(rounds)} rounds: median (min-max)")
+    pairs = [(name, first) for name in best if name != first]
+    for name, against in (("gran/mn, comm_modify vel no", "gran/mn"), ("gran/mn", BASELINE),
+                          ("gran/mn", "granular")):
+        if name in best and against in best and (name, against) not in pairs:
+            pairs.append((name, against))
     for name, against in pairs:
-        label = name if against == "gran/hooke/history" else f"{name} / {against}"
+        label = name if against == first else f"{name} / {against}"
         print(f"{label:<38}" + "".join(
             f" {key} " + median_and_range(paired_ratios(rounds, name, against,
                                                         lambda result: result[field]))
             for key, field in (("CPU", "cpu"), ("Pair", "pair"))))
     for against, goal in GOALS.items():
-        if against in best:
+        if against in best and "gran/mn" in best:
             cpu = paired_ratios(rounds, "gran/mn", against, lambda result: result["cpu"])
             print(f"goal: gran/mn's CPU at most {goal:g}x {against}'s: "
                   f"{against_goal(cpu, goal)}")
+    print(f"load average {os.getloadavg()[0]:.2f} at the end")
     return 0
 
 

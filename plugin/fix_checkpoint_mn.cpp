@@ -62,11 +62,11 @@ void FixCheckpointMN::restart(char *buf)
   const std::string file = resume.empty() ? std::string("the restart file") : resume;
   double head[2];
   memcpy(head, buf, sizeof(head));
-  if (head[0] != GRANMN_RESTART_LAYOUT)
+  if (head[0] < GRANMN_RESTART_LAYOUT_OLDEST_READ || head[0] > GRANMN_RESTART_LAYOUT)
     error->all(FLERR,
                "Fix checkpoint/mn: {} was written with restart layout {} of the gran/mn styles, "
-               "this plugin reads layout {}: start the point afresh",
-               file, head[0], GRANMN_RESTART_LAYOUT);
+               "this plugin reads layouts {} to {}: start the point afresh",
+               file, head[0], GRANMN_RESTART_LAYOUT_OLDEST_READ, GRANMN_RESTART_LAYOUT);
   std::string stored(static_cast<size_t>(head[1]), ' ');
   std::vector<double> chars(stored.size());
   memcpy(chars.data(), buf + sizeof(head), chars.size() * sizeof(double));

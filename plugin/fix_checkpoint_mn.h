@@ -14,8 +14,11 @@ namespace LAMMPS_NS {
 
 // What the gran/mn styles write to restart files, as one number: raise it whenever any of
 // them changes what it writes or how it reads it back (per-atom columns of the fixes, the pair
-// history, fix contacts/mn's clock), so that a checkpoint of the old layout is refused.
-constexpr int GRANMN_RESTART_LAYOUT = 1;
+// history, fix contacts/mn's clock), so that a plugin that cannot read a checkpoint refuses it.
+// A plugin reads the layouts from GRANMN_RESTART_LAYOUT_OLDEST_READ on: 2 holds fix
+// wall/gran/mn's rows in slots, which that fix also reads from a file of layout 1.
+constexpr int GRANMN_RESTART_LAYOUT = 2;
+constexpr int GRANMN_RESTART_LAYOUT_OLDEST_READ = 1;
 
 class FixCheckpointMN : public Fix {
  public:

@@ -613,7 +613,8 @@ void FixContactsMN::write_restart(FILE *fp)
 {
   // rows handed to a dump are in its file already
   const int skip = rows_handed * row_columns;
-  const int mine = (int) rows.size() - skip;
+  // not const: a serial LAMMPS's STUBS mpi.h declares the send buffers `void *`
+  int mine = (int) rows.size() - skip;
   std::vector<int> counts(comm->nprocs), offsets(comm->nprocs, 0);
   MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
   int total = 0;

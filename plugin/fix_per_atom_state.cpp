@@ -96,12 +96,19 @@ int FixPerAtomState::pack_restart(int i, double *buf)
 // they are more), never past the record.
 void FixPerAtomState::unpack_restart(int nlocal, int nth)
 {
+  int stored = 0;
+  const double *written = restart_row(nlocal, nth, stored);
+  widen_state(stored);
+  for (int k = 0; k < ncols; k++) state[nlocal][k] = k < stored ? written[k] : 0.0;
+}
+
+const double *FixPerAtomState::restart_row(int nlocal, int nth, int &stored) const
+{
   double **extra = atom->extra;
   int m = 0;
   for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
-  const int stored = static_cast<int>(extra[nlocal][m]) - 1;
-  widen_state(stored);
-  for (int k = 0; k < ncols; k++) state[nlocal][k] = k < stored ? extra[nlocal][m + 1 + k] : 0.0;
+  stored = static_cast<int>(extra[nlocal][m]) - 1;
+  return &extra[nlocal][m + 1];
 }
 
 int FixPerAtomState::size_restart(int)

@@ -39,6 +39,9 @@ class FixPerAtomState : public Fix {
   // More columns (zero for every atom) for a need found later, e.g. at init; keeps the others.
   // Needs register_state first.
   void widen_state(int columns);
+  // Atom nlocal's record of this fix in the restart file read (the nth fix's with per-atom
+  // records): `stored` values.
+  const double *restart_row(int nlocal, int nth, int &stored) const;
 
  private:
   bool has_callbacks = false;

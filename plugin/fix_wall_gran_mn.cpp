@@ -9,31 +9,20 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
-#include "force.h"
-#include "granmn_compat.h"
-#include "granmn_run_checks.h"
-#include "modify.h"
-#include "neighbor.h"
 #include "update.h"
 
 #include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
-using namespace FixConst;
 
 // fix ID group wall/gran/mn xplane|yplane|zplane|zcylinder lo hi [kn K] [e E] [beta B]
 //                                         [mu MU] [limit_damping] [coulomb_cutback]
 // (zplane in dimension 3 only; zcylinder: radii of an inner and an outer cylinder about z)
 FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
-    FixPerAtomState(lmp, narg, arg), own_law(false), use_history(false),
-    integrator(mn::Integrator::VelocityVerlet), observer(nullptr),
-    force_per_mass_acceleration(1.0), force_reduced(false), radii_change(false)
+    FixWallGranMNBase(lmp, narg, arg), restart_rows_in_slots(false)
 {
   const bool three_d = domain->dimension == 3;
-  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
-    error->all(FLERR, "Fix wall/gran/mn requires atom attributes radius, rmass, omega, torque "
-                      "(atom_style sphere)");
   if (narg < 6)
     error->all(FLERR, "Illegal fix wall/gran/mn command: expected {} lo hi",
                three_d ? "xplane|yplane|zplane|zcylinder" : "xplane|yplane|zcylinder");
@@ -65,38 +54,12 @@ FixWallGranMN::FixWallGranMN(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Illegal fix wall/gran/mn command: zcylinder radii must be positive "
                       "(inner {}, outer {})", arg[4], arg[5]);
 
-  int iarg = 6;
-  while (iarg < narg) {
-    const int used = granmn::parse_law_keyword(lmp, "fix wall/gran/mn", narg, arg, iarg, parsed);
-    if (!used) error->all(FLERR, "Illegal fix wall/gran/mn command: unknown keyword {}", arg[iarg]);
-    iarg += used;
-  }
-  resolve_law();
-  use_history = law.material.mu > 0.0;
-
-  vector_flag = 1;
-  size_vector = three_d ? 3 : 2;    // force exerted by the particles on the walls (x, y[, z])
-  global_freq = 1;
-  extvector = 1;
-  // the columns come at init, where what is kept is known
-  register_state(0);
-  wall_force[0] = wall_force[1] = wall_force[2] = 0.0;
+  // a slot per side, side s in slot s; its key says whether the side touches (with an observer)
+  define_law_and_slots(narg, arg, 6, 2, false);
+  restart_global = 1;    // that the rows are in slots: see write_restart
 }
 
-int FixWallGranMN::setmask()
-{
-  return POST_FORCE | PRE_NEIGHBOR;
-}
-
-// Material from the fix line where given, else from pair_style gran/mn.
-void FixWallGranMN::resolve_law()
-{
-  const granmn::WallLaw wall = granmn::wall_law(lmp, "wall/gran/mn", parsed);
-  law = wall.law;
-  own_law = wall.own;
-}
-
-void FixWallGranMN::init()
+void FixWallGranMN::init_geometry()
 {
   // as LAMMPS's fix wall/gran: an atom that crosses the periodic boundary comes back on the
   // wall's other side, inside it (checked here, for change_box between runs too)
@@ -113,95 +76,27 @@ void FixWallGranMN::init()
         error->all(FLERR, "Fix wall/gran/mn: the zcylinder's axis (x = y = 0) lies outside the "
                           "box ({} from {} to {}): its walls are about the z axis",
                    "xy"[dim], domain->boxlo[dim], domain->boxhi[dim]);
-  resolve_law();
-  granmn::check_disc_integration(lmp, "fix wall/gran/mn");
-  // the law gives mass x acceleration; LAMMPS turns force back into acceleration with ftm2v
-  force_per_mass_acceleration = 1.0 / force->ftm2v;
-  observer = granmn::find_observer(granmn::all_fixes(modify));
-  integrator = granmn::integrator_in_use(modify);
-  radii_change = !granmn::fixes_by_style(modify, "^adapt").empty();
-  // The state keeps u_t (mu > 0), the contact observer's record and a touching flag of each
-  // side (each wall fix its own, with fix contacts/mn), and the previous v_t of Adams-Bashforth
-  // 2's rule for u_t, which is kept from then on (current under either integrator).
-  granmn::ContactLayout all[2];
-  granmn::wall_state_layout(all, granmn::ut_width(lmp));
-  const granmn::ContactLayout &last = all[1];
-  if (use_history) widen_state(last.ut + last.ut_width);
-  if (observer) widen_state(last.touching + 1);
-  if (use_history && integrator == mn::Integrator::AdamsBashforth2)
-    widen_state(last.vt_previous + last.ut_width);
+}
+
+void FixWallGranMN::init()
+{
+  FixWallGranMNBase::init();
   for (int side : {0, 1}) {
     granmn::ContactLayout &kept = side_layout[side];
-    kept = all[side];
-    if (!use_history) kept.ut = -1;
-    if (!observer) kept.record = kept.touching = -1;
-    if (!use_history || ncols < last.vt_previous + last.ut_width) kept.vt_previous = -1;
-    kept.size = ncols;
+    kept.ut_width = slots.ut_width;
+    kept.ut = ut_block >= 0 ? ut_block + side * slots.ut_width : -1;
+    kept.record = record_block >= 0 ? record_block + side * granmn::RECORD_SIZE : -1;
+    kept.touching = observer ? slots.key(side) : -1;
+    kept.vt_previous = vt_block >= 0 ? vt_block + side * slots.ut_width : -1;
   }
-  if (law.material.mu > 0.0 && !use_history)
-    error->all(FLERR, "Fix wall/gran/mn was defined with mu = 0 and keeps no tangential "
-                      "history; define it again after giving mu > 0");
-  // The pair style already checked the time step against the same law.
-  if (own_law)
-    granmn::check_timestep(lmp, "fix wall/gran/mn", update->dt, law,
-                           granmn::integrator_in_use(modify));
 }
 
-int FixWallGranMN::contacts_held(int i) const
-{
-  if (!observer || !(atom->mask[i] & groupbit)) return 0;
-  int sides = 0;
-  for (const granmn::ContactLayout &side : side_layout)
-    if (state[i][side.touching] != 0.0) sides++;
-  return sides;
-}
-
-// Listed here as well as at each build: a run with `pre no` has no build before its first step.
-void FixWallGranMN::setup(int vflag)
-{
-  list_near_wall();
-  post_force(vflag);
-}
-
-void FixWallGranMN::pre_neighbor()
-{
-  list_near_wall();
-}
-
-// whether atom i's row holds any side's touching flag, u_t or previous v_t
-bool FixWallGranMN::holds_state(int i) const
-{
-  for (const granmn::ContactLayout &side : side_layout) {
-    if (side.touching >= 0 && state[i][side.touching] != 0.0) return true;
-    for (int k = 0; k < side.ut_width; k++)
-      if ((side.ut >= 0 && state[i][side.ut + k] != 0.0) ||
-          (side.vt_previous >= 0 && state[i][side.vt_previous + k] != 0.0))
-        return true;
-  }
-  return false;
-}
-
-void FixWallGranMN::list_near_wall()
+bool FixWallGranMN::within_reach(int i, double reach)
 {
   double **x = atom->x;
-  const double *radius = atom->radius;
-  const int nlocal = atom->nlocal;
-  const double skin = neighbor->skin;
-  near_wall.clear();
-  // every atom, in the group or not: a dynamic group can change between builds
-  for (int i = 0; i < nlocal; i++) {
-    if (radii_change) {
-      near_wall.push_back(i);
-      continue;
-    }
-    const double at = axis == ZCYLINDER ? std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1])
-                                        : x[i][axis];
-    const bool near =
-        (has_lo && at - lo < radius[i] + skin) || (has_hi && hi - at < radius[i] + skin);
-    // an atom beyond the skin that still holds a contact's state (it moved that far in one
-    // step, or came so from another processor) stays listed until the contact has ended
-    if (near || holds_state(i)) near_wall.push_back(i);
-  }
+  const double at = axis == ZCYLINDER ? std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1])
+                                      : x[i][axis];
+  return (has_lo && at - lo < reach) || (has_hi && hi - at < reach);
 }
 
 void FixWallGranMN::post_force(int)
@@ -294,8 +189,7 @@ template <int DIM, bool CYLINDER, bool OBSERVED> void FixWallGranMN::post_force_
     if (lo_side) against_side(i, 0, rho);
     if (hi_side) against_side(i, 1, rho);
   }
-  for (int c = 0; c < DIM; c++) wall_force[c] = on_walls[c];
-  force_reduced = false;
+  forces_evaluated(on_walls);
 }
 
 // Side `side` of the wall has just stopped touching atom i: the observer's event, the flag
@@ -305,6 +199,7 @@ template <bool CYLINDER> void FixWallGranMN::side_ended(int i, int side, double 
   const granmn::ContactLayout &layout = side_layout[side];
   double *row = state[i];
   row[layout.touching] = 0.0;
+  row[granmn::WallSlots::HELD] -= 1.0;
   double n[3];
   observer->boundary_ended(i, row + layout.record,
                            inward_normal<CYLINDER>(atom->x, atom->v, i, axis,
@@ -332,6 +227,7 @@ void FixWallGranMN::touching_side(int i, int side, double dist, double rho, doub
     const bool began = touching == 0.0;
     events->update_record(row + layout.record, began, radius[i] - dist, vn);
     touching = 1.0;
+    if (began) row[granmn::WallSlots::HELD] += 1.0;
     if (began || events->reports_every_contact()) events->boundary_touching(i, began);
   }
   if (dist <= 0.0) {
@@ -356,12 +252,55 @@ void FixWallGranMN::touching_side(int i, int side, double dist, double rho, doub
                             atom->torque[i], on_walls);
 }
 
-double FixWallGranMN::compute_vector(int n)
+// The rows are in slots (granmn::WallSlots): a global record (the number of slots) says so. A
+// restart file without it holds each row as the fix kept it before the walls shared their
+// slots (u_t of both sides, each side's record and touching flag, the previous v_t of both),
+// which unpack_restart moves into the slots.
+void FixWallGranMN::write_restart(FILE *fp)
 {
-  if (!force_reduced) {
-    MPI_Allreduce(wall_force, wall_force_all, size_vector, MPI_DOUBLE, MPI_SUM, world);
-    force_reduced = true;
-  }
-  return wall_force_all[n];
+  if (comm->me) return;
+  const double nslots = slots.count;
+  const int size = sizeof(double);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(&nslots, sizeof(double), 1, fp);
 }
 
+void FixWallGranMN::restart(char *)
+{
+  restart_rows_in_slots = true;
+}
+
+void FixWallGranMN::unpack_restart(int nlocal, int nth)
+{
+  if (restart_rows_in_slots) {
+    FixPerAtomState::unpack_restart(nlocal, nth);
+    return;
+  }
+  int stored = 0;
+  const double *written = restart_row(nlocal, nth, stored);
+  // each part of the row as written where the row reaches it: u_t of both sides, each side's
+  // record and touching flag, the previous v_t of both
+  const int width = slots.ut_width, record_size = granmn::RECORD_SIZE;
+  const int records_at = 2 * width, vt_at = records_at + 2 * (record_size + 1);
+  const bool has_ut = stored >= records_at, has_records = stored >= vt_at,
+             has_vt = stored >= vt_at + 2 * width;
+  widen_state(has_vt        ? slots.end()
+              : has_records ? slots.vt_block()
+              : has_ut      ? slots.record_block()
+                            : 0);
+  double *row = state[nlocal];
+  for (int k = 0; k < ncols; k++) row[k] = 0.0;
+  for (int side : {0, 1}) {
+    for (int c = 0; c < width; c++) {
+      if (has_ut) row[slots.ut_block() + side * width + c] = written[side * width + c];
+      if (has_vt) row[slots.vt_block() + side * width + c] = written[vt_at + side * width + c];
+    }
+    if (has_records) {
+      const double *record = written + records_at + side * (record_size + 1);
+      for (int k = 0; k < record_size; k++)
+        row[slots.record_block() + side * record_size + k] = record[k];
+      row[slots.key(side)] = record[record_size];
+      row[granmn::WallSlots::HELD] += record[record_size];
+    }
+  }
+}

@@ -11,11 +11,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
-#include "force.h"
 #include "granmn_compat.h"
-#include "granmn_run_checks.h"
-#include "modify.h"
-#include "neighbor.h"
 #include "region.h"
 #include "update.h"
 
@@ -26,51 +22,18 @@
 #include <vector>
 
 using namespace LAMMPS_NS;
-using namespace FixConst;
 
 // fix ID group wall/gran/region/mn region-ID [kn K] [e E] [beta B] [mu MU] [limit_damping]
 //                                            [coulomb_cutback]
 FixWallGranRegionMN::FixWallGranRegionMN(LAMMPS *lmp, int narg, char **arg) :
-    FixPerAtomState(lmp, narg, arg), max_contacts(0), own_law(false), use_history(false),
-    integrator(mn::Integrator::VelocityVerlet), ut_width(1), ut_block(-1), record_block(-1),
-    vt_block(-1), observer(nullptr), faces_renumbered(false), force_per_mass_acceleration(1.0),
-    force_reduced(false), radii_change(false)
+    FixWallGranMNBase(lmp, narg, arg), faces_renumbered(false)
 {
-  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
-    error->all(FLERR, "Fix wall/gran/region/mn requires atom attributes radius, rmass, omega, "
-                      "torque (atom_style sphere)");
   if (narg < 4) error->all(FLERR, "Illegal fix wall/gran/region/mn command: expected a region ID");
   region_id = arg[3];
   find_region();
-  max_contacts = surface.region()->tmax;
   evaluated_layout = surface.layout();
-  int iarg = 4;
-  while (iarg < narg) {
-    const int used =
-        granmn::parse_law_keyword(lmp, "fix wall/gran/region/mn", narg, arg, iarg, parsed);
-    if (!used)
-      error->all(FLERR, "Illegal fix wall/gran/region/mn command: unknown keyword {}", arg[iarg]);
-    iarg += used;
-  }
-  resolve_law();
-  use_history = law.material.mu > 0.0;
-  ut_width = granmn::ut_width(lmp);
-
+  define_law_and_slots(narg, arg, 4, surface.region()->tmax, true);
   restart_global = 1;    // the region's motion: see write_restart
-  vector_flag = 1;
-  size_vector = domain->dimension == 3 ? 3 : 2;    // the force of the atoms on the region
-  global_freq = 1;
-  extvector = 1;
-  // [0] the count, the faces, u_t of each slot; the record's and the previous v_t's blocks
-  // come at init
-  register_state(1 + max_contacts + (use_history ? max_contacts * ut_width : 0));
-  if (use_history) ut_block = 1 + max_contacts;
-  wall_force[0] = wall_force[1] = wall_force[2] = 0.0;
-}
-
-int FixWallGranRegionMN::setmask()
-{
-  return POST_FORCE | PRE_NEIGHBOR;
 }
 
 void FixWallGranRegionMN::find_region()
@@ -88,46 +51,18 @@ void FixWallGranRegionMN::find_region()
   if (motions.size() != surface.parts().size()) motions.assign(surface.parts().size(), Motion());
 }
 
-// Material from the fix line where given, else from pair_style gran/mn (as fix wall/gran/mn).
-void FixWallGranRegionMN::resolve_law()
+// A deck may delete the region and define it again between runs (LAMMPS's
+// examples/granregion turns its box so): the contacts carry on by face number where the faces
+// are numbered as before, and end at the run's start where not.
+void FixWallGranRegionMN::init_geometry()
 {
-  const granmn::WallLaw wall = granmn::wall_law(lmp, "wall/gran/region/mn", parsed);
-  law = wall.law;
-  own_law = wall.own;
-}
-
-void FixWallGranRegionMN::init()
-{
-  // A deck may delete the region and define it again between runs (LAMMPS's
-  // examples/granregion turns its box so): the contacts carry on by face number where the
-  // faces are numbered as before, and end at the run's start where not.
   find_region();
   const Region *region = surface.region();
-  if (region->tmax > max_contacts)
+  if (region->tmax > slots.count)
     error->all(FLERR, "Fix wall/gran/region/mn: region {} was defined again with {} faces an "
                       "atom can touch at once, more than the {} the fix keeps: define the fix "
-                      "again", region_id, region->tmax, max_contacts);
+                      "again", region_id, region->tmax, slots.count);
   faces_renumbered = surface.layout() != evaluated_layout;
-  resolve_law();
-  if (law.material.mu > 0.0 && !use_history)
-    error->all(FLERR, "Fix wall/gran/region/mn was defined with mu = 0 and keeps no tangential "
-                      "history; define it again after giving mu > 0");
-  granmn::check_disc_integration(lmp, "fix wall/gran/region/mn");
-  force_per_mass_acceleration = 1.0 / force->ftm2v;
-  integrator = granmn::integrator_in_use(modify);
-  radii_change = !granmn::fixes_by_style(modify, "^adapt").empty();
-  observer = granmn::find_observer(granmn::all_fixes(modify));
-  // The observer's record of each slot (with fix contacts/mn), and Adams-Bashforth 2's
-  // previous v_t of each slot: kept from then on (current under either integrator), as by
-  // fix wall/gran/mn, also when a restart brings them
-  const int record_start = 1 + max_contacts + max_contacts * ut_width;
-  const int vt_start = record_start + max_contacts * granmn::RECORD_SIZE;
-  if (observer) widen_state(vt_start);
-  if (use_history && integrator == mn::Integrator::AdamsBashforth2)
-    widen_state(vt_start + max_contacts * ut_width);
-  record_block = observer ? record_start : -1;
-  vt_block = use_history && ncols >= vt_start + max_contacts * ut_width ? vt_start : -1;
-  if (own_law) granmn::check_timestep(lmp, "fix wall/gran/region/mn", update->dt, law, integrator);
 }
 
 // The normal velocity (away from the face) of local atom i against a face it has just left,
@@ -158,52 +93,35 @@ double FixWallGranRegionMN::ended_normal_velocity(int i, int face)
   return 0.0;
 }
 
-int FixWallGranRegionMN::contacts_held(int i) const
-{
-  if (!observer || !(atom->mask[i] & groupbit)) return 0;
-  return static_cast<int>(state[i][0]);
-}
-
-// Listed here as well as at each build: a run with `pre no` has no build before its first step.
 void FixWallGranRegionMN::setup(int vflag)
 {
-  list_near_surface();
-  post_force(vflag);
+  FixWallGranMNBase::setup(vflag);
   faces_renumbered = false;
   evaluated_layout = surface.layout();
 }
 
-void FixWallGranRegionMN::pre_neighbor()
+bool FixWallGranRegionMN::surface_moves() const
 {
-  list_near_surface();
+  return surface.region()->dynamic_check();
 }
 
-void FixWallGranRegionMN::list_near_surface()
+// Atom i outside the region (a region that is not open lets it in between builds, next to a
+// face), or a face within reach. In 2D not a face's pure z contact (a slab's faces at z = +-0.5,
+// right above and below every disk: no wall, the disks lie in the plane); a contact with a
+// part in the plane counts (an open region reports only the nearest point to an atom outside
+// it, which can be on a z face's rim: its part in the plane is no more than the distance to the
+// faces in the plane), and so does one at distance 0.
+bool FixWallGranRegionMN::within_reach(int i, double reach)
 {
-  near_surface.clear();
-  if (surface.region()->dynamic_check() || radii_change) return;
   double **x = atom->x;
-  const double *radius = atom->radius;
-  const double skin = neighbor->skin;
+  if (!surface.match(x[i])) return true;
   const bool planar = domain->dimension == 2;
-  // atom i outside the region (a region that is not open lets it in between builds, next
-  // to a face), or a face within its skin. In 2D not a face's pure z contact (a slab's faces
-  // at z = +-0.5, right above and below every disk: no wall, the disks lie in the plane); a
-  // contact with a part in the plane counts (an open region reports only the nearest point
-  // to an atom outside it, which can be on a z face's rim: its part in the plane is no more
-  // than the distance to the faces in the plane), and so does one at distance 0.
-  const auto near_a_face = [&](int i) {
-    if (!surface.match(x[i])) return true;
-    const int nc = surface.surface(x[i], radius[i] + skin);
-    for (int ic = 0; ic < nc; ic++) {
-      const granmn::SurfaceContact face = surface.contact(ic);
-      if (!planar || face.delz == 0.0 || face.delx != 0.0 || face.dely != 0.0) return true;
-    }
-    return false;
-  };
-  // every atom, in the group or not: a dynamic group can change between builds
-  for (int i = 0; i < atom->nlocal; i++)
-    if (state[i][0] > 0.0 || near_a_face(i)) near_surface.push_back(i);
+  const int nc = surface.surface(x[i], reach);
+  for (int ic = 0; ic < nc; ic++) {
+    const granmn::SurfaceContact face = surface.contact(ic);
+    if (!planar || face.delz == 0.0 || face.delx != 0.0 || face.dely != 0.0) return true;
+  }
+  return false;
 }
 
 void FixWallGranRegionMN::post_force(int)
@@ -230,12 +148,11 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
   const double *radius = atom->radius;
   const double *rmass = atom->rmass;
   const int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
   const mn::Law contact = law;
   const double to_force = force_per_mass_acceleration;
   const mn::Integrator scheme = integrator;
-  const int width = ut_width;
-  const int nslots = max_contacts;
+  const int width = slots.ut_width;
+  const int nslots = slots.count;
   granmn::ContactObserver *const events = observer;
   Region *region = surface.region();
   const bool moving = region->dynamic_check();
@@ -248,15 +165,10 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
     region->prematch();
     track_motion();
   }
-  // a region at rest: only the atoms near its surface (near_surface); a moving one, or radii
-  // that change: every atom
-  const bool every = moving || radii_change;
-  const int visited = every ? nlocal : static_cast<int>(near_surface.size());
-  for (int n = 0; n < visited; n++) {
-    const int i = every ? n : near_surface[n];
+  for (const int i : near_wall) {
     if (!(mask[i] & groupbit)) continue;
     double *row = state[i];
-    int touching_before = static_cast<int>(row[0]);
+    int touching_before = static_cast<int>(row[granmn::WallSlots::HELD]);
     // A region defined again with its faces numbered otherwise: the contacts held end here
     // (no normal to the face they had)
     if (faces_renumbered && touching_before > 0) {
@@ -307,10 +219,11 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
       double *record = record_block >= 0 ? row + record_block + slot * granmn::RECORD_SIZE
                                          : nullptr;
       int old = 0;
-      while (old < touching_before && static_cast<int>(before[1 + old]) != face.iwall) old++;
+      while (old < touching_before && static_cast<int>(before[slots.key(old)]) != face.iwall)
+        old++;
       const bool began = old == touching_before;
-      if (!began) before[1 + old] = -1.0;    // matched: not among the faces that ended
-      row[1 + slot] = face.iwall;
+      if (!began) before[slots.key(old)] = -1.0;    // matched: not among the faces that ended
+      row[slots.key(slot)] = face.iwall;
       for (int c = 0; c < width; c++) {
         if (ut) ut[c] = began ? 0.0 : before[ut_block + old * width + c];
         if (vt_previous) vt_previous[c] = began ? 0.0 : before[vt_block + old * width + c];
@@ -331,23 +244,22 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
                                 dt_history, scheme, vt_previous, radius[i], f[i], torque[i],
                                 on_walls);
     }
-    row[0] = kept;
+    row[granmn::WallSlots::HELD] = kept;
     // the faces touched at the last evaluation and not at this one: their contacts ended
     for (int old = 0; events && old < touching_before; old++)
-      if (before[1 + old] >= 0.0)
+      if (before[slots.key(old)] >= 0.0)
         events->boundary_ended(i, &before[record_block + old * granmn::RECORD_SIZE],
-                               ended_normal_velocity(i, static_cast<int>(before[1 + old])));
+                               ended_normal_velocity(i, static_cast<int>(before[slots.key(old)])));
     // slots beyond the faces touched hold no history (a face touched again starts afresh)
     for (int slot = kept; slot < touching_before && slot < nslots; slot++) {
-      row[1 + slot] = 0.0;
+      row[slots.key(slot)] = 0.0;
       for (int c = 0; c < width; c++) {
         if (ut_block >= 0) row[ut_block + slot * width + c] = 0.0;
         if (vt_block >= 0) row[vt_block + slot * width + c] = 0.0;
       }
     }
   }
-  for (int c = 0; c < DIM; c++) wall_force[c] = on_walls[c];
-  force_reduced = false;
+  forces_evaluated(on_walls);
 }
 
 // The velocity of the region's surface at `face` for an atom at x: the part's translation,
@@ -504,13 +416,4 @@ void FixWallGranRegionMN::restart(char *buf)
     }
     for (int k = 0; k < 4; k++) motion->at[k] = values[10 + k];
   }
-}
-
-double FixWallGranRegionMN::compute_vector(int n)
-{
-  if (!force_reduced) {
-    MPI_Allreduce(wall_force, wall_force_all, size_vector, MPI_DOUBLE, MPI_SUM, world);
-    force_reduced = true;
-  }
-  return wall_force_all[n];
 }

@@ -6,52 +6,28 @@
 #ifndef LMP_FIX_WALL_GRAN_REGION_MN_H
 #define LMP_FIX_WALL_GRAN_REGION_MN_H
 
-#include "fix_per_atom_state.h"
-#include "granmn_contact_storage.h"
-#include "granmn_law_arguments.h"
+#include "fix_wall_gran_mn_base.h"
 #include "granmn_region_surface.h"
-
-#include "mn_contact_events.h"
-#include "mn_integration.h"
 
 #include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
 
-class FixWallGranRegionMN : public FixPerAtomState, public granmn::HeldContacts {
+// An atom's slots (as many as the region's tmax: the faces one atom can touch at once) hold the
+// faces it touches in slots 0 to [HELD] - 1, each keyed by the face's number
+// (SurfaceContact::iwall), whether an observer is defined or not.
+class FixWallGranRegionMN : public FixWallGranMNBase {
  public:
   FixWallGranRegionMN(class LAMMPS *, int, char **);
-  int setmask() override;
-  void init() override;
   void setup(int) override;
-  void pre_neighbor() override;
   void post_force(int) override;
-  double compute_vector(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
-  // With a contact observer (fix contacts/mn): the faces atom i touches (as of this fix's
-  // last evaluation).
-  int contacts_held(int i) const override;
 
  private:
   std::string region_id;
   granmn::RegionSurface surface;    // the region's faces, and the parts they belong to
-  int max_contacts;           // the region's tmax: faces one atom can touch at once
-  granmn::LawArguments parsed;
-  mn::Law law;
-  bool own_law;
-  bool use_history;           // mu > 0: u_t per atom and face in contact
-  mn::Integrator integrator;
-  int ut_width;
-  // An atom's row: [0] the number of faces it touches, then per slot k < max_contacts the
-  // face's number (SurfaceContact::iwall, 1 + k), u_t (ut_block + k ut_width), the contact
-  // observer's record (record_block + k RECORD_SIZE) and, under Adams-Bashforth 2, the previous
-  // v_t (vt_block + k ut_width): each block at a place of its own whether kept or not, so that
-  // a block kept from a later run on moves no other (restart files hold the rows so); the row
-  // is kept up to its last block kept.
-  int ut_block, record_block, vt_block;    // -1: not kept
-  granmn::ContactObserver *observer;      // nullptr unless fix contacts/mn is defined
   // A moving part's velocity at the last step evaluated (track_motion), and its displacement
   // and angle there; one per part of the region (surface.parts()), used where the part moves
   struct Motion {
@@ -65,20 +41,11 @@ class FixWallGranRegionMN : public FixPerAtomState, public granmn::HeldContacts 
   // another (its faces numbered otherwise) ends every contact at the next run's start
   std::string evaluated_layout;
   bool faces_renumbered;
-  double wall_force[3], wall_force_all[3];
-  double force_per_mass_acceleration;
-  bool force_reduced;
-  // A region at rest: the atoms that can touch its surface before the next neighbour-list
-  // build, in index order (those inside it within the neighbour skin of a face at the last
-  // build, those outside it, and any still touching a face), as fix wall/gran/mn's near_wall.
-  // A moving region's step visits every atom, and so does every step under a fix adapt
-  // (radii_change: an atom can grow into a face without moving).
-  std::vector<int> near_surface;
-  bool radii_change;
 
   void find_region();
-  void list_near_surface();
-  void resolve_law();
+  void init_geometry() override;
+  bool within_reach(int i, double reach) override;
+  bool surface_moves() const override;
   void track_motion();
   Motion motion_between(const Region *part, const double *at, const double *before) const;
   void wall_velocity(const granmn::SurfaceContact &face, const double *x, double *v) const;

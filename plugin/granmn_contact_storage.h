@@ -1,7 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    Where the gran/mn styles keep a contact's history: u_t, the previous v_t, the observer's
    record and flag (mn_contact_events.h), in the pair style's neighbour history and the wall
-   fix's per-atom state; and how far a force evaluation advances it.
+   fixes' per-atom slots; and how far a force evaluation advances it.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_GRANMN_CONTACT_STORAGE_H
@@ -35,8 +35,8 @@ inline int ut_width(LAMMPS_NS::LAMMPS *lmp)
 }
 
 // Where a contact's values sit in the storage of the style that keeps it (-1: not kept),
-// handed out at init: in the pair style's neighbour history (pair_history_layout), in the
-// wall fix's per-atom state for each wall side (wall_state_layout). The styles hand the
+// handed out at init: in the pair style's neighbour history (pair_history_layout), in a wall
+// fix's per-atom state for each slot (WallSlots). The styles hand the
 // record to the contact observer (mn_contact_events.h), which knows what a record holds, not
 // where it is.
 struct ContactLayout {
@@ -45,10 +45,11 @@ struct ContactLayout {
   int vt_previous = -1;    // v_t at the previous force evaluation, ut_width values: Adams-
                            // Bashforth 2's rule for u_t (mu > 0)
   int record = -1;         // the observer's record (RECORD_SIZE values)
-  int touching = -1;       // 1 while in contact (a wall side; a pair has its neighbour flag)
+  int touching = -1;       // 1 while in contact (a plane wall's side: its slot's key; a pair
+                           // has its neighbour flag)
   int energy = -1;         // the contact's energy history (mn::energy_history_size values),
                            // where the observer books energies
-  int size = 0;            // values the storage holds: per contact (pair), per atom (wall)
+  int size = 0;            // values the pair style's neighbour history holds per contact
 };
 
 // A contact's neighbour history: its parts one after the other, only those kept (restart files
@@ -70,30 +71,24 @@ inline ContactLayout pair_history_layout(bool friction, bool adams_bashforth, bo
   return layout;
 }
 
-// An atom's row in the wall fix, both sides: each part at a place of its own whether kept or
-// not (u_t of both sides, each side's record and flag, the previous v_t of both), so that a
-// part kept from a later run on moves no other (restart files hold the rows so); `size` is
-// the whole row's. A style keeps the row up to its last part kept. u_t and v_t have
-// ut_width values each.
-inline void wall_state_layout(ContactLayout side[2], int ut_width = 1)
-{
-  side[0].ut_width = side[1].ut_width = ut_width;
-  int next = 0;
-  for (int s : {0, 1}) {
-    side[s].ut = next;
-    next += side[s].ut_width;
-  }
-  for (int s : {0, 1}) {
-    side[s].record = next;
-    next += RECORD_SIZE;
-    side[s].touching = next++;
-  }
-  for (int s : {0, 1}) {
-    side[s].vt_previous = next;
-    next += side[s].ut_width;
-  }
-  side[0].size = side[1].size = next;
-}
+// An atom's row in a wall fix's per-atom state: `count` slots, one for each contact it can
+// hold at once (a plane wall's two sides, a region's faces an atom can touch at once). [HELD]
+// the contacts held and [key(k)] slot k's key: the element it holds (a region's face number; a
+// plane's side, 1 while it touches); then u_t of each slot, the observer's record of each, the
+// previous v_t of each: each block at a place of its own whether kept or not, so that a block
+// kept from a later run on moves no other (restart files hold the rows so). A fix keeps the row
+// up to its last block kept. u_t and v_t have ut_width values each.
+struct WallSlots {
+  static constexpr int HELD = 0;
+  int count = 0;
+  int ut_width = 1;
+
+  int key(int slot) const { return 1 + slot; }
+  int ut_block() const { return 1 + count; }
+  int record_block() const { return ut_block() + count * ut_width; }
+  int vt_block() const { return record_block() + count * RECORD_SIZE; }
+  int end() const { return vt_block() + count * ut_width; }
+};
 
 }    // namespace granmn
 

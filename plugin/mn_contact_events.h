@@ -17,15 +17,15 @@
    inline instead); at the first evaluation after it ended, pair_ended or boundary_ended.
 
    A publisher that remembers between force evaluations which contacts it has (a wall fix's
-   flag per atom and side) also implements HeldContacts: the observer finds it among the
+   slots per atom) also implements HeldContacts: the observer finds it among the
    fixes at its init and asks it when it counts contacts anew (a run's setup; every step where
    the pair contacts are tallied; a step after atoms were deleted), so that the count depends
    neither on the order of the fixes' setups nor on the processes.
 
-   A new wall fix (a cylinder or region wall, say) plugs in as fix wall/gran/mn does: derive
-   from HeldContacts, find the observer at init, keep a record and a touching flag per atom
-   and wall element in its per-atom state (granmn_contact_storage.h), and report each contact
-   as above with update_record, boundary_touching and boundary_ended (fix_wall_gran_mn.cpp's
+   A new wall fix plugs in as fix wall/gran/mn and fix wall/gran/region/mn do: derive from
+   their base (fix_wall_gran_mn_base.h: it is the HeldContacts, finds the observer at init and
+   keeps a record and a key per atom and slot, granmn_contact_storage.h's WallSlots), and report
+   each contact as above with update_record, boundary_touching and boundary_ended (the fixes'
    post_force_loop). Fix contacts/mn needs no change.
 ------------------------------------------------------------------------- */
 

@@ -539,7 +539,8 @@ void PairGranMN::warn_deep_overlaps()
   // the deepest from the first process that holds it
   double fraction = 0.0;
   MPI_Allreduce(&deepest[0], &fraction, 1, MPI_DOUBLE, MPI_MAX, world);
-  const int mine = deepest[0] == fraction ? comm->me : comm->nprocs;
+  // not const: a serial LAMMPS's STUBS mpi.h declares the send buffers `void *`
+  int mine = deepest[0] == fraction ? comm->me : comm->nprocs;
   int holder = 0;
   MPI_Allreduce(&mine, &holder, 1, MPI_INT, MPI_MIN, world);
   MPI_Bcast(deepest, 6, MPI_DOUBLE, holder, world);
@@ -581,19 +582,11 @@ int PairGranMN::pack_forward_comm(int n, int *list, double *buf, int, int *)
 {
   const double *v = granmn::rows(atom->v), *omega = granmn::rows(atom->omega);
   int m = 0;
-  if (domain->dimension == 3) {
-    for (int k = 0; k < n; k++) {
-      const std::ptrdiff_t row = granmn::row_start(list[k], 3);
-      for (int c = 0; c < 3; c++) buf[m++] = v[row + c];
-      for (int c = 0; c < 3; c++) buf[m++] = omega[row + c];
-    }
-  } else {
-    for (int k = 0; k < n; k++) {
-      const std::ptrdiff_t row = granmn::row_start(list[k], 3);
-      buf[m++] = v[row];
-      buf[m++] = v[row + 1];
-      buf[m++] = omega[row + 2];
-    }
+  for (int k = 0; k < n; k++) {
+    const std::ptrdiff_t row = granmn::row_start(list[k], 3);
+    buf[m++] = v[row];
+    buf[m++] = v[row + 1];
+    buf[m++] = omega[row + 2];
   }
   return m;
 }
@@ -602,19 +595,11 @@ void PairGranMN::unpack_forward_comm(int n, int first, double *buf)
 {
   double *v = granmn::rows(atom->v), *omega = granmn::rows(atom->omega);
   int m = 0;
-  if (domain->dimension == 3) {
-    for (int i = first; i < first + n; i++) {
-      const std::ptrdiff_t row = granmn::row_start(i, 3);
-      for (int c = 0; c < 3; c++) v[row + c] = buf[m++];
-      for (int c = 0; c < 3; c++) omega[row + c] = buf[m++];
-    }
-  } else {
-    for (int i = first; i < first + n; i++) {
-      const std::ptrdiff_t row = granmn::row_start(i, 3);
-      v[row] = buf[m++];
-      v[row + 1] = buf[m++];
-      omega[row + 2] = buf[m++];
-    }
+  for (int i = first; i < first + n; i++) {
+    const std::ptrdiff_t row = granmn::row_start(i, 3);
+    v[row] = buf[m++];
+    v[row + 1] = buf[m++];
+    omega[row + 2] = buf[m++];
   }
 }
 
@@ -726,12 +711,16 @@ void PairGranMN::init_style()
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "Pair style gran/mn requires atom attributes radius, rmass, omega, torque "
                       "(atom_style sphere)");
-  // LAMMPS's own comm_modify vel yes sends x, v and omega of every ghost, 3 values each, with
-  // a generic loop; without it LAMMPS sends x alone, and this style sends v and omega at
-  // compute(), only the components the law reads (the same values: a pair's force is
-  // bitwise the same either way)
+  // The law reads the ghosts' v and omega. LAMMPS's own comm_modify vel yes sends them with x,
+  // 3 values each, in one message through a buffer; without it LAMMPS sends x alone, in place.
+  // In 3D the style turns LAMMPS's own on (as LAMMPS's granular styles require it): sending
+  // v and omega in a second message of its own cost more (the 3D chute, docs/performance.md).
+  // In 2D it sends them itself at compute(), only vx, vy and omega_z: a third of the values
+  // LAMMPS's own would add. The values are the same, so is every force to the bit. (Comm's
+  // init, after the pair's, sizes the messages for the setting.)
+  if (domain->dimension == 3) comm->ghost_velocity = 1;
   sends_ghost_velocity = comm->ghost_velocity == 0;
-  comm_forward = sends_ghost_velocity ? (domain->dimension == 3 ? 6 : 3) : 0;
+  comm_forward = sends_ghost_velocity ? 3 : 0;
   check_wall_types();
   check_bumps();
   granmn::check_disc_integration(lmp, "pair_style gran/mn");

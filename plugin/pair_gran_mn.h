@@ -39,7 +39,7 @@ class PairGranMN : public Pair {
   // it from here.
   void *extract(const char *, int &) override;
   // The ghosts' velocity and spin, which the law reads, when LAMMPS does not send them
-  // (comm_modify vel no): what compute() sends them with.
+  // (comm_modify vel no in 2D): what compute() sends them with.
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   void GRANMN_TRANSFER_HISTORY(, ) override;
@@ -58,8 +58,8 @@ class PairGranMN : public Pair {
   granmn::ContactObserver *observer;    // nullptr unless fix contacts/mn is defined
   std::vector<std::pair<int, int>> excluded_types;    // type pairs this style excluded
   bool law_reported;
-  // comm_modify vel no: this style sends the ghosts' v and omega itself at each compute,
-  // in 2D only vx, vy and omega_z (comm_forward values an atom)
+  // comm_modify vel no in 2D: this style sends the ghosts' vx, vy and omega_z itself at each
+  // compute (comm_forward values an atom)
   bool sends_ghost_velocity = false;
   double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units
   double *max_radius;                // per type, for the cutoffs

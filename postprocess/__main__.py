@@ -162,7 +162,7 @@ def main(argv=None):
         path = write_report(named, scenes, left_out, completed, out, runs, selection)
         print(f"report: {path}")
         return 0
-    return write_compare(scenes, args.rule)
+    return write_compare(scenes, args.rule, completed)
 
 
 def in_the_way(directory):

@@ -8,8 +8,12 @@ standard error of the mean over the runs (s/sqrt(n), n >= 2 runs in each engine)
 import math
 from dataclasses import dataclass
 
-# The observables compared (postprocess/quantities.py names them).
+# The observables compared (postprocess/quantities.py names them); against the event-driven
+# engine, whose collisions are instantaneous (no contact times), the energy and the collision
+# rates with disks and with the boundary.
 COMPARED = ("E_total", "N_c", "t_c", "mc_c")
+HARD_COMPARED = ("E_total", "N_c", "N_w")
+HARD = "event_driven"
 # Four combined standard errors: with four runs in each engine the errors are themselves
 # uncertain (Welch's t with about 6 degrees of freedom, |t| > 4 by chance with 0.7 %), so that
 # one of eight comparisons (two k_n, four observables) fails by chance with about 5 %.
@@ -40,7 +44,27 @@ def mean_and_error(values):
 
 
 def engine_of(run):
-    return (run.variables or {}).get("engine", ENGINE_DEFAULT)
+    """The engine a run ran in; an event-driven run's with its collision rule (params.txt's
+    rule: paper, (a), or soft, (b)), so that the two rules compare as two engines."""
+    engine = (run.variables or {}).get("engine", ENGINE_DEFAULT)
+    if engine == HARD and getattr(run, "params", None):
+        return f"{HARD} ({run.params.get('rule')})"
+    return engine
+
+
+def left_out(runs):
+    """{(scene, engine): [(run's point, why it has no averages)]} of the runs compare_engines
+    cannot use: said, not dropped silently (a frictional run whose steady parts the selection
+    does not keep has none, and its engine's side of a comparison then has fewer runs, or
+    none)."""
+    out = {}
+    for run in runs:
+        if not run.observables:
+            # a summary that could not be read (another selection's) has no variables either
+            engine = engine_of(run) if run.variables is not None else "unknown: not read"
+            out.setdefault((run.scene, engine), []).append(
+                (getattr(run, "point", None), getattr(run, "reason", None)))
+    return out
 
 
 def compare_engines(runs):
@@ -55,7 +79,8 @@ def compare_engines(runs):
     for (scene, kn), by_engine in sorted(groups.items()):
         if len(by_engine) != 2:
             continue
-        for quantity in COMPARED:
+        hard = any(engine.startswith(HARD) for engine in by_engine)
+        for quantity in HARD_COMPARED if hard else COMPARED:
             stats = {engine: mean_and_error([r.observables[quantity] for r in group])
                      for engine, group in sorted(by_engine.items())}
             comparison = Comparison(scene, kn, quantity,

@@ -22,7 +22,10 @@ from .study import (crossover, fit_log, fit_log_bend, fit_power, main_series, ra
 
 CLAIMS = Path(__file__).with_name("claims.csv")
 MEASURES = ("max_abs_deviation", "power_exponent", "log_slope", "log_bend", "ratio_at_stiffest",
-            "crossover_kn", "limit_decision")
+            "crossover_kn", "limit_decision", "collapse_fraction")
+# collapse_fraction's quantities: which event-driven runs it counts, by their boundary
+# restitution e_w (params.txt)
+COLLAPSE_RUNS = {"e_w<1": lambda e_w: e_w < 1.0, "e_w=1": lambda e_w: e_w == 1.0}
 NUMBERS = ("kn_min", "kn_max", "low", "high", "reference", "expected", "alternative_value")
 SIGMAS = 2.0    # the width, in standard errors, of the interval a verdict compares
 
@@ -49,6 +52,9 @@ def load_claims(path=CLAIMS):
         if row["low"] < row["alternative_value"] < row["high"]:
             raise ValueError(f"{where}: the alternative's value {row['alternative_value']:g} "
                              f"passes [{row['low']:g}, {row['high']:g}]: the claim cannot fail")
+        if row["measure"] == "collapse_fraction" and row["quantity"] not in COLLAPSE_RUNS:
+            raise ValueError(f"{where}: collapse_fraction counts the runs of "
+                             f"{' or '.join(COLLAPSE_RUNS)}, not {row['quantity']}")
         if row["measure"] == "max_abs_deviation" and not np.isfinite(row["reference"]):
             raise ValueError(f"{where}: max_abs_deviation needs a reference value")
     return rows
@@ -85,6 +91,22 @@ def measure(claim, rows, rule=limit.RULE):
         return (*fit_log_bend(kn, values), "")
     slope, error, _ = fit_log(kn, values)
     return slope, error, ""
+
+
+def collapse_measure(claim, records):
+    """The fraction of a scene's pure event-driven runs (engine event_driven, collapse = stop:
+    a detected inelastic collapse ends the run, which then says when: stopped_at) of the
+    claim's e_w that collapsed before run_time, with its binomial standard error
+    sqrt(p (1 - p) / n); (nan, nan, why) where there are none."""
+    chosen = COLLAPSE_RUNS[claim["quantity"]]
+    runs = [r for r in records or []
+            if (r.variables or {}).get("engine") == "event_driven" and r.params
+            and r.params.get("collapse") == "stop" and chosen(float(r.params["e_w"]))]
+    if not runs:
+        return np.nan, np.nan, (f"no completed event-driven run with collapse = stop and "
+                                f"{claim['quantity']}")
+    p = sum(r.stopped_at is not None for r in runs) / len(runs)
+    return p, float(np.sqrt(p * (1 - p) / len(runs))), ""
 
 
 def crossover_measure(kn, values, errors, stiff_from):
@@ -145,12 +167,21 @@ def accepted(claim):
     return f"[{claim['low']:g}, {claim['high']:g}]"
 
 
-def evaluate(scenes, claims=None, rule=limit.RULE):
+def evaluate(scenes, claims=None, rule=limit.RULE, completed=None):
     """[(claim, measured, error, status)] with status pass, differs, FAIL or 'not evaluated:
-    why', on each scene's main series; rule: the hard-sphere-limit rule (1 or 2)."""
+    why', on each scene's main series (collapse_fraction: on the scene's completed runs,
+    `completed`, study.analyse's); rule: the hard-sphere-limit rule (1 or 2)."""
     results = []
     for claim in claims or load_claims():
-        rows = main_series(scenes.get(claim["scene"], []))
+        if claim["measure"] == "collapse_fraction":
+            value, error, reason = collapse_measure(claim, (completed or {}).get(claim["scene"]))
+            results.append((claim, value, error,
+                            status_of(claim, value, error) if np.isfinite(value)
+                            else f"not evaluated: {reason}"))
+            continue
+        # the paper's claims on its soft model: event-driven runs are not part of its series
+        rows = main_series([o for o in scenes.get(claim["scene"], [])
+                            if (o.get("variables") or {}).get("engine") != "event_driven"])
         if not rows:
             results.append((claim, np.nan, np.nan,
                             "not evaluated: no usable points of this scene"))

@@ -4,10 +4,11 @@ from .formatting import comparison_line, fmt
 from .reference import accepted, evaluate, tally
 
 
-def write_compare(scenes, rule):
-    """Prints the comparison of a study's scenes (study.analyse) under the hard-sphere-limit
-    rule `rule`; the exit status: 1 if a claim fails or none could be evaluated, else 0."""
-    results = evaluate(scenes, rule=rule)
+def write_compare(scenes, rule, completed=None):
+    """Prints the comparison of a study's scenes and completed runs (study.analyse) under the
+    hard-sphere-limit rule `rule`; the exit status: 1 if a claim fails or none could be
+    evaluated, else 0."""
+    results = evaluate(scenes, rule=rule, completed=completed)
     width = max(len(c["id"]) for c, *_ in results)
     for claim, value, error, status in results:
         print(f"{claim['id']:<{width}}  {fmt(value, error):>18}  "

@@ -2,7 +2,7 @@
 and observable, on the terminal and as engines.md and engines.csv in the output directory."""
 import csv
 
-from .engines import AGREEMENT_SIGMAS, COMPARED, compare_engines
+from .engines import AGREEMENT_SIGMAS, COMPARED, HARD, HARD_COMPARED, compare_engines, left_out
 from .formatting import fmt
 from .quantities import TABLE
 
@@ -11,6 +11,11 @@ def write_engines(named, runs, out):
     """Prints and writes the comparisons of `runs` (runs.load_runs); the exit status: 1 if the
     engines differ on an observable or nothing could be compared, else 0."""
     comparisons = compare_engines(runs)
+    missing = left_out(runs)
+    notes = [f"- not compared: {len(said)} runs of {scene} in engine {engine} have no averages "
+             f"(e.g. {said[0][0]}: {said[0][1]})" for (scene, engine), said in sorted(missing.items())]
+    for note in notes:
+        print(f"engines: note{note[1:]}")
     if not comparisons:
         print(f"engines: {named}: no scene and k_n with runs of two engines")
         return 1
@@ -20,7 +25,9 @@ def write_engines(named, runs, out):
              f"Means over the runs (seeds) with their standard errors; the engines agree where "
              f"they differ by at most {AGREEMENT_SIGMAS:g} combined standard errors "
              "(docs/liggghts.md). Observables: " +
-             ", ".join(TABLE[q].label for q in COMPARED) + ".", "",
+             ", ".join(TABLE[q].label for q in COMPARED) + f"; against the {HARD} engine " +
+             ", ".join(TABLE[q].label for q in HARD_COMPARED) + ".", "", *notes,
+             *([""] if notes else []),
              "| scene | k_n | observable | " + " | ".join(f"{e} (runs)" for e in engines) +
              " | difference | allowed | verdict |",
              "|---|---|---|" + "---|" * len(engines) + "---|---|---|"]

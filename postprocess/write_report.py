@@ -235,7 +235,7 @@ def write_report(sweep_dir, scenes, left_out, completed, out, runs=(), selection
     made, problems = make_figures(scenes, completed, out, selection)
     if runs:
         write_runs(runs, out / "runs.csv")
-    results = evaluate(scenes)
+    results = evaluate(scenes, completed=completed)
     with open(out / "comparison.csv", "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(["id", "scene", "quantity", "measure", "kn_min", "kn_max", "measured",

@@ -8,14 +8,17 @@
 #   scripts/main.sh --transition    the transition study (docs/transition.md; estimate first)
 #   scripts/main.sh --config FILE   any sweep config
 #   --lammps debian12|2025|2026     against which LAMMPS (default debian12, in build/)
+#   --serial                        that LAMMPS built without MPI (build-serial/, ...)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 configs=("$root/inputs/sweeps/quick.toml")
 output=""
 generation=debian12
+serial_option=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --lammps) generation=${2:-}; shift 2 || shift $# ;;
+    --serial) serial_option=(--serial); shift ;;
     --full) configs=("$root"/inputs/sweeps/paper_*.toml); shift ;;
     --transition) configs=("$root/inputs/sweeps/transition.toml"); shift ;;
     --config) configs=("$2"); shift 2 ;;
@@ -24,8 +27,8 @@ while [ $# -gt 0 ]; do
     *) echo "main.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
-source "$root/scripts/lammps-generation.sh" --lammps "$generation"
-"$root/scripts/build.sh" --lammps "$generation"
+source "$root/scripts/lammps-generation.sh" --lammps "$generation" "${serial_option[@]}"
+"$root/scripts/build.sh" "${generation_args[@]}"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 echo "== two-disk collision (inputs/two_disk_collision.lmp)"

@@ -94,6 +94,7 @@ class Engine {
   Stop run(double t_end, std::uint64_t max_events = 0);
 
   double time() const { return epoch_ + now_; }
+  double box_length() const { return length_; }
   int disks() const { return static_cast<int>(disk_.size()); }
   DiskState state(int i) const;    // at time()
   double radius(int i) const { return disk_[i].radius; }

@@ -3,11 +3,15 @@
 // Parameters (settings.h; later ones override earlier ones): start=FILE (box, floor, disk and
 // bump lines, start.h), run_time=T, events=N, out=DIR, scene=NAME, rule=paper|soft,
 // tangential=literal|cutback, e, beta, mu, e_w, beta_w, g, sin_theta, collapse=stop|tc,
-// tc_time, tc_beta, collapse_count, collapse_time.
+// tc_time (a time, or tau_c: the soft law's at kn), tc_beta, collapse_count, collapse_time;
+// kn (the soft run's k_n the run stands for), seed (the deck's, for params.txt);
+// output_interval, average_start, profile_bin, profile_lo, profile_hi: with out, the files a
+// LAMMPS run of the scene writes (outputs.h).
 // Exit status: 0 the run reached run_time (or events); 1 a refused input or a failed run;
 // 3 an inelastic collapse ended the run (its report on stderr and, with out, in collapse.txt;
 // summary.txt says "end collapse").
 #include "engine.h"
+#include "outputs.h"
 
 #include <ctime>
 #include <cstdio>
@@ -29,7 +33,7 @@ const char *stop_name(mn::ed::Engine::Stop stop)
 }
 
 void write_summary(std::ostream &out, const mn::ed::Engine &engine, mn::ed::Engine::Stop stop,
-                   double cpu)
+                   double setup_cpu, double cpu)
 {
   const mn::ed::Totals &t = engine.totals();
   const std::uint64_t collisions = t.disk_collisions + t.boundary_collisions;
@@ -45,6 +49,7 @@ void write_summary(std::ostream &out, const mn::ed::Engine &engine, mn::ed::Engi
       << "invalid_predictions " << t.invalid_predictions << "\n"
       << "grazing " << t.grazing << "\n"
       << "largest_overlap " << t.largest_overlap << "\n"
+      << "setup_cpu_seconds " << setup_cpu << "\n"
       << "cpu_seconds " << cpu << "\n";
 }
 
@@ -57,7 +62,8 @@ int main(int argc, char **argv)
     std::cerr << "usage: mn-event-driven [PARAMETER_FILE ...] [name=value ...]\n"
                  "  start=FILE run_time=T [events=N] [out=DIR] [scene=NAME] [rule=paper|soft]\n"
                  "  [tangential=literal|cutback] [e beta mu e_w beta_w g sin_theta]\n"
-                 "  [collapse=stop|tc] [tc_time tc_beta collapse_count collapse_time]\n";
+                 "  [collapse=stop|tc] [tc_time tc_beta collapse_count collapse_time]\n"
+                 "  [kn seed] [output_interval average_start profile_bin profile_lo profile_hi]\n";
     return argc < 2 ? 1 : 0;
   }
   try {
@@ -74,15 +80,19 @@ int main(int argc, char **argv)
     }
     const RunRequest run = parse_run(parameters);
     const Start start = read_start(run.start_path);
+    // the setup (rule (b)'s tables, the cells) and the run, timed apart
     const std::clock_t begin = std::clock();
     Engine engine(start, run.settings);
-    const Engine::Stop stop = engine.run(run.run_time, run.max_events);
-    const double cpu = double(std::clock() - begin) / CLOCKS_PER_SEC;
-    write_summary(std::cout, engine, stop, cpu);
+    const double setup_cpu = double(std::clock() - begin) / CLOCKS_PER_SEC;
+    const std::clock_t running = std::clock();
+    if (!run.out.empty()) std::filesystem::create_directories(run.out);
+    const Engine::Stop stop = run.outputs.interval > 0.0 ? run_sampled(engine, run)
+                                                         : engine.run(run.run_time, run.max_events);
+    const double cpu = double(std::clock() - running) / CLOCKS_PER_SEC;
+    write_summary(std::cout, engine, stop, setup_cpu, cpu);
     if (!run.out.empty()) {
-      std::filesystem::create_directories(run.out);
       std::ofstream summary(run.out + "/summary.txt");
-      write_summary(summary, engine, stop, cpu);
+      write_summary(summary, engine, stop, setup_cpu, cpu);
       if (engine.collapse()) std::ofstream(run.out + "/collapse.txt") << engine.collapse()->describe() << "\n";
     }
     if (stop == Engine::Stop::Collapse) {

@@ -16,6 +16,11 @@ Law Settings::soft_law() const
   return derive({1.0, disk.e, disk.beta, disk.mu}, options);
 }
 
+Law law_at(double kn, const PaperRule &disk)
+{
+  return derive({kn, disk.e, disk.beta > 0.0 ? disk.beta : 1.0, disk.mu});
+}
+
 PaperRule boundary_defaults(double e, double beta, double mu)
 {
   if (!(beta > 0.0)) return {derive({1.0, e, 1.0, mu}).e_w, beta, mu};
@@ -96,7 +101,8 @@ RunRequest parse_run(const std::vector<Parameter> &parameters)
   static const std::vector<std::string> names{
       "start", "out", "scene", "run_time", "events", "rule", "tangential", "e", "beta", "mu",
       "e_w", "beta_w", "g", "sin_theta", "collapse", "tc_time", "tc_beta", "collapse_count",
-      "collapse_time"};
+      "collapse_time", "kn", "seed", "output_interval", "average_start", "profile_bin",
+      "profile_lo", "profile_hi"};
   for (const Parameter &p : parameters) {
     bool known = false;
     for (const std::string &n : names) known = known || p.name == n;
@@ -151,9 +157,20 @@ RunRequest parse_run(const std::vector<Parameter> &parameters)
   for (const char *name : {"tc_time", "tc_beta"})
     if (has(name) && !tc)
       throw InputError(named(last[name]) + ": " + name + " applies to collapse = tc only");
+  OutputSettings &o = run.outputs;
+  if (has("kn")) {
+    o.kn = within(last["kn"], 0.0, true, INFINITY, true, "(0, inf)");
+    if (const char *why = law_error(law_at(o.kn, s.disk)))
+      throw InputError(named(last["kn"]) + ": " + why);
+  }
   if (tc) {
-    if (!has("tc_time")) throw InputError("collapse = tc (" + last["collapse"].origin + ") needs tc_time, the TC model's t_c > 0");
-    s.tc_time = within(last["tc_time"], 0.0, true, INFINITY, true, "(0, inf)");
+    if (!has("tc_time")) throw InputError("collapse = tc (" + last["collapse"].origin + ") needs tc_time, the TC model's t_c > 0 (or tau_c: the soft law's at kn)");
+    if (last["tc_time"].value == "tau_c") {
+      if (!has("kn")) throw InputError(named(last["tc_time"]) + ": tau_c is the soft law's at kn: give kn");
+      s.tc_time = law_at(o.kn, s.disk).tau_c;
+    } else {
+      s.tc_time = within(last["tc_time"], 0.0, true, INFINITY, true, "(0, inf), or tau_c");
+    }
     if (has("tc_beta")) s.tc_beta = within(last["tc_beta"], -1.0, false, 1.0, false, "[-1, 1]");
   }
   if (has("collapse_count")) {
@@ -162,6 +179,28 @@ RunRequest parse_run(const std::vector<Parameter> &parameters)
     s.collapse_count = static_cast<int>(n);
   }
   if (has("collapse_time")) s.collapse_time = within(last["collapse_time"], 0.0, true, INFINITY, true, "(0, inf)");
+
+  if (has("seed")) o.seed = last["seed"].value;
+  if (has("output_interval")) {
+    o.interval = within(last["output_interval"], 0.0, true, INFINITY, true, "(0, inf)");
+    if (!has("out")) throw InputError(named(last["output_interval"]) + ": the sampled outputs go to out=DIR: give out");
+    if (!has("kn"))
+      throw InputError(named(last["output_interval"]) + ": params.txt names the soft law's tau_c and tau_w at the k_n this run stands for: give kn");
+    for (const char *name : {"profile_lo", "profile_hi"})
+      if (!has(name)) throw InputError(named(last["output_interval"]) + ": profile.txt's bins need " + name + " (the deck's box)");
+  } else {
+    for (const char *name : {"average_start", "profile_bin", "profile_lo", "profile_hi"})
+      if (has(name)) throw InputError(named(last[name]) + ": " + name + " applies to the sampled outputs only: give output_interval");
+  }
+  if (has("average_start"))
+    o.average_start = within(last["average_start"], 0.0, false, run.run_time, true, "[0, run_time)");
+  if (has("profile_bin")) o.profile_bin = within(last["profile_bin"], 0.0, true, INFINITY, true, "(0, inf)");
+  if (has("profile_lo")) o.profile_lo = finite(last["profile_lo"]);
+  if (has("profile_hi")) {
+    o.profile_hi = finite(last["profile_hi"]);
+    if (!(o.profile_hi > o.profile_lo))
+      throw InputError(named(last["profile_hi"]) + " must be greater than profile_lo = " + last["profile_lo"].value);
+  }
   return run;
 }
 

@@ -58,6 +58,22 @@ struct Parameter {
 // Reads a parameter file: one "name value" (or "name = value") per line, # comments.
 std::vector<Parameter> read_parameter_file(const std::string &path);
 
+// The sampled outputs of a run with out= and output_interval (outputs.h): the files a LAMMPS
+// run of the scene writes (params.txt, energy.txt, counts.txt, profile.txt), read by postprocess.
+struct OutputSettings {
+  double interval = 0.0;        // time between lines of energy.txt and profile samples (0: none)
+  double average_start = 0.0;   // the counters' window and the profile's span start here
+  double profile_bin = 0.25;    // bin height of profile.txt
+  double profile_lo = 0.0, profile_hi = 0.0;    // its bins cover [lo, hi) (the deck's box)
+  double kn = 0.0;              // the soft run's k_n this run stands for: params.txt's kn, tau_c
+                                // and tau_w (and tc_time = tau_c)
+  std::string seed;             // the deck's seed the start was made with, for params.txt
+};
+
+// The soft law at k_n with the run's e (and mu): its tau_c and tau_w, which depend on k_n and e
+// alone (beta, outside the law's range under rule (a), is taken as 1 there).
+Law law_at(double kn, const PaperRule &disk);
+
 // A whole run: its settings, its start, where its outputs go, and how long it lasts.
 struct RunRequest {
   Settings settings;
@@ -66,6 +82,7 @@ struct RunRequest {
   std::string out;                 // the output directory ("" = none)
   double run_time = 0.0;           // physical time to run
   std::uint64_t max_events = 0;    // 0: no limit
+  OutputSettings outputs;
   std::vector<Parameter> given;    // every parameter as given, for params.txt
 };
 

@@ -1,8 +1,9 @@
 """The sweep runner behind scripts/sweep.py (its --help: the config, the layout, the options),
 its modules each importing only those before it: decks (what the runner reads from the decks),
-config (a config's points and their names), cost (the predicted CPU time), processes (the
-runner's lmp processes), points (the output directory and its points' directories), schedule
-(running the points) and cli (the command)."""
+event_driven (an event-driven point's run: the deck's start, then the engine), config (a
+config's points and their names), cost (the predicted CPU time), processes (the runner's lmp
+processes), points (the output directory and its points' directories), schedule (running the
+points) and cli (the command)."""
 
 
 class SweepError(Exception):

@@ -14,7 +14,10 @@ Config (TOML):
     seed = [1, 2]
     integrator = ["verlet", "ab2"]
     engine = "lammps"             # or "liggghts": the scene's deck inputs/liggghts/<scene>.lmp
-                                  # run by build/plugin/liggghts/build/liggghts (chute_3d)
+                                  # run by build/plugin/liggghts/build/liggghts (chute_3d);
+                                  # or "event_driven": the 2D scene's deck makes the start,
+                                  # build/plugin/event_driven/mn-event-driven runs it
+                                  # (scripts/granmn_sweep/event_driven.py: its variables)
 
 Any other key is passed to the deck as -var KEY VALUE (see inputs/lib/defaults.lmp); a
 variable the scene's deck takes but never uses (seed in single_disk: no random start) is
@@ -75,6 +78,7 @@ under way are stopped, <output>/sweep.lock is let go and removed, the same comma
 import argparse
 import math
 import os
+import re
 import shutil
 import signal
 import sys
@@ -113,6 +117,13 @@ def summarized_points(directories, plan):
             if record.ended in ("flowing", "stopped"):
                 done.add(point_dir)
     return done
+
+
+def serial_build(build):
+    """Whether the build's LAMMPS is serial (its CMake cache's GRANMN_MPI, CMakeLists.txt)."""
+    cache = build / "CMakeCache.txt"
+    return cache.exists() and re.search(r"^GRANMN_MPI:BOOL=(OFF|NO|FALSE|0)$",
+                                        cache.read_text(errors="replace"), re.M | re.I) is not None
 
 
 def main(argv=None):
@@ -160,6 +171,7 @@ def main(argv=None):
     # each engine's executable under the key of its name (decks.ENGINES)
     paths = {"lammps": args.build / "lammps" / "lmp",
              "liggghts": args.build / "plugin" / "liggghts" / "build" / "liggghts",
+             "event_driven": args.build / "plugin" / "event_driven" / "mn-event-driven",
              "plugin": args.build / "plugin" / "granmnplugin.so",
              "mn_law": args.build / "plugin" / "mn-law",
              "mpiexec": shutil.which("mpirun") or "mpirun"}
@@ -174,10 +186,23 @@ def main(argv=None):
         engines = {engine(p) for p in points}
         if args.partitions and engines != {"lammps"}:
             raise SweepError("--partitions runs the points as the partitions of one lmp: the "
-                             "points of engine liggghts run as processes of their own (--jobs)")
-        for key in sorted(engines | {"mn_law"} | ({"plugin"} if "lammps" in engines else set())):
+                             "points of engine liggghts run as processes of their own (--jobs), "
+                             "as do those of engine event_driven")
+        if (args.ranks > 1 or args.checkpoint_interval > 0) and "event_driven" in engines:
+            raise SweepError("the event-driven engine runs on one core and writes no "
+                             "checkpoints: --ranks and --checkpoint-interval do not apply to "
+                             "its points")
+        # an event-driven point's start is made by its LAMMPS deck
+        needs_lammps = {"lammps", "plugin"} if engines & {"lammps", "event_driven"} else set()
+        for key in sorted(engines | {"mn_law"} | needs_lammps):
             if not paths[key].exists():
                 raise SweepError(f"{paths[key]} is missing: run ./scripts/build.sh first")
+        if (args.partitions or args.ranks > 1) and serial_build(args.build):
+            raise SweepError(f"--{'partitions' if args.partitions else 'ranks'} runs lmp under "
+                             f"mpirun, and {args.build} is a serial LAMMPS (built with "
+                             "GRANMN_MPI=OFF, LAMMPS's STUBS MPI): each rank would run the whole "
+                             "point on its own; run the points as processes (--jobs), or build "
+                             "with MPI (scripts/build.sh without --serial)")
         steps = [predicted_steps(p, paths["mn_law"]) for p in points]
     except SweepError as error:
         print(f"sweep: {error}", file=sys.stderr)

@@ -6,7 +6,7 @@ import tomllib
 from itertools import product
 from pathlib import Path
 
-from granmn_sweep import SweepError
+from granmn_sweep import SweepError, event_driven
 from granmn_sweep.decks import ENGINES, RESERVED, deck_defaults, deck_uses, engine, point_deck, \
     scenes, where
 
@@ -107,7 +107,9 @@ def expand(config, path):
                                  f"{', '.join(scenes(engine(point)))})")
             deck = point_deck(point)
             defaults = deck_defaults(deck)
-            unknown = sorted(set(point) - RUNNER_KEYS - set(defaults))
+            hard = engine(point) == "event_driven"
+            known = set(defaults) | (set(event_driven.VARIABLES) if hard else set())
+            unknown = sorted(set(point) - RUNNER_KEYS - known)
             if unknown:
                 raise SweepError(f"{source(unknown[0])}: {', '.join(unknown)}: not a variable "
                                  f"of {where(deck)} (docs/scenes.md lists them)")
@@ -121,11 +123,12 @@ def expand(config, path):
                         raise SweepError(f"{source(name)}: {point['scene']} point: {name} = "
                                          f"{value!r} is not a finite number")
                     point[name] = canonical_number(value)
-            ignored = sorted(set(point) - RUNNER_KEYS - deck_uses(deck))
+            uses = event_driven.deck_uses(deck_uses(deck)) if hard else deck_uses(deck)
+            ignored = sorted(set(point) - RUNNER_KEYS - uses)
             if ignored:
                 raise SweepError(f"{source(ignored[0])}: {', '.join(ignored)}: "
-                                 f"{where(deck)} does not use it (every value would give the "
-                                 "same run)")
+                                 f"{'the event-driven engine' if hard else where(deck)} does "
+                                 "not use it (every value would give the same run)")
             points.append(point)
     seen = set()
     for p in points:

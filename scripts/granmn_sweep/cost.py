@@ -1,10 +1,11 @@
-"""The cost model: a point's steps (the law's tau_c through build/plugin/mn-law) and its
-predicted CPU seconds on one core, rescaled as points finish."""
+"""The cost model: a point's steps (the law's tau_c through build/plugin/mn-law; of an
+event-driven point, its events) and its predicted CPU seconds on one core, rescaled as points
+finish."""
 import functools
 import math
 
 from granmn_sweep import SweepError
-from granmn_sweep.decks import deck_defaults, formula_value, point_deck, scene_atoms, \
+from granmn_sweep.decks import deck_defaults, engine, formula_value, point_deck, scene_atoms, \
     scene_dimension, time_step_formula, where
 from mn_law import LawError, derived
 
@@ -12,6 +13,13 @@ from mn_law import LawError, derived
 # finish. 3D: the dense chute's CPU seconds per atom-step, measured (docs/scenes.md): 9.9e-8 at
 # kn 2e4, 6.2e-8 at 2e5, 5.6e-8 at 2e6 (the stiff points, where a series' time goes).
 STEP_COST = {2: (4e-7, 4e-8), 3: (4e-7, 6e-8)}
+# An event-driven point's events: no formula gives them (a flow's collision rate, and a collapse
+# held off by the TC model, multiply them by orders of magnitude), so the guess is a rate per
+# atom (bumps included) and time unit of the dilute collisional flow, and the learnt factor
+# (kept per engine) corrects it as points finish; CPU seconds per event, measured from 50 to 1e5
+# disks (bench/event_driven.py, docs/hard_spheres.md).
+EVENTS_PER_ATOM_TIME = 1e2
+EVENT_COST = 2e-6
 
 
 @functools.lru_cache(maxsize=None)
@@ -62,7 +70,12 @@ def time_step(point, mn_law):
 
 
 def predicted_steps(point, mn_law):
-    """Steps of a point: run_time over its time step."""
+    """Steps of a point: run_time over its time step; of an event-driven point, its guessed
+    events (EVENTS_PER_ATOM_TIME), at most its events cap."""
+    if engine(point) == "event_driven":
+        events = positive(point, "run_time") * scene_atoms(point) * EVENTS_PER_ATOM_TIME
+        cap = float(point.get("events", 0))
+        return math.ceil(min(events, cap) if cap > 0 else events)
     dt = time_step(point, mn_law)
     steps = positive(point, "run_time") / dt if dt > 0 else math.inf
     if not (math.isfinite(steps) and steps < 2 ** 62):
@@ -73,20 +86,26 @@ def predicted_steps(point, mn_law):
 
 
 class CostModel:
-    """Seconds of a point = steps * (c0 + c1 * atoms) * factor (atoms: decks.scene_atoms);
-    factor learnt from points run."""
+    """Seconds of a point = steps * (c0 + c1 * atoms) * factor (atoms: decks.scene_atoms), of an
+    event-driven point events * EVENT_COST * factor; the factor, one per engine, learnt from
+    the points run."""
 
     def __init__(self):
-        self.factor, self.samples = 1.0, 0
+        self.factor, self.samples = {}, {}
 
     def predict(self, point, steps):
+        factor = self.factor.get(engine(point), 1.0)
+        if engine(point) == "event_driven":
+            return steps * EVENT_COST * factor
         fixed, per_atom = STEP_COST[scene_dimension(point_deck(point))]
-        return steps * (fixed + per_atom * scene_atoms(point)) * self.factor
+        return steps * (fixed + per_atom * scene_atoms(point)) * factor
 
-    def learn(self, predicted, measured):
+    def learn(self, point, predicted, measured):
+        name = engine(point)
         ratio = measured / max(predicted, 1e-9)
-        self.samples += 1
-        self.factor += (ratio * self.factor - self.factor) / self.samples
+        factor = self.factor.get(name, 1.0)
+        self.samples[name] = self.samples.get(name, 0) + 1
+        self.factor[name] = factor + (ratio * factor - factor) / self.samples[name]
 
 
 def format_seconds(seconds):

@@ -12,8 +12,9 @@ from granmn_sweep import SweepError
 ROOT = Path(__file__).resolve().parents[2]
 LIB = ROOT / "inputs" / "lib"
 # The engines a point runs in (its `engine`; lammps where it names none), and the folder of
-# each one's scene decks, under inputs/.
-ENGINES = {"lammps": ".", "liggghts": "liggghts"}
+# each one's scene decks, under inputs/: the event-driven engine takes its start and variables
+# from LAMMPS's 2D decks (granmn_sweep/event_driven.py).
+ENGINES = {"lammps": ".", "liggghts": "liggghts", "event_driven": "."}
 
 
 def engine(point):
@@ -35,13 +36,15 @@ def where(deck):
 
 
 def scenes(engine_name="lammps"):
-    """The scenes of an engine: its decks that name themselves (`variable scene index NAME`)."""
+    """The scenes of an engine: its decks that name themselves (`variable scene index NAME`);
+    of the event-driven engine, the 2D ones."""
     return tuple(sorted(deck.stem for deck in (ROOT / "inputs" / ENGINES[engine_name]).glob("*.lmp")
-                        if re.search(r"^variable scene index (\w+)", deck.read_text(), re.M)))
+                        if re.search(r"^variable scene index (\w+)", deck.read_text(), re.M)
+                        and (engine_name != "event_driven" or scene_dimension(deck) == 2)))
 
 
 # Deck variables the runner sets itself for every point.
-RESERVED = {"plugin", "lib", "out", "run_token", "resume", "resume_step"}
+RESERVED = {"plugin", "lib", "out", "run_token", "resume", "resume_step", "write_start"}
 # The operators of the decks' formulas that formula_value() reads; a comparison is 1 or 0.
 ARITHMETIC = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
               ast.Div: operator.truediv}

@@ -11,7 +11,7 @@ from granmn_sweep import SweepError
 from granmn_sweep import processes
 from granmn_sweep.config import RUNNER_KEYS, format_value
 from granmn_sweep.cost import format_seconds
-from granmn_sweep.decks import LIB, engine, point_deck
+from granmn_sweep.decks import LIB, ROOT, engine, point_deck
 from granmn_sweep.points import cpu_seconds, error_lines, failed_to_start, finish, \
     resume_or_prepare, set_aside_failed_resume, wrote_done
 from mpirun_slots import slots_problem
@@ -44,12 +44,20 @@ def run_serial_tries(point, directory, paths, env, ranks, extra, notes):
         token = secrets.token_hex(8)
         variables = resume_or_prepare(directory, point, extra, keep=directory in notes)
         mpirun = [paths["mpiexec"], "-np", str(ranks)] if ranks > 1 else []
-        # LIGGGHTS takes LAMMPS's command line
-        command = mpirun + [str(paths[engine(point)]), "-in", str(point_deck(point)),
-                            "-log", str(directory / "log.lammps"), "-screen", "none", "-nocite"]
-        for name, value in {**point_variables(point, directory, paths, token),
-                            **variables}.items():
-            command += ["-var", name, format_value(value)]
+        given = {**point_variables(point, directory, paths, token), **variables}
+        if engine(point) == "event_driven":
+            # the deck makes the start, the engine runs it (granmn_sweep/event_driven.py)
+            command = [sys.executable, str(ROOT / "scripts" / "event_driven_point.py"),
+                       "--lmp", str(paths["lammps"]), "--engine", str(paths["event_driven"]),
+                       "--deck", str(point_deck(point))]
+            command += [f"{name}={format_value(value)}" for name, value in given.items()]
+        else:
+            # LIGGGHTS takes LAMMPS's command line
+            command = mpirun + [str(paths[engine(point)]), "-in", str(point_deck(point)),
+                                "-log", str(directory / "log.lammps"), "-screen", "none",
+                                "-nocite"]
+            for name, value in given.items():
+                command += ["-var", name, format_value(value)]
         (directory / "command.txt").write_text(shlex.join(command) + "\n")
         proc = processes.start(command, directory / "run.out", env, [directory])
         if proc is None:
@@ -183,7 +191,7 @@ def run_points(plan, todo, output, paths, env, jobs, partitions, ranks, extra, m
             failures.append(directory)
         elif not stopped.exists():      # a run that ended early says nothing about the cost
             # the model predicts the seconds of one core: the point took elapsed x ranks
-            model.learn(predicted, elapsed * ranks)
+            model.learn(point, predicted, elapsed * ranks)
         how = "FAILED" if outcome == "failed" else "done" if not stopped.exists() else \
             f"done (pile stopped: {stopped.read_text().strip()})"
         remaining = sum(model.predict(p, s) for p, s in unfinished.values()) / processes_at_once

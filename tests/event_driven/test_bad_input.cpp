@@ -125,7 +125,39 @@ TEST(BadInput, UnknownTangentialReading)
 
 TEST(BadInput, UnknownCollapseChoice) { refused(with({{"collapse", "continue", ""}}), {"collapse = continue", "stop or tc"}); }
 
-TEST(BadInput, UnknownParameter) { refused(with({{"kn", "1e5", "p.txt line 4"}}), {"unknown parameter 'kn'", "p.txt line 4"}); }
+TEST(BadInput, UnknownParameter) { refused(with({{"k_n", "1e5", "p.txt line 4"}}), {"unknown parameter 'k_n'", "p.txt line 4"}); }
+
+// The sampled outputs (outputs.h) need a directory, the k_n whose tau_c and tau_w params.txt
+// names, and the box's heights for the profile; their parameters mean nothing without them.
+TEST(BadInput, SampledOutputsWithoutWhatTheyNeed)
+{
+  const std::vector<Parameter> box{{"profile_lo", "-1", ""}, {"profile_hi", "60", ""}};
+  auto plus = [&](std::vector<Parameter> p) {
+    p.insert(p.end(), box.begin(), box.end());
+    return with(p);
+  };
+  refused(plus({{"output_interval", "0.1", ""}, {"kn", "1e7", ""}}), {"output_interval = 0.1", "give out"});
+  refused(plus({{"output_interval", "0.1", ""}, {"out", "d", ""}}), {"output_interval = 0.1", "give kn"});
+  refused(with({{"output_interval", "0.1", ""}, {"out", "d", ""}, {"kn", "1e7", ""}}), {"profile_lo"});
+  refused(with({{"average_start", "5", ""}}), {"average_start = 5", "give output_interval"});
+  refused(plus({{"output_interval", "0.1", ""}, {"out", "d", ""}, {"kn", "1e7", ""}, {"average_start", "10", ""}}),
+          {"average_start = 10", "[0, run_time)"});
+  refused(with({{"output_interval", "0.1", ""}, {"out", "d", ""}, {"kn", "1e7", ""}, {"profile_lo", "2", ""},
+                {"profile_hi", "1", ""}}),
+          {"profile_hi = 1", "greater than profile_lo"});
+}
+
+TEST(BadInput, KnOutOfRange)
+{
+  refused(with({{"kn", "0", ""}}), {"kn = 0", "(0, inf)"});
+  refused(with({{"kn", "1e308", ""}}), {"kn = 1e308", "kn is too large"});
+}
+
+TEST(BadInput, TcTimeTauCWithoutKn)
+{
+  refused(with({{"collapse", "tc", ""}, {"tc_time", "tau_c", ""}}), {"tc_time = tau_c", "give kn"});
+  refused(with({{"collapse", "tc", ""}, {"tc_time", "short", ""}}), {"tc_time = short", "not a number"});
+}
 
 TEST(BadInput, ParameterOfTheOtherRule)
 {

@@ -1,6 +1,7 @@
 """Run lmp with the gran/mn plugin on a deck and read back what it printed.
 
-The paths come from ctest's environment (GRANMN_LMP, GRANMN_PLUGIN, GRANMN_MPIEXEC)."""
+The paths come from ctest's environment (GRANMN_LMP, GRANMN_PLUGIN, GRANMN_MPIEXEC), and
+GRANMN_MPI whether that lmp has MPI."""
 import functools
 import os
 import re
@@ -9,12 +10,18 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from mn_law import derived
 
 LMP = os.environ.get("GRANMN_LMP", "lmp")
 PLUGIN = os.environ.get("GRANMN_PLUGIN", "granmnplugin.so")
 MPIEXEC = os.environ.get("GRANMN_MPIEXEC", "mpirun")
+# OFF: a serial LAMMPS (scripts/build.sh --serial): a test that runs more than one rank, or
+# mpirun, is skipped with this reason
+SERIAL = os.environ.get("GRANMN_MPI", "ON").upper() in ("OFF", "NO", "FALSE", "0")
+SERIAL_REASON = "a serial LAMMPS (GRANMN_MPI=OFF, LAMMPS's STUBS MPI) runs on one rank, no mpirun"
+needs_mpi = pytest.mark.skipif(SERIAL, reason=SERIAL_REASON)
 
 # A 2D disk box with LAMMPS's granular essentials; decks add atoms, styles and runs.
 HEADER = """
@@ -80,6 +87,8 @@ def installed_packages():
 
 
 def _command(nprocs):
+    if nprocs > 1 and SERIAL:
+        pytest.skip(f"{nprocs} ranks: {SERIAL_REASON}")
     return ([MPIEXEC, "-np", str(nprocs)] if nprocs > 1 else []) + [LMP]
 
 

@@ -83,8 +83,8 @@ ERRORS = {
              fix="fix floor all wall/gran/mn xcylinder 0.0 NULL"),
         "unknown wall style xcylinder (expected xplane, yplane, zplane or zcylinder; other "
         "shapes: fix wall/gran/region/mn)"),
-    # without comm_modify vel yes the pair style sends the ghosts' v and omega itself, but not
-    # fix deform's shift of them across the periodic boundary (LAMMPS's own communication's)
+    # without comm_modify vel yes the pair style in 2D sends the ghosts' v and omega itself, but
+    # not fix deform's shift of them across the periodic boundary (LAMMPS's own communication's)
     "ghost velocities off under fix deform remap v": (
         deck(comm="comm_modify vel no",
              fix="fix shear all deform 1 x erate 0.01 remap v"),

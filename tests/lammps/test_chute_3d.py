@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from granmn_run import PLUGIN, ROOT, run_scene
+from granmn_run import PLUGIN, ROOT, SERIAL, SERIAL_REASON, run_scene
 
 from postprocess.io import ENERGY_COLUMNS, read_counts, read_profile, read_rows
 from postprocess.observables import point_observables
@@ -307,6 +307,8 @@ def test_killed_chute_resumes_to_the_uninterrupted_counts(tmp_path, uninterrupte
     forces summed in another order; the span ends before the flow's chaos amplifies it). A
     counter's window restarted, a history dropped or a contact counted twice on resuming
     changes the counts."""
+    if max(killed_on, resumed_on) > 1 and SERIAL:
+        pytest.skip(SERIAL_REASON)
     from test_checkpoint import data_lines, kill_mid_chunk
     from test_sweep import sweep
     config = chute_config(tmp_path, CHECKPOINTED)

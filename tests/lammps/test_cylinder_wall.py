@@ -3,6 +3,9 @@ circles), with the boundary rule (2M -> m_i) as the planes: a radial bounce off 
 the plane's e_w; a disk rolling inside a circle swings with the rolling pendulum's period; a
 sphere pressed against the inside of the cylinder rolls down it at 5/7 g_z; the counters
 count its contacts as boundary contacts."""
+import os
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -154,3 +157,76 @@ print "RESULT counters $(f_c[1]) $(f_c[2])"
     print(f"row: vn {vn_start:.5f} -> {vn_end:.5f}, e_w {e_w:.5f}")
     assert vn_start == pytest.approx(-1.0, abs=1e-3)
     assert abs(-vn_end / vn_start - e_w) <= restitution_error_bound(e_w, 1 / 100)
+
+
+# Disks in the annulus between the two cylinders, under gravity, with friction, the contact
+# counters and Adams-Bashforth 2 (so that an atom's row holds each side's u_t, record and
+# touching flag, and previous v_t); HALF steps, then as many again.
+ANNULUS = """boundary f f p
+region box block -6 6 -6 6 -0.5 0.5
+create_box 1 box
+region outer cylinder z 0 0 4.4 -0.5 0.5
+region inner cylinder z 0 0 2.1 -0.5 0.5 side out
+region ring intersect 2 outer inner
+lattice sq 1.0
+create_atoms 1 region ring
+set type 1 diameter 0.9
+set type 1 density 1.2732395447351628
+velocity all create 1.0 87287 loop geom
+"""
+ANNULUS_STYLES = """pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+timestep 0.0002
+fix w all wall/gran/mn zcylinder 1.5 5.0
+fix c all contacts/mn local 200
+fix integrate all nve/ab2
+fix down all gravity 1.0 vector 0 -1 0
+thermo 0
+"""
+ANNULUS_SECOND_HALF = """dump rows all local 200 rows.txt f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6] f_c[7] f_c[8]
+dump_modify rows format float %.17g
+run {half}
+write_dump all custom final.txt id x y vx vy omegaz modify sort id format float %.17g
+"""
+HALF = 10000
+# The annulus at step HALF, written (`run {HALF}` then `write_restart`) by the plugin of restart
+# layout 1 (fix checkpoint/mn's number), which kept an atom's row of fix wall/gran/mn as u_t of
+# both sides, each side's record and touching flag, the previous v_t of both.
+LAYOUT_1_RESTART = Path(__file__).resolve().parent / "restart_files" / "annulus_layout1.restart"
+
+
+def rows_after(run, step):
+    """The lines of the dump blocks of rows.txt after `step` (the block at `step` itself holds
+    the rows of the run before, which a restart file does not carry)."""
+    kept, at, lines = [], None, (run.workdir / "rows.txt").read_text().splitlines()
+    for k, line in enumerate(lines):
+        if k > 0 and lines[k - 1] == "ITEM: TIMESTEP":
+            at = int(line)
+        if at is not None and at > step:
+            kept.append(line)
+    return kept
+
+
+@pytest.mark.skipif(os.environ.get("GRANMN_LAMMPS_GENERATION", "debian12") != "debian12",
+                    reason="the file is of LAMMPS 29 Sep 2021: LAMMPS 4 Feb 2025 and 4 Jul 2026 "
+                           "continue it into another trajectory than the uninterrupted run "
+                           "(which is 2021's), with the plugin that wrote it as with this one")
+def test_a_restart_file_of_the_layout_before_continues_the_run(tmp_path):
+    """A restart file whose wall rows are of restart layout 1 is read into the slots: the run
+    continued from it gives the uninterrupted run's contact rows and final state to the bit.
+    Rows read as if in slots (or not at all) lose the u_t, the records and the touching flags
+    of the contacts held at the restart: their rows' start, peak and the trajectory differ."""
+    uninterrupted = run_lammps(header(2) + ANNULUS + ANNULUS_STYLES + f"run {HALF}\n"
+                               + ANNULUS_SECOND_HALF.format(half=HALF), tmp_path / "whole",
+                               header=False)
+    continued = run_lammps(f"plugin load {PLUGIN}\nread_restart {LAYOUT_1_RESTART}\n"
+                           "neighbor 0.1 bin\ncomm_modify vel yes\n" + ANNULUS_STYLES
+                           + ANNULUS_SECOND_HALF.format(half=HALF), tmp_path / "continued",
+                           header=False)
+    rows = rows_after(uninterrupted, HALF)
+    wall_rows = [line for line in rows if line.split()[1:3] == ["0", "2"]]
+    print(f"{len(wall_rows)} rows of wall contacts after the restart")
+    assert len(wall_rows) > 20
+    assert rows_after(continued, HALF) == rows
+    assert ((continued.workdir / "final.txt").read_text()
+            == (uninterrupted.workdir / "final.txt").read_text())

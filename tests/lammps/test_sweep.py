@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from granmn_run import MPIEXEC, PLUGIN
+from granmn_run import MPIEXEC, PLUGIN, needs_mpi
 
 ROOT = Path(__file__).resolve().parents[2]
 SWEEP = [sys.executable, str(ROOT / "scripts" / "sweep.py")]
@@ -142,6 +142,7 @@ def test_killed_sweep_resumes_without_redoing_finished_points(tmp_path):
             assert (point / name).read_text() == (twin / name).read_text()
 
 
+@needs_mpi
 def test_two_partition_sweep_matches_serial_runs(tmp_path):
     config = tmp_path / "sweep.toml"
     config.write_text(CONFIG.format(run_time=3))
@@ -185,6 +186,7 @@ def same_points_as_serial(serial, other):
     return points
 
 
+@needs_mpi
 def test_ranks_run_each_point_on_that_many_mpi_ranks(tmp_path, chute_points):
     """--ranks 2: each point is `mpirun -np 2 lmp` (one LAMMPS world, the domain cut in two), in
     the directory and with the outputs of the serial run; the progress lines say the ranks."""
@@ -199,6 +201,7 @@ def test_ranks_run_each_point_on_that_many_mpi_ranks(tmp_path, chute_points):
         assert "2 by 1 by 1 MPI processor grid" in (point / "log.lammps").read_text()
 
 
+@needs_mpi
 def test_partitions_of_several_ranks_each(tmp_path, chute_points):
     """--partitions 2 --ranks 2: one `mpirun -np 4 lmp -partition 2x2`, two points of two ranks
     each, with the outputs of the serial run. mpirun must have 4 slots (the test environment
@@ -217,6 +220,7 @@ def test_partitions_of_several_ranks_each(tmp_path, chute_points):
         assert "2 by 1 by 1 MPI processor grid" in (point / "log.lammps").read_text()
 
 
+@needs_mpi
 @pytest.mark.parametrize("mode", ["ranks", "partitions x ranks"])
 def test_more_ranks_than_slots_is_refused_before_any_point_runs(tmp_path, mode):
     """mpirun is asked for the processes one of its runs would start: R, or P x R."""
@@ -230,6 +234,25 @@ def test_more_ranks_than_slots_is_refused_before_any_point_runs(tmp_path, mode):
     assert proc.returncode == 2 and "not enough slots" in proc.stderr, proc.stdout + proc.stderr
     assert " ".join(options) in proc.stderr
     assert not list((tmp_path / "out").glob("*/*/point.json"))
+
+
+@pytest.mark.parametrize("options", [("--ranks", "2"), ("--partitions", "1")])
+def test_mpirun_is_refused_with_a_serial_lammps(tmp_path, options):
+    """A serial lmp (GRANMN_MPI=OFF) under `mpirun -np 2` would be two whole runs of the point
+    writing the same files: refused by its cause. The build here is this one's lmp and plugin
+    with a CMake cache that says serial."""
+    serial = tmp_path / "build-serial"
+    serial.mkdir()
+    for part in ("lammps", "plugin"):
+        (serial / part).symlink_to(BUILD / part)
+    (serial / "CMakeCache.txt").write_text("GRANMN_MPI:BOOL=OFF\n")
+    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\n")
+    proc = subprocess.run(SWEEP + [str(config), "--output", str(tmp_path / "out"), "--build",
+                                   str(serial), *options], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 2, proc.stdout + proc.stderr
+    assert f"{options[0]} runs lmp under mpirun, and {serial} is a serial LAMMPS" in proc.stderr
+    assert not (tmp_path / "out").exists()
 
 
 @pytest.mark.parametrize("ranks", ["0", "-2"])
@@ -279,7 +302,7 @@ BAD_CONFIGS = {
     "a grid of the scene alone": ('[[grid]]\nscene = "single_disk"\n',
                                   "a point of scene single_disk with no variable but the scene"),
     "unknown engine": ('[[grid]]\nscene = "single_disk"\nengine = "yade"\nkn = 2e5\n',
-                       "unknown engine 'yade' (expected one of lammps, liggghts)"),
+                       "unknown engine 'yade' (expected one of lammps, liggghts, event_driven)"),
     "a scene the engine has no deck for": (
         '[[grid]]\nscene = "single_disk"\nengine = "liggghts"\nkn = 2e5\n',
         "unknown scene 'single_disk' of engine liggghts (expected one of chute_3d)"),
@@ -321,7 +344,8 @@ def test_a_nice_runners_runs_stay_nice_in_their_own_sessions(tmp_path):
     niceness."""
     if Path("/proc/sys/kernel/sched_autogroup_enabled").read_text().strip() != "1":
         pytest.skip("this kernel schedules no autogroups")
-    code = ("import os, sys; sys.path.insert(0, sys.argv[1]); os.nice(7);"
+    # the runner's niceness is 7 above the suite's own (which may itself run under nice)
+    code = ("import os, sys; sys.path.insert(0, sys.argv[1]); print(os.nice(7));"
             "from granmn_sweep import processes;"
             "p = processes.start(['sleep', '1'], sys.argv[2], dict(os.environ), []);"
             "print(open(f'/proc/{p.pid}/autogroup').read()); processes.wait(p, [])")
@@ -329,7 +353,8 @@ def test_a_nice_runners_runs_stay_nice_in_their_own_sessions(tmp_path):
                            str(tmp_path / "run.out")], capture_output=True, text=True,
                           timeout=60)
     assert proc.returncode == 0, proc.stderr
-    assert proc.stdout.split()[-1] == "7", proc.stdout
+    runner_niceness = proc.stdout.split()[0]
+    assert runner_niceness != "0" and proc.stdout.split()[-1] == runner_niceness, proc.stdout
 
 
 def test_missing_config_file(tmp_path):
@@ -397,6 +422,7 @@ def test_failed_point_records_its_error_and_the_sweep_goes_on(tmp_path):
     assert (points / "average_start0.5_run_time1" / "done.txt").exists()
 
 
+@needs_mpi
 def test_partition_that_quits_is_a_failed_point_and_its_sibling_is_done(tmp_path):
     """A deck check's `quit 1` in one partition leaves mpirun waiting for ever (that partition
     is in MPI_Finalize, its sibling in MPI_Barrier): the runner must end the batch, record the
@@ -412,6 +438,7 @@ def test_partition_that_quits_is_a_failed_point_and_its_sibling_is_done(tmp_path
     assert not processes_mentioning(output)
 
 
+@needs_mpi
 def test_partition_error_reruns_its_healthy_sibling(tmp_path):
     """A LAMMPS ERROR in one partition aborts the whole mpirun (MPI_Abort): the sibling it took
     down did not fail, and is run again, with a word."""
@@ -428,6 +455,7 @@ def test_partition_error_reruns_its_healthy_sibling(tmp_path):
     assert not processes_mentioning(output)
 
 
+@needs_mpi
 def test_more_partitions_than_slots_is_refused_before_any_point_runs(tmp_path):
     if any(k.startswith("OMPI_MCA_rmaps_base_oversubscribe") for k in os.environ):
         pytest.skip("oversubscription is allowed here")
@@ -563,7 +591,8 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
 
 
 # scripts/granmn_sweep's modules in the order of docs/index.md: each imports only those before it
-RUNNER_MODULES = ["decks", "config", "cost", "processes", "points", "schedule", "cli"]
+RUNNER_MODULES = ["decks", "event_driven", "config", "cost", "processes", "points", "schedule",
+                  "cli"]
 
 
 @pytest.mark.parametrize("module", RUNNER_MODULES)

@@ -258,7 +258,8 @@ def pile_start(tmp_path_factory):
     return run.workdir / "start.data"
 
 
-def pile_run(start, workdir, newton="on", nprocs=1, shuffle=False, mu=0.5, ghost_velocity="yes"):
+def pile_run(start, workdir, newton="on", nprocs=1, shuffle=False, mu=0.5, ghost_velocity="yes",
+             extra=""):
     dt = law(PILE_KN, 0.7, 0.7)["tau_c"] / 50
     shuffle_settings = ("atom_modify sort 7 0.5\nneigh_modify every 1 delay 0 check no\n"
                         if shuffle else "")
@@ -274,6 +275,7 @@ pair_style gran/mn kn {PILE_KN} e 0.7 beta 0.7 mu {mu} wall_types 2
 pair_coeff * *
 timestep {dt!r}
 {PILE_FIXES}
+{extra}
 run {PILE_STEPS // 2}
 write_restart mid.restart
 run {PILE_STEPS // 2}
@@ -325,13 +327,32 @@ def test_pile_the_same_with_newton_ranks_and_shuffled_lists(pile_start, pile_ref
     assert run.result("sums")[:2] == pile_reference.result("sums")[:2]
 
 
-def test_pile_the_same_to_the_bit_when_the_pair_style_sends_ghost_velocities(pile_start, tmp_path):
-    """Without comm_modify vel yes pair_style gran/mn sends the ghosts' v and omega (all
-    three components of each in 3D) itself, here between two ranks: the same pile to the bit."""
-    by_lammps = pile_run(pile_start, tmp_path / "lammps", nprocs=2)
+def test_pile_the_same_to_the_bit_without_comm_modify_vel_yes(pile_start, tmp_path):
+    """Without comm_modify vel yes pair_style gran/mn in 3D turns LAMMPS's own sending of the
+    ghosts' v and omega on, here between two ranks: the same pile to the bit (a ghost whose
+    velocity is not sent keeps zeros or stale values, and its pairs other forces)."""
+    by_deck = pile_run(pile_start, tmp_path / "deck", nprocs=2)
     by_pair = pile_run(pile_start, tmp_path / "pair", nprocs=2, ghost_velocity="no")
-    assert np.array_equal(pile_state(by_pair)[0], pile_state(by_lammps)[0])
-    assert np.array_equal(pile_state(by_pair)[1], pile_state(by_lammps)[1])
+    assert np.array_equal(pile_state(by_pair)[0], pile_state(by_deck)[0])
+    assert np.array_equal(pile_state(by_pair)[1], pile_state(by_deck)[1])
+
+
+def test_sheared_pile_without_vel_yes_takes_the_boxs_rate_across_the_boundary(pile_start,
+                                                                               tmp_path):
+    """fix deform remap v adds the box's rate to the velocity of a ghost across the periodic
+    boundary, in LAMMPS's own ghost communication only: without comm_modify vel yes the 3D
+    pair style turns it on (2D refuses the deck, docs/bad_input.md), so that the pile sheared
+    without vel yes is the one with it to the bit (the style's own sending, without the rate,
+    refused the deck). The same shear with remap none (no rate for the ghosts, nor for the
+    atoms that cross the boundary) ends elsewhere: the rate reaches the pile."""
+    shear = "fix shear all deform 1 x erate 0.05 remap {}"
+    with_vel = pile_run(pile_start, tmp_path / "yes", extra=shear.format("v"))
+    without_vel = pile_run(pile_start, tmp_path / "no", ghost_velocity="no",
+                           extra=shear.format("v"))
+    assert np.array_equal(pile_state(without_vel)[0], pile_state(with_vel)[0])
+    assert np.array_equal(pile_state(without_vel)[1], pile_state(with_vel)[1])
+    rate_left_out = pile_run(pile_start, tmp_path / "none", extra=shear.format("none"))
+    assert not np.array_equal(pile_state(rate_left_out)[0], pile_state(with_vel)[0])
 
 
 def test_pile_continues_across_a_restart(pile_reference, tmp_path):

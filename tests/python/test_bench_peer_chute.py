@@ -70,3 +70,12 @@ def test_a_deck_without_a_line_it_edits_is_refused(missing):
 def test_a_line_twice_is_refused():
     with pytest.raises(SystemExit, match="has 2 lines 'run 100'"):
         peer_chute.deck_text("P.so", SHIPPED + "run 100\n", 50)
+
+
+def test_replicate_follows_the_read_data():
+    """--replicate 2 2 1: the chute of 32000 spheres becomes 128000 before anything else acts
+    on the atoms (issue 46's measurement)."""
+    deck = commands(peer_chute.deck_text("P.so", SHIPPED, 50, replicate=(2, 2, 1)))
+    at = deck.index("read_data data.chute")
+    assert deck[at + 1] == "replicate 2 2 1" and deck.count("replicate 2 2 1") == 1
+    assert "replicate" not in " ".join(commands(peer_chute.deck_text("P.so", SHIPPED, 50)))

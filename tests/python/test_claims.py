@@ -2,6 +2,8 @@
 pass it, studies with the alternative physics its row names do not, at the noise the paper
 presets measured (docs/reproduction.md). The hard-sphere-limit decision has its own pass and
 fail cases in test_limit.py."""
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
@@ -36,7 +38,8 @@ TOO_NOISY = {"collisional-mw": "t_w - N_w tau_w is a small difference of two lar
                                "kn^-0.5 cannot be told from a constant"}
 REALISATIONS = 40
 
-CLAIMS = [c for c in load_claims() if c["measure"] != "limit_decision"]
+CLAIMS = [c for c in load_claims() if c["measure"] not in ("limit_decision", "collapse_fraction")]
+COLLAPSE_CLAIMS = [c for c in load_claims() if c["measure"] == "collapse_fraction"]
 
 
 def study(claim, value, rng, noise=None):
@@ -126,3 +129,53 @@ def test_every_claim_names_its_alternative():
         assert claim["alternative"].strip()
         if claim["measure"] != "limit_decision":
             assert np.isfinite(claim["alternative_value"])
+
+
+def event_driven_runs(e_w, collapsed, runs=8, **params):
+    """Completed pure event-driven runs (collapse = stop) of boundary restitution e_w, the
+    first `collapsed` of them ended by a collapse (stopped_at)."""
+    return [SimpleNamespace(variables={"engine": "event_driven"},
+                            params={"collapse": "stop", "e_w": e_w, **params},
+                            stopped_at=12.5 if k < collapsed else None) for k in range(runs)]
+
+
+def collapse_verdict(claim, fraction, runs=8, **params):
+    e_w = 1.0 if claim["quantity"] == "e_w=1" else 0.9
+    records = event_driven_runs(e_w, round(fraction * runs), runs, **params)
+    (_, value, _, status), = evaluate({}, [claim], completed={claim["scene"]: records})
+    return value, status
+
+
+@pytest.mark.parametrize("claim", COLLAPSE_CLAIMS, ids=[c["id"] for c in COLLAPSE_CLAIMS])
+def test_a_collapse_claim_passes_the_papers_physics_and_not_the_alternative(claim):
+    """The paper's (every run of e_w < 1 collapses; none at e_w = 1) passes; the alternative
+    (half of them) differs from it: the binomial error of 8 runs at 1/2 (0.18) keeps its 2-sigma
+    interval off the accepted value."""
+    assert collapse_verdict(claim, claim["expected"]) == (claim["expected"], "pass")
+    value, status = collapse_verdict(claim, claim["alternative_value"])
+    assert value == claim["alternative_value"] and status == "differs"
+
+
+def test_a_collapse_claim_counts_only_pure_event_driven_runs_of_its_e_w():
+    """Runs under the TC model (collapse = tc), of another e_w, or of LAMMPS are not counted:
+    with only such runs the claim is not evaluated."""
+    claim, = [c for c in COLLAPSE_CLAIMS if c["id"] == "ed-collapse-below-1"]
+    others = event_driven_runs(0.9, 8, collapse="tc") + event_driven_runs(1.0, 8)
+    for r in event_driven_runs(0.9, 8)[:2]:
+        r.variables = {}
+        others.append(r)
+    (_, _, _, status), = evaluate({}, [claim], completed={claim["scene"]: others})
+    assert status.startswith("not evaluated"), status
+
+
+def test_the_papers_soft_claims_leave_event_driven_runs_out():
+    """The paper's claims are on its soft series: event-driven runs of the scene (no contact
+    times: t_c = 0, whose ratios divide by 0) are not part of it, and change no verdict."""
+    rng = np.random.default_rng(7)
+    for claim in CLAIMS:
+        rows = study(claim, claim["expected"], rng)
+        hard = [dict(o, variables={"engine": "event_driven"},
+                     **{k: 0.0 for k in o if k not in ("kn", "label")}) for o in rows]
+        alone = evaluate({claim["scene"]: rows}, [claim])
+        assert evaluate({claim["scene"]: rows + hard}, [claim]) == alone or \
+            all(np.isnan(a[1]) for a in alone), claim["id"]

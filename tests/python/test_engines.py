@@ -7,7 +7,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from postprocess.engines import AGREEMENT_SIGMAS, COMPARED, compare_engines
+from postprocess.engines import AGREEMENT_SIGMAS, COMPARED, HARD_COMPARED, compare_engines, left_out
 
 
 def runs(engine, kn, values, scene="chute_3d"):
@@ -42,3 +42,31 @@ def test_one_run_decides_nothing_and_one_engine_is_no_comparison():
     # runs at other k_n are other comparisons
     two = runs("lammps", 8e5, [1.0, 1.1]) + runs("liggghts", 5e4, [1.0, 1.1])
     assert compare_engines(two) == []
+
+
+def test_against_the_hard_engine_the_rates_are_compared_and_runs_without_averages_are_said():
+    """The event-driven engine has no contact times: E, N_c and N_w are compared. A run
+    without averages (a frictional run whose steady parts the selection left out) is not
+    silently dropped: left_out names it, by scene and engine."""
+    hard = [SimpleNamespace(scene="collisional_flow", variables={"engine": "event_driven"},
+                            observables={"kn": 1e7, **{q: 1.0 for q in HARD_COMPARED}})
+            for _ in range(2)]
+    soft = runs("lammps", 1e7, [1.0, 1.0], scene="collisional_flow")
+    for r in soft:
+        r.observables.update(N_w=1.0)
+    comparisons = compare_engines(hard + soft)
+    assert [c.quantity for c in comparisons] == list(HARD_COMPARED)
+    # the two collision rules of the event-driven engine compare as two engines
+    for rule, group in (("paper", hard), ("soft", hard[:1] * 2)):
+        for r in group:
+            r.params = {"rule": rule}
+    assert {tuple(sorted(c.means)) for c in compare_engines(hard)} == \
+        {("event_driven (paper)", "event_driven (soft)")}
+    empty = SimpleNamespace(scene="frictional_flow", variables={}, observables=None,
+                            point="p", reason="no steady part kept")
+    assert left_out(hard + soft + [empty]) == {("frictional_flow", "lammps"):
+                                               [("p", "no steady part kept")]}
+    # a summary read with another selection than its own: not read, its engine unknown
+    unread = SimpleNamespace(scene="collisional_flow", variables=None, observables=None,
+                             point="q", reason="its steady parts were found with ...")
+    assert list(left_out([unread])) == [("collisional_flow", "unknown: not read")]

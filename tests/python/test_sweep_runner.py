@@ -53,6 +53,13 @@ BAD_SETTINGS = {
     "and left sweep.lock)": (
         (LONG_NAME, []),
         "1 point with a name too long for the filesystem of"),
+    "an event-driven point that sets a deck variable only LAMMPS reads (its integrator)": (
+        ('[[grid]]\nscene = "collisional_flow"\nengine = "event_driven"\nseed = 1\n'
+         'integrator = "ab2"\n', []),
+        "integrator: the event-driven engine does not use it"),
+    "an event-driven point of the 3D chute (the engine is 2D)": (
+        ('[[grid]]\nscene = "chute_3d"\nengine = "event_driven"\nseed = 1\n', []),
+        "unknown scene 'chute_3d' of engine event_driven"),
     "the same with --dry-run (it listed the point)": (
         (LONG_NAME, ["--dry-run"]),
         "1 point with a name too long for the filesystem of"),

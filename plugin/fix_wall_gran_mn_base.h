@@ -1,0 +1,91 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   What the gran/mn wall fixes share, as LAMMPS's fix wall/gran/region derives from fix
+   wall/gran: the law (the fix line's keywords, the rest from pair_style gran/mn), the run's
+   checks, the contact observer, the list of atoms near the wall, the contacts' per-atom slots
+   (granmn::WallSlots), the force on the wall and its global vector. A wall fix (fix
+   wall/gran/mn, fix wall/gran/region/mn) adds its geometry: which elements of the wall (a
+   plane's sides, a region's faces) an atom touches, and which slot holds each contact.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_FIX_WALL_GRAN_MN_BASE_H
+#define LMP_FIX_WALL_GRAN_MN_BASE_H
+
+#include "fix_per_atom_state.h"
+#include "granmn_contact_storage.h"
+#include "granmn_law_arguments.h"
+
+#include "mn_contact_events.h"
+#include "mn_integration.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixWallGranMNBase : public FixPerAtomState, public granmn::HeldContacts {
+ public:
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void pre_neighbor() override;
+  double compute_vector(int) override;
+  // With a contact observer (fix contacts/mn): the wall elements atom i touches (as of this
+  // fix's last evaluation).
+  int contacts_held(int i) const override;
+
+ protected:
+  // Refuses an atom style without the attributes the law needs.
+  FixWallGranMNBase(class LAMMPS *, int, char **);
+  // The law keywords arg[iarg...] (the fix's geometry comes before them), and `nslots` slots
+  // per atom (the wall elements one atom can touch at once); `keyed_slots`: the slots' keys and
+  // the count are kept in every run (a wall that matches its contacts to slots by key), else
+  // only with an observer.
+  void define_law_and_slots(int narg, char **arg, int iarg, int nslots, bool keyed_slots);
+
+  // The geometry's checks at init, before the law's.
+  virtual void init_geometry() = 0;
+  // Whether atom i can touch the wall before the next neighbour-list build: an element of the
+  // wall lies within `reach` (its radius and the skin) of its centre, or the geometry says so
+  // for another reason (an atom outside a region).
+  virtual bool within_reach(int i, double reach) = 0;
+  // A wall that moves: every atom is visited.
+  virtual bool surface_moves() const { return false; }
+
+  // Ends a force evaluation: the force the atoms exerted on the wall (x, y[, z]).
+  void forces_evaluated(const double *on_walls)
+  {
+    for (int c = 0; c < size_vector; c++) wall_force[c] = on_walls[c];
+    force_reduced = false;
+  }
+
+  granmn::LawArguments parsed;    // the law keywords given on the fix line
+  mn::Law law;
+  bool own_law;                   // the law is not exactly the pair style's
+  bool use_history;               // mu > 0: u_t per contact (fixed at the fix's definition)
+  mn::Integrator integrator;      // the run's, found at init
+  double force_per_mass_acceleration;    // 1/ftm2v: mass x acceleration in force units
+  granmn::ContactObserver *observer;     // nullptr unless fix contacts/mn is defined
+  granmn::WallSlots slots;
+  // Where this run keeps each block of the slots (granmn::WallSlots), -1 where it does not
+  int ut_block, record_block, vt_block;
+  // The atoms that can touch the wall before the next neighbour-list build, in index order:
+  // those within the neighbour skin of an element at the last build, and any still holding a
+  // contact's state. Between builds an atom moves less than the skin (LAMMPS's trigger is half
+  // of it) and keeps its index; an atom left out holds no state. A moving wall, or a fix adapt
+  // (a disk can grow into a wall without moving), lists every atom.
+  std::vector<int> near_wall;
+
+ private:
+  bool keyed;
+  bool radii_change;    // a fix adapt is defined
+  double wall_force[3], wall_force_all[3];
+  bool force_reduced;
+
+  void resolve_law();
+  void keep_slots();
+  bool holds_state(int i) const;
+  void list_near_wall();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
