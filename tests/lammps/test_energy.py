@@ -232,7 +232,7 @@ def test_energies_off_change_nothing(tmp_path):
     assert out.returncode != 0 and "out-of-range" in out.output, out.output[-2000:]
 
 
-def pile(tmp_path, dt_over_tau, integrator="verlet", nprocs=1, time=2.0):
+def pile(tmp_path, dt_over_tau, integrator="verlet", nprocs=1, time=2.0, restart_at=None):
     """Five unit disks dropped from heights 1.1 to 2.3 onto a row of bumps (wall_types) under
     unit gravity, moving sideways and spinning, mu = 0.5 (collisions, sliding, lasting contacts
     in the row's dimples): step, the budget kinetic + gravitational + stored + dissipated - work
@@ -261,7 +261,8 @@ fix integrate mobile {integrate}
 fix gravity mobile gravity 1.0 vector 0 -1 0
 fix flat all enforce2d
 fix c all contacts/mn energy yes
-compute spin mobile property/atom omegaz radius
+{{outputs}}"""
+    outputs = f"""compute spin mobile property/atom omegaz radius
 variable rotational atom 0.25*mass*c_spin[2]^2*c_spin[1]^2
 variable height atom mass*y
 compute erot mobile reduce sum v_rotational
@@ -271,11 +272,30 @@ variable budget equal c_etrans+c_erot+c_gravitational+{f['dissipated_normal']}+{
 thermo_style custom step c_etrans
 thermo_modify norm no
 thermo 0
-fix budget all print 1 "$(step) $(v_budget:%.17g) $({f['dissipated_sliding']}:%.17g) $({f['stored']}:%.17g)" file budget.txt screen no
-run {round(time / dt)}
+fix budget all print 1 "$(step) $(v_budget:%.17g) $({f['dissipated_sliding']}:%.17g) $({f['stored']}:%.17g) $({f['contacts_now']})" file budget.txt screen no
 """
-    run = run_lammps(deck, tmp_path, nprocs=nprocs)
-    return run.table("budget.txt")
+    steps = round(time / dt)
+    if restart_at is None:
+        run_lammps(deck.format(outputs=outputs) + f"run {steps}\n", tmp_path, nprocs=nprocs)
+        return np.loadtxt(tmp_path / "budget.txt", ndmin=2)
+    first = round(restart_at / dt)
+    run_lammps(deck.format(outputs=outputs) + f"run {first}\nwrite_restart state.restart\n",
+               tmp_path, nprocs=nprocs)
+    (tmp_path / "budget.txt").rename(tmp_path / "before.txt")
+    run_lammps(f"""
+plugin load {PLUGIN}
+read_restart state.restart
+comm_modify vel yes
+neighbor 0.1 bin
+timestep {dt!r}
+fix integrate mobile {integrate}
+fix gravity mobile gravity 1.0 vector 0 -1 0
+fix flat all enforce2d
+fix c all contacts/mn energy yes
+{outputs}run {steps - first}
+""", tmp_path, nprocs=nprocs, header=False)
+    return np.vstack([np.loadtxt(tmp_path / "before.txt", ndmin=2),
+                      np.loadtxt(tmp_path / "budget.txt", ndmin=2)])
 
 
 @pytest.mark.parametrize("integrator", ["verlet", "ab2"])
@@ -431,3 +451,18 @@ def test_the_budget_of_a_3d_pile(tmp_path):
     ratios = [worst[0] / worst[1], worst[1] / worst[2]]
     print(f"ratios {ratios}")
     assert all(r >= ORDER_RATIO["ab2"][0] for r in ratios), ratios
+
+
+def test_the_budget_across_a_restart_file(tmp_path):
+    """The pile written to a restart file in the middle of its collisions (t = 0.8) and continued
+    from it: the per-atom energies (fix contacts/mn's state) and each contact's energy history
+    (the pair's, with its last force) come back, so that at every step with no contact going
+    on, before the restart and after, the budget is its first value to rounding. A contact's
+    history not restored (its account started afresh) or the per-atom sums lost would leave a
+    jump of the energy dissipated so far, of order 1."""
+    table = pile(tmp_path, 1 / 50, time=2.0, restart_at=0.8)
+    quiet = table[:, 4] == 0
+    after = table[:, 0] > table[np.argmax(table[:, 4] > 0), 0]
+    assert np.any(quiet & after & (np.arange(len(table)) > len(table) // 2))
+    assert table[quiet, 1] == pytest.approx(table[0, 1], rel=1e-12)
+    assert table[-1, 2] != 0.0
