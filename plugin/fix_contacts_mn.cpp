@@ -9,6 +9,7 @@
 #include "error.h"
 #include "force.h"
 #include "granmn_compat.h"
+#include "granmn_run_checks.h"
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
@@ -21,9 +22,11 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using namespace granmn::output;
 
-// fix ID group contacts/mn [local N] [every M]
+// fix ID group contacts/mn [local N] [every M] [energy yes|no]
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
-    FixPerAtomState(lmp, narg, arg), nmax_step(0),
+    FixPerAtomState(lmp, narg, arg), energy(false),
+    integrator(mn::Integrator::VelocityVerlet), row_columns(ROW_COLUMNS), nmax_energy(0),
+    energy_output(nullptr), nmax_step(0),
     fold_ghosts(false), recounting(false), atoms_deleted(false), every(1),
     change_time(0.0), clock_step(0), base_time(0.0), base_step(0), window_start(0.0),
     rows_every(0), row_array(nullptr), nmax_rows(0), rows_handed(0), handed_step(-1),
@@ -43,32 +46,42 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg) :
       if (every <= 0)
         error->all(FLERR, "Illegal fix contacts/mn command: every M needs M > 0 steps");
       iarg += 2;
+    } else if (strcmp(arg[iarg], "energy") == 0) {
+      if (iarg + 2 > narg ||
+          (strcmp(arg[iarg + 1], "yes") != 0 && strcmp(arg[iarg + 1], "no") != 0))
+        error->all(FLERR, "Illegal fix contacts/mn command: energy needs yes or no");
+      energy = strcmp(arg[iarg + 1], "yes") == 0;
+      iarg += 2;
     } else {
       error->all(FLERR, "Illegal fix contacts/mn command: unknown keyword {}", arg[iarg]);
     }
   }
+  books_energy = energy;
   // end_of_step at every step: on one process it has work only where an output reads the fix
   // or after a deletion; on more it compares every step's tallies with the atoms' contacts
   nevery = 1;
   peratom_flag = 1;
-  size_peratom_cols = COUNTERS;
+  size_peratom_cols = energy ? COUNTERS + ENERGY_SUMS : COUNTERS;
   peratom_freq = 1;
   vector_flag = 1;
-  size_vector = VECTOR_SIZE;
+  size_vector = energy ? VECTOR_SIZE_WITH_ENERGY : VECTOR_SIZE;
   global_freq = 1;
   extvector = -1;
   // sums and the group's size are extensive, the window's length is not
   extlist = new int[size_vector];
   for (int k = 0; k < size_vector; k++) extlist[k] = k != WINDOW;
+  if (energy) row_columns = ROW_COLUMNS_WITH_ENERGY;
   if (rows_every) {
     local_flag = 1;
-    size_local_cols = ROW_COLUMNS;
+    size_local_cols = row_columns;
     size_local_rows = 0;
     local_freq = rows_every;
   }
   restart_global = 1;
-  comm_reverse = 4;
-  register_state(STATE_COLS);
+  comm_reverse = energy ? 4 + granmn::STEP_ENERGIES : 4;
+  register_state(energy ? (int) STATE_COLS_WITH_ENERGY : (int) STATE_COLS);
+  // register_state grew the state only (a constructor calls no override): the energies' output
+  if (energy) FixContactsMN::grow_arrays(atom->nmax);
   clock_step = base_step = update->ntimestep;
   now = base_time = update->ntimestep * update->dt;
   window_start = now;
@@ -81,6 +94,8 @@ FixContactsMN::~FixContactsMN()
   memory->destroy(step.begun_particle);
   memory->destroy(step.begun_boundary);
   memory->destroy(row_array);
+  memory->destroy(energy_step.values);
+  memory->destroy(energy_output);
   delete[] extlist;
 }
 
@@ -100,6 +115,16 @@ void FixContactsMN::init()
   if (!force->pair_match("gran/mn", 1) && holders.empty())
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");
+  // the wall fixes do not book their contacts' energies yet: a budget without them would not
+  // close, and silently
+  if (energy && !holders.empty())
+    error->all(FLERR, "Fix contacts/mn energy yes: fix {} ({}) does not book the energies of "
+                      "its contacts yet (only pair_style gran/mn's contacts, bumps included, "
+                      "do): the energies and the budget would miss the walls' share; use bumps "
+                      "(pair_style gran/mn wall_types) or energy no",
+               dynamic_cast<const Fix *>(holders.front())->id,
+               dynamic_cast<const Fix *>(holders.front())->style);
+  integrator = granmn::integrator_in_use(modify);
   fold_ghosts = comm->nprocs == 1 && atom->map_style != Atom::MAP_NONE;
   set_recounting(recounting);
   // during a run, the per-atom output is current every `every` steps (between runs always)
@@ -122,7 +147,7 @@ void FixContactsMN::advance_clock()
 void FixContactsMN::drop_handed_rows()
 {
   if (rows_handed && update->ntimestep != handed_step) {
-    rows.erase(rows.begin(), rows.begin() + (size_t) rows_handed * ROW_COLUMNS);
+    rows.erase(rows.begin(), rows.begin() + (size_t) rows_handed * row_columns);
     rows_handed = 0;
   }
 }
@@ -158,6 +183,58 @@ void FixContactsMN::zero_step_arrays()
     step.particle[i] = step.boundary[i] = step.begun_particle[i] = step.begun_boundary[i] = 0.0;
 }
 
+// This evaluation's energies, zero before the publishers book them (energy yes).
+void FixContactsMN::zero_energy_step()
+{
+  if (!energy) return;
+  if (atom->nmax > nmax_energy) {
+    nmax_energy = atom->nmax;
+    memory->destroy(energy_step.values);
+    memory->create(energy_step.values, (bigint) nmax_energy * granmn::STEP_ENERGIES,
+                   "contacts/mn:energy_step");
+  }
+  const bigint n = (bigint) (atom->nlocal + atom->nghost) * granmn::STEP_ENERGIES;
+  for (bigint k = 0; k < n; k++) energy_step.values[k] = 0.0;
+}
+
+// The evaluation's energies into each owned atom's state (a ghost's share home first: folded
+// on one process, brought by collect's reverse communication on more). At a run's setup the
+// forces are evaluated again for the same step: nothing is taken, nothing is in flight.
+void FixContactsMN::absorb_energies(bool setup)
+{
+  if (!energy) return;
+  using namespace granmn;
+  double *values = energy_step.values;
+  const int nlocal = atom->nlocal;
+  if (fold_ghosts && force->newton_pair)
+    for (int g = nlocal; g < nlocal + atom->nghost; g++) {
+      const int k = home(g);
+      if (k < 0 || k == g) continue;
+      for (int c = 0; c < STEP_ENERGIES; c++)
+        values[STEP_ENERGIES * k + c] += values[STEP_ENERGIES * g + c];
+    }
+  const double dt = update->dt;
+  for (int i = 0; i < nlocal; i++) {
+    const double *v = values + STEP_ENERGIES * i;
+    double *s = state[i];
+    s[TAKEN_NORMAL] += v[STEP_TAKEN_NORMAL];
+    s[TAKEN_TANGENTIAL] += v[STEP_TAKEN_TANGENTIAL];
+    s[SLID] += v[STEP_DISSIPATED_SLIDING];
+    s[STORED_NORMAL] = v[STEP_STORED_NORMAL];
+    s[STORED_TANGENTIAL] = v[STEP_STORED_TANGENTIAL];
+    s[IN_FLIGHT] = setup ? 0.0 : mn::work_in_flight(integrator, dt, s[POWER], v[STEP_POWER]);
+    s[POWER] = v[STEP_POWER];
+  }
+}
+
+void FixContactsMN::atom_energies(const double *s, double *sums)
+{
+  sums[DISSIPATED_NORMAL] = s[TAKEN_NORMAL] - s[STORED_NORMAL];
+  sums[DISSIPATED_SLIDING] = s[SLID];
+  sums[DISSIPATED_STICKING] = s[TAKEN_TANGENTIAL] - s[STORED_TANGENTIAL] - s[SLID];
+  sums[STORED] = s[STORED_NORMAL] + s[STORED_TANGENTIAL];
+}
+
 // No time passes between runs: the step a run starts at is the clock's, also after
 // reset_timestep moved it (either way). On one process the setup's pair contacts are tallied
 // as well, to be checked against the atoms' contacts (recount).
@@ -167,6 +244,7 @@ void FixContactsMN::setup_pre_force(int)
   base_time = now;
   advance_clock();
   zero_step_arrays();
+  zero_energy_step();
   set_recounting(fold_ghosts);
   atoms_deleted = false;
   drop_handed_rows();
@@ -179,6 +257,7 @@ void FixContactsMN::pre_force(int)
 {
   advance_clock();
   if (!fold_ghosts || atoms_deleted) zero_step_arrays();
+  zero_energy_step();
   set_recounting(atoms_deleted);
   atoms_deleted = false;
   drop_handed_rows();
@@ -240,11 +319,12 @@ void FixContactsMN::boundary_touching(int i, bool began)
 void FixContactsMN::boundary_ended(int i, const double *record, double vn)
 {
   change(i, 0.0, -1.0);
-  if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, KIND_BOUNDARY, vn);
+  if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, KIND_BOUNDARY, vn, nullptr);
 }
 
 void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary,
-                               const double *record, double vn, bool write_row, bool tally_j)
+                               const double *record, double vn, bool write_row, bool tally_j,
+                               const mn::ContactEnergy *energy)
 {
   if (fold_ghosts) {
     change(i, -(double) !j_is_boundary, -(double) j_is_boundary);
@@ -257,15 +337,18 @@ void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_bound
   if (i_is_boundary) std::swap(i, j);
   const bool boundary = i_is_boundary || j_is_boundary;
   const bool swap = !boundary && tag[j] < tag[i];
-  ended(record, tag[swap ? j : i], tag[swap ? i : j], boundary ? KIND_BOUNDARY : KIND_DISKS, vn);
+  ended(record, tag[swap ? j : i], tag[swap ? i : j], boundary ? KIND_BOUNDARY : KIND_DISKS, vn,
+        energy);
 }
 
-// A completed contact's row: IDs, kind, start, duration, v_n in and out, peak overlap.
+// A completed contact's row: IDs, kind, start, duration, v_n in and out, peak overlap; with
+// energy yes what it dissipated, in all and while sliding (init refuses the publishers that do
+// not book it).
 void FixContactsMN::ended(const double *record, double tag_i, double tag_j, double kind,
-                          double vn_end)
+                          double vn_end, const mn::ContactEnergy *energy)
 {
   if (!rows_every) return;
-  double row[ROW_COLUMNS];
+  double row[ROW_COLUMNS_WITH_ENERGY];
   row[ROW_ID_I] = tag_i;
   row[ROW_ID_J] = tag_j;
   row[ROW_KIND] = kind;
@@ -274,7 +357,11 @@ void FixContactsMN::ended(const double *record, double tag_i, double tag_j, doub
   row[ROW_VN_START] = record[granmn::RECORD_VN_START];
   row[ROW_VN_END] = vn_end;
   row[ROW_PEAK] = record[granmn::RECORD_PEAK];
-  rows.insert(rows.end(), row, row + ROW_COLUMNS);
+  if (energy) {
+    row[ROW_DISSIPATED] = energy->dissipated();
+    row[ROW_DISSIPATED_SLIDING] = energy->dissipated_sliding;
+  }
+  rows.insert(rows.end(), row, row + row_columns);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -332,6 +419,15 @@ void FixContactsMN::update_outputs()
     s[TIME_BOUNDARY] = s[ACCUMULATED_BOUNDARY] + (boundary > 0.0 ? elapsed : 0.0);
     s[TIME_MULTIPLE] = s[ACCUMULATED_MULTIPLE] + (particle + boundary >= 2.0 ? elapsed : 0.0);
   }
+  if (!energy) return;
+  for (int i = 0; i < atom->nlocal; i++) {
+    double *out = energy_output[i];
+    for (int c = 0; c < COUNTERS; c++) out[c] = state[i][c];
+    if (mask[i] & groupbit)
+      atom_energies(state[i], out + COUNTERS);
+    else
+      for (int c = 0; c < ENERGY_SUMS; c++) out[COUNTERS + c] = 0.0;
+  }
 }
 
 // Contacts that exist when a run starts are counted once, at its setup (the global vector
@@ -342,6 +438,7 @@ void FixContactsMN::setup(int)
     recount();
   else
     collect();
+  absorb_energies(true);
   update_outputs();
   // a run that starts at the step the last one ended at, a multiple of N, finds the rows of
   // that step handed and written (a dump writes a step once): the rows of contacts ended at
@@ -357,6 +454,7 @@ void FixContactsMN::end_of_step()
 {
   if (!fold_ghosts) collect();
   if (recounting) recount();
+  absorb_energies(false);
   if (update->ntimestep % every == 0) update_outputs();
   if (rows_every && update->ntimestep % rows_every == 0) publish_rows(true);
   vector_step = -1;
@@ -372,14 +470,14 @@ void FixContactsMN::post_run()
 void FixContactsMN::publish_rows(bool hand)
 {
   if (!rows_every) return;
-  const int n = rows.size() / ROW_COLUMNS;
+  const int n = rows.size() / row_columns;
   if (n > nmax_rows) {
     nmax_rows = n;
     memory->destroy(row_array);
-    memory->create(row_array, nmax_rows, ROW_COLUMNS, "contacts/mn:rows");
+    memory->create(row_array, nmax_rows, row_columns, "contacts/mn:rows");
   }
   for (int r = 0; r < n; r++)
-    for (int c = 0; c < ROW_COLUMNS; c++) row_array[r][c] = rows[ROW_COLUMNS * r + c];
+    for (int c = 0; c < row_columns; c++) row_array[r][c] = rows[row_columns * r + c];
   array_local = row_array;
   size_local_rows = n;
   // dump local N writes them at this step
@@ -397,6 +495,9 @@ int FixContactsMN::pack_reverse_comm(int n, int first, double *buf)
     buf[m++] = step.boundary[i];
     buf[m++] = step.begun_particle[i];
     buf[m++] = step.begun_boundary[i];
+    if (energy)
+      for (int c = 0; c < granmn::STEP_ENERGIES; c++)
+        buf[m++] = energy_step.values[granmn::STEP_ENERGIES * i + c];
   }
   return m;
 }
@@ -410,6 +511,9 @@ void FixContactsMN::unpack_reverse_comm(int n, int *list, double *buf)
     step.boundary[j] += buf[m++];
     step.begun_particle[j] += buf[m++];
     step.begun_boundary[j] += buf[m++];
+    if (energy)
+      for (int c = 0; c < granmn::STEP_ENERGIES; c++)
+        energy_step.values[granmn::STEP_ENERGIES * j + c] += buf[m++];
   }
 }
 
@@ -453,6 +557,17 @@ double FixContactsMN::compute_vector(int n)
     MPI_Allreduce(local, vector_sums, COUNTERS, MPI_DOUBLE, MPI_SUM, world);
     vector_sums[WINDOW] = now - window_start;
     vector_sums[GROUP_SIZE] = group->count(igroup);
+    if (energy) {
+      double energies[ENERGY_SUMS + 1] = {0.0}, atom_sums[ENERGY_SUMS];
+      for (int i = 0; i < atom->nlocal; i++) {
+        if (!(mask[i] & groupbit)) continue;
+        atom_energies(state[i], atom_sums);
+        for (int c = 0; c < ENERGY_SUMS; c++) energies[c] += atom_sums[c];
+        energies[ENERGY_SUMS] += state[i][IN_FLIGHT];
+      }
+      MPI_Allreduce(energies, vector_sums + VECTOR_SIZE, ENERGY_SUMS + 1, MPI_DOUBLE, MPI_SUM,
+                    world);
+    }
     vector_step = update->ntimestep;
   }
   return vector_sums[n];
@@ -463,14 +578,23 @@ double FixContactsMN::compute_vector(int n)
 double FixContactsMN::memory_usage()
 {
   return FixPerAtomState::memory_usage() + 4.0 * nmax_step * sizeof(double) +
-      (double) rows.capacity() * sizeof(double);
+      (double) rows.capacity() * sizeof(double) +
+      (energy ? (double) nmax_energy * granmn::STEP_ENERGIES * sizeof(double) +
+               (double) atom->nmax * (COUNTERS + ENERGY_SUMS) * sizeof(double)
+              : 0.0);
 }
 
-// The per-atom output is the first COUNTERS columns of the state.
+// The per-atom output is the first COUNTERS columns of the state; with energy yes a copy of
+// them followed by the energies, written where the counters are (update_outputs).
 void FixContactsMN::grow_arrays(int nmax)
 {
   FixPerAtomState::grow_arrays(nmax);
-  array_atom = state;
+  if (energy) {
+    memory->grow(energy_output, nmax, COUNTERS + ENERGY_SUMS, "contacts/mn:energy_output");
+    array_atom = energy_output;
+  } else {
+    array_atom = state;
+  }
 }
 
 // The first value marks the layout, STATE_LAYOUT: the clock, then the rows not yet dumped,
@@ -478,14 +602,17 @@ void FixContactsMN::grow_arrays(int nmax)
 // of N); the per-atom state holds what the times are made of. Versions of the plugin before
 // 1 Dec 2026 (commit b76d7a4) wrote other layouts (a step >= 0, kept contact start steps;
 // -2, the clock alone; -3, clock and rows; the per-atom state of the output columns only):
-// refused, with the date, rather than converted.
+// refused, with the date, rather than converted. With energy yes the layout is
+// STATE_LAYOUT_WITH_ENERGY: the rows have the energy columns (the per-atom state its columns:
+// LAMMPS's per-atom restart records say how many).
 static constexpr double STATE_LAYOUT = -4.0;
+static constexpr double STATE_LAYOUT_WITH_ENERGY = -5.0;
 static constexpr int CLOCK_VALUES = 4;
 
 void FixContactsMN::write_restart(FILE *fp)
 {
   // rows handed to a dump are in its file already
-  const int skip = rows_handed * ROW_COLUMNS;
+  const int skip = rows_handed * row_columns;
   // not const: a serial LAMMPS's STUBS mpi.h declares the send buffers `void *`
   int mine = (int) rows.size() - skip;
   std::vector<int> counts(comm->nprocs), offsets(comm->nprocs, 0);
@@ -499,11 +626,11 @@ void FixContactsMN::write_restart(FILE *fp)
   MPI_Gatherv(rows.data() + skip, mine, MPI_DOUBLE, values.data() + CLOCK_VALUES + 1,
               counts.data(), offsets.data(), MPI_DOUBLE, 0, world);
   if (comm->me == 0) {
-    values[0] = STATE_LAYOUT;
+    values[0] = energy ? STATE_LAYOUT_WITH_ENERGY : STATE_LAYOUT;
     values[1] = now;
     values[2] = (double) clock_step;
     values[3] = window_start;
-    values[4] = total / ROW_COLUMNS;
+    values[4] = total / row_columns;
     const int size = values.size() * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
     fwrite(values.data(), sizeof(double), values.size(), fp);
@@ -514,7 +641,7 @@ void FixContactsMN::restart(char *buf)
 {
   double layout;
   memcpy(&layout, buf, sizeof(double));
-  if (layout != STATE_LAYOUT)
+  if (layout != STATE_LAYOUT && layout != STATE_LAYOUT_WITH_ENERGY)
     error->all(FLERR, "Fix contacts/mn: the restart file was written by a version of the "
                       "gran/mn plugin before 1 Dec 2026 (its counters record begins with {:g}, "
                       "this version's with {:g}), whose counters this version does not read: "
@@ -529,8 +656,15 @@ void FixContactsMN::restart(char *buf)
   // this run asks for rows
   rows.clear();
   rows_handed = 0;
+  const bool energy_rows = layout == STATE_LAYOUT_WITH_ENERGY;
+  if (rows_every && clock[CLOCK_VALUES] > 0 && energy_rows != energy)
+    error->all(FLERR, "Fix contacts/mn: the restart file holds {:g} contact rows not yet dumped "
+                      "{} the energy columns; this fix has energy {}: define it with energy {} "
+                      "as in the run that wrote the file",
+               clock[CLOCK_VALUES], energy_rows ? "with" : "without", energy ? "yes" : "no",
+               energy_rows ? "yes" : "no");
   if (comm->me == 0 && rows_every) {
-    rows.resize((size_t) clock[CLOCK_VALUES] * ROW_COLUMNS);
+    rows.resize((size_t) clock[CLOCK_VALUES] * row_columns);
     memcpy(rows.data(), buf + sizeof(clock), rows.size() * sizeof(double));
   }
 }

@@ -47,7 +47,8 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, bool began,
                      bool tally_j) override;
   void pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary, const double *record,
-                  double vn, bool write_row, bool tally_j) override;
+                  double vn, bool write_row, bool tally_j,
+                  const mn::ContactEnergy *energy) override;
   void boundary_touching(int i, bool began) override;
   void boundary_ended(int i, const double *record, double vn) override;
 
@@ -62,6 +63,18 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   // the sums (the output is a copy).
   enum { ACCUMULATED_PARTICLE = granmn::output::COUNTERS, ACCUMULATED_BOUNDARY,
          ACCUMULATED_MULTIPLE, SINCE, CONTACTS_PARTICLE, CONTACTS_BOUNDARY, STATE_COLS };
+  // With energy yes, the state goes on with the atom's share of its contacts' energies: taken
+  // (normal, tangential) and lost while sliding since the fix was defined (fix_modify reset
+  // leaves them: they are the budget's), stored in its contacts' springs and the power of
+  // their forces at the last evaluation, and the budget's work in flight (mn_energy.h).
+  enum { TAKEN_NORMAL = STATE_COLS, TAKEN_TANGENTIAL, SLID, STORED_NORMAL, STORED_TANGENTIAL,
+         POWER, IN_FLIGHT, STATE_COLS_WITH_ENERGY };
+  bool energy;                    // energy yes
+  mn::Integrator integrator;      // the run's (the work in flight under Adams-Bashforth 2)
+  int row_columns;                // a row's columns: ROW_COLUMNS, more with energy yes
+  int nmax_energy;
+  double **energy_output;         // the per-atom output with energy yes: the counters, then
+                                  // the energies (granmn::output::EnergySum)
   // Tallies of this step's pair contacts (owned + ghost), where contacts are counted anew at
   // a step: at every step on more than one process or without an atom map (brought home by
   // reverse communication, then compared with each atom's contacts), at a run's setup on one.
@@ -100,7 +113,7 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   // they go at the next step, whatever its number (reset_timestep may move it either way).
   int rows_handed;
   bigint handed_step;
-  double vector_sums[granmn::output::VECTOR_SIZE];
+  double vector_sums[granmn::output::VECTOR_SIZE_WITH_ENERGY];
   bigint vector_step;
 
   void set_recounting(bool);
@@ -108,10 +121,14 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   void drop_handed_rows();
   int home(int j) const { return j < atom->nlocal ? j : atom->map(atom->tag[j]); }
   void change(int i, double particle, double boundary);
-  void ended(const double *record, double tag_i, double tag_j, double kind, double vn_end);
+  void ended(const double *record, double tag_i, double tag_j, double kind, double vn_end,
+             const mn::ContactEnergy *energy);
   void collect();
   void recount();
   void update_outputs();
+  void zero_energy_step();
+  void absorb_energies(bool setup);
+  static void atom_energies(const double *state, double *sums);
   void grow_step_arrays();
   void zero_step_arrays();
   // the rows to dump local; `hand`: a dump writes them at this step if it is a multiple of N

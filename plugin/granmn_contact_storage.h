@@ -47,13 +47,15 @@ struct ContactLayout {
   int record = -1;         // the observer's record (RECORD_SIZE values)
   int touching = -1;       // 1 while in contact (a plane wall's side: its slot's key; a pair
                            // has its neighbour flag)
+  int energy = -1;         // the contact's energy history (mn::energy_history_size values),
+                           // where the observer books energies
   int size = 0;            // values the pair style's neighbour history holds per contact
 };
 
 // A contact's neighbour history: its parts one after the other, only those kept (restart files
-// hold the history in this order).
+// hold the history in this order); energy_size: the energy history's values (0: none kept).
 inline ContactLayout pair_history_layout(bool friction, bool adams_bashforth, bool observed,
-                                         int ut_width = 1)
+                                         int ut_width = 1, int energy_size = 0)
 {
   ContactLayout layout;
   layout.ut_width = ut_width;
@@ -65,6 +67,7 @@ inline ContactLayout pair_history_layout(bool friction, bool adams_bashforth, bo
   layout.ut = take(friction, layout.ut_width);
   layout.vt_previous = take(friction && adams_bashforth, layout.ut_width);
   layout.record = take(observed, RECORD_SIZE);
+  layout.energy = take(energy_size > 0, energy_size);
   return layout;
 }
 

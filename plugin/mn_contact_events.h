@@ -32,6 +32,8 @@
 #ifndef GRANMN_CONTACT_EVENTS_H
 #define GRANMN_CONTACT_EVENTS_H
 
+#include "mn_energy.h"
+
 namespace granmn {
 
 // What the observer keeps of a contact, its record: RECORD_SIZE values that the publisher
@@ -50,6 +52,28 @@ struct ContactTallies {
   {
     (with_boundary ? boundary : particle)[i] += 1.0;
     if (began) (with_boundary ? begun_boundary : begun_particle)[i] += 1.0;
+  }
+};
+
+// An evaluation's energies per atom (owned and ghost atoms), where the observer books them
+// (fix contacts/mn energy yes): the energy the contacts took (normal, tangential) and lost while
+// sliding at this evaluation, what their springs store now, and the power of their forces
+// (mn::EnergyStep). A contact's share of each goes to each of its atoms (share_i + share_j = 1).
+enum StepEnergy { STEP_TAKEN_NORMAL, STEP_TAKEN_TANGENTIAL, STEP_DISSIPATED_SLIDING,
+                  STEP_STORED_NORMAL, STEP_STORED_TANGENTIAL, STEP_POWER, STEP_ENERGIES };
+
+struct EnergyTallies {
+  double *values = nullptr;    // STEP_ENERGIES per atom
+
+  void add(int i, double share, const mn::EnergyStep &booked, const mn::StoredEnergy &stored) const
+  {
+    double *v = values + STEP_ENERGIES * i;
+    v[STEP_TAKEN_NORMAL] += share * booked.taken_normal;
+    v[STEP_TAKEN_TANGENTIAL] += share * booked.taken_tangential;
+    v[STEP_DISSIPATED_SLIDING] += share * booked.dissipated_sliding;
+    v[STEP_STORED_NORMAL] += share * stored.normal;
+    v[STEP_STORED_TANGENTIAL] += share * stored.tangential;
+    v[STEP_POWER] += share * booked.power;
   }
 };
 
@@ -75,14 +99,23 @@ class ContactObserver {
   // a touching pair's shares to (inline), which is all pair_touching would do; else nullptr.
   const ContactTallies *pair_tallies() const { return tallies_every_pair ? &step : nullptr; }
 
+  // Where the observer books the contacts' energies (fix contacts/mn energy yes), the tallies a
+  // publisher adds each contact's booking to at every evaluation (inline; a ghost's share as
+  // pair_touching's tally_j says); else nullptr: the publisher keeps no energy history and
+  // books nothing.
+  const EnergyTallies *energy_tallies() const { return books_energy ? &energy_step : nullptr; }
+
   // Two atoms i, j (local; j may be a ghost) touch, after update_record; `*_is_boundary`: the
   // atom is an immobile bump; `tally_j`: j's share is counted here (owned, or newton on).
   virtual void pair_touching(int i, int j, bool j_is_boundary, bool i_is_boundary, bool began,
                              bool tally_j) = 0;
   // The pair stopped touching (found at the first evaluation after); `write_row`: this
-  // process writes the contact's row (a pair stored on two processes has one row).
+  // process writes the contact's row (a pair stored on two processes has one row);
+  // `energy`: what it dissipated, in all and while sliding, where energies are booked (else
+  // nullptr).
   virtual void pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary,
-                          const double *record, double vn, bool write_row, bool tally_j) = 0;
+                          const double *record, double vn, bool write_row, bool tally_j,
+                          const mn::ContactEnergy *energy) = 0;
   // Local atom i touches a boundary element a fix holds (a wall side), as pair_touching.
   virtual void boundary_touching(int i, bool began) = 0;
   // ... and stopped touching it.
@@ -94,6 +127,8 @@ class ContactObserver {
   bool every_contact = true;    // reports_every_contact()
   ContactTallies step;          // this evaluation's contacts, where they are tallied
   bool tallies_every_pair = false;    // pair_tallies()
+  EnergyTallies energy_step;          // this evaluation's energies, where they are booked
+  bool books_energy = false;          // energy_tallies()
 };
 
 // An observer that counts every evaluation's contacts anew and keeps no per-contact record

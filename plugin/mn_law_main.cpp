@@ -20,8 +20,13 @@ static void print_columns()
   for (const char *name : COUNTER_NAMES) std::printf(" %s", name);
   std::printf("\nvector_extras");
   for (const char *name : EXTRA_NAMES) std::printf(" %s", name);
+  std::printf("\nenergy_sums");
+  for (const char *name : ENERGY_NAMES) std::printf(" %s", name);
+  std::printf(" %s", IN_FLIGHT_NAME);
   std::printf("\nrows");
   for (const char *name : ROW_NAMES) std::printf(" %s", name);
+  std::printf("\nrow_energy");
+  for (const char *name : ROW_ENERGY_NAMES) std::printf(" %s", name);
   std::printf("\nkinds");
   for (const KindName &kind : KINDS) std::printf(" %s %d", kind.name, kind.code);
   std::printf("\npublished");

@@ -31,6 +31,26 @@ enum RowColumn { ROW_ID_I, ROW_ID_J, ROW_KIND, ROW_START, ROW_DURATION, ROW_VN_S
 constexpr const char *ROW_NAMES[ROW_COLUMNS] = {"id_i", "id_j", "kind", "start", "duration",
                                                 "vn_start", "vn_end", "peak"};
 
+// With `energy yes` (fix contacts/mn): where the contacts' energy went (mn_energy.h,
+// docs/model.md section 9), per atom after the counters (each contact's half to each of its
+// disks, all of it to the disk against a bump) and summed in the global vector after its
+// extras: dissipated in the normal force, in the tangential force while sticking and while
+// sliding, and stored in the springs now. The global vector ends with the work in flight, which
+// an Adams-Bashforth 2 run's budget counts (mn::work_in_flight; 0 under velocity Verlet).
+enum EnergySum { DISSIPATED_NORMAL, DISSIPATED_STICKING, DISSIPATED_SLIDING, STORED,
+                 ENERGY_SUMS };
+constexpr const char *ENERGY_NAMES[ENERGY_SUMS] = {"dissipated_normal", "dissipated_sticking",
+                                                   "dissipated_sliding", "stored"};
+constexpr int VECTOR_SIZE_WITH_ENERGY = VECTOR_SIZE + ENERGY_SUMS + 1;
+constexpr const char *IN_FLIGHT_NAME = "work_in_flight";
+
+// A row's columns after ROW_COLUMNS with `energy yes`: what the contact dissipated in all, and
+// of it while sliding.
+enum RowEnergyColumn { ROW_DISSIPATED = ROW_COLUMNS, ROW_DISSIPATED_SLIDING,
+                       ROW_COLUMNS_WITH_ENERGY };
+constexpr const char *ROW_ENERGY_NAMES[ROW_COLUMNS_WITH_ENERGY - ROW_COLUMNS] = {
+    "dissipated", "dissipated_sliding"};
+
 // The codes of a row's kind column: between two disks, of a disk with the boundary.
 enum ContactKind { KIND_DISKS = 1, KIND_BOUNDARY = 2 };
 struct KindName {

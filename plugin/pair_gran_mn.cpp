@@ -90,11 +90,42 @@ template <int DIM> static inline double dot(const double *d, const double *e)
   return DIM == 3 ? d[0] * e[0] + d[1] * e[1] + d[2] * e[2] : d[0] * e[0] + d[1] * e[1];
 }
 
+// |u_t|^2 of a contact's history (0 where the law keeps no u_t).
+template <int DIM> static inline double ut_squared(const double *ut)
+{
+  return !ut ? 0.0 : DIM == 3 ? ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2] : ut[0] * ut[0];
+}
+
+// mn::book_ended_contact_energy in the dimension of the kinematics (3D: velocity Verlet).
+static inline mn::EnergyStep book_ended_energy(const mn::Law &law, double scale,
+                                               const mn::Kinematics &k, const double lever[3],
+                                               double ut2, double dt, mn::Integrator integrator,
+                                               double *energy)
+{
+  return mn::book_ended_contact_energy(law, scale, k, lever[2], ut2, dt, integrator, energy);
+}
+
+static inline mn::EnergyStep book_ended_energy(const mn::Law &law, double scale,
+                                               const mn::Kinematics3 &k, const double lever[3],
+                                               double ut2, double dt, mn::Integrator,
+                                               double *energy)
+{
+  return mn::book_ended_contact_energy(law, scale, k, lever, ut2, dt, energy);
+}
+
+// The share of a contact's energies booked to atom i (its partner has the rest): half to each
+// of two disks, all of it to the disk against a bump.
+static inline double energy_share(bool i_wall, bool j_wall)
+{
+  return i_wall ? 0.0 : j_wall ? 1.0 : 0.5;
+}
+
 // A contact just ended: its atoms have one contact less; its row goes to the observer, once even
-// if both processes hold the pair. d = x_i - x_j.
+// if both processes hold the pair. d = x_i - x_j; energy: what it dissipated (nullptr where
+// energies are not booked).
 template <int DIM>
 void PairGranMN::report_end(int i, int j, const double *d, double rsq, const double *state,
-                            const tagint *tag)
+                            const tagint *tag, const mn::ContactEnergy *energy)
 {
   double **v = atom->v;
   const double dv[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
@@ -102,7 +133,7 @@ void PairGranMN::report_end(int i, int j, const double *d, double rsq, const dou
   const bool tally_j = force->newton_pair || j < atom->nlocal;
   const bool record = tally_j || tag[i] < tag[j];
   observer->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
-                       record, tally_j);
+                       record, tally_j, energy);
 }
 
 // Two disks whose centres came within the larger radius: the law has lost them (their normal
@@ -177,21 +208,31 @@ void PairGranMN::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
   if (domain->dimension == 2 && neighbor->ago == 0) check_in_plane();
   const bool friction = layout.ut >= 0, observed = observer != nullptr;
+  const bool energy = layout.energy >= 0;
   if (sends_ghost_velocity) granmn::forward_comm(comm, this);
   if (domain->dimension == 3)
-    compute_for<3>(friction, observed);
+    compute_for<3>(friction, observed, energy);
   else
-    compute_for<2>(friction, observed);
+    compute_for<2>(friction, observed, energy);
 }
 
 // The loop compiled for what the run needs: a law without friction keeps no u_t, a run
-// without fix contacts/mn reports no contacts, and neither pays a test per contact for it.
-template <int DIM> void PairGranMN::compute_for(bool friction, bool observed)
+// without fix contacts/mn reports no contacts, one that does not ask for energies books none,
+// and none pays a test per contact for it. Energies are booked for the observer.
+template <int DIM> void PairGranMN::compute_for(bool friction, bool observed, bool energy)
 {
-  if (friction)
-    observed ? compute_loop<DIM, true, true>() : compute_loop<DIM, true, false>();
-  else
-    observed ? compute_loop<DIM, false, true>() : compute_loop<DIM, false, false>();
+  if (friction) {
+    if (energy)
+      compute_loop<DIM, true, true, true>();
+    else
+      observed ? compute_loop<DIM, true, true, false>() : compute_loop<DIM, true, false, false>();
+  } else {
+    if (energy)
+      compute_loop<DIM, false, true, true>();
+    else
+      observed ? compute_loop<DIM, false, true, false>()
+               : compute_loop<DIM, false, false, false>();
+  }
 }
 
 // In 2D the law measures distances in the plane, the neighbor list in 3D: an atom off z = 0
@@ -221,8 +262,9 @@ struct PairGranMN::LoopData {
   const char *is_wall;
   double to_force, dt_history;
   granmn::ContactObserver *events;    // read only where OBSERVED
-  int ut_slot, record_slot, vt_previous_slot;
+  int ut_slot, record_slot, vt_previous_slot, energy_slot;
   mn::Integrator scheme;
+  const granmn::EnergyTallies *energies;    // read only where ENERGY
 };
 
 // The force loop in dimension DIM: 2, disks (u_t a scalar; torques about z); 3, spheres (u_t a
@@ -234,7 +276,7 @@ struct PairGranMN::LoopData {
 // small, and a contact's work is a call (touching_pair, ended_pair). With that work inlined the
 // scan had the registers of both and reloaded its own values from the stack: 40 instructions
 // a neighbour that does not touch (callgrind, the 2D frictional scene).
-template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
+template <int DIM, bool FRICTION, bool OBSERVED, bool ENERGY> void PairGranMN::compute_loop()
 {
   // The per-atom vectors as flat arrays (granmn_flat_arrays.h): atom j's position is at
   // x + 3 j, found without loading the row pointer x[j] first, for each neighbour and each
@@ -260,7 +302,9 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
   data.ut_slot = layout.ut;
   data.record_slot = layout.record;
   data.vt_previous_slot = layout.vt_previous;
+  data.energy_slot = layout.energy;
   data.scheme = integrator;
+  data.energies = ENERGY ? observer->energy_tallies() : nullptr;
 
   // Locals, not members: a member would be loaded again after every call of a contact's work,
   // which may have changed it for all the compiler knows.
@@ -298,23 +342,30 @@ template <int DIM, bool FRICTION, bool OBSERVED> void PairGranMN::compute_loop()
         // a pair that is not touching already has zero history (FixNeighHistory hands new
         // pairs zeros): only a contact that just ended has any to clear
         if (history && __builtin_expect(touch[jj] != 0, 0))
-          ended_pair<DIM, OBSERVED>(i, j, d[0], d[1], d[2], rsq, touch + jj, slots, stride,
-                                    data.record_slot);
+          ended_pair<DIM, OBSERVED, ENERGY>(data, i, j, d[0], d[1], d[2], rsq, touch + jj,
+                                            slots, stride, data.record_slot);
       } else {
-        touching_pair<DIM, FRICTION, OBSERVED>(data, i, j, d[0], d[1], d[2], rsq, radsum,
-                                               history ? touch + jj : nullptr, slots);
+        touching_pair<DIM, FRICTION, OBSERVED, ENERGY>(data, i, j, d[0], d[1], d[2], rsq,
+                                                       radsum, history ? touch + jj : nullptr,
+                                                       slots);
       }
     }
   }
 }
 
-// A contact that has just ended: the observer's row, and its history cleared.
-template <int DIM, bool OBSERVED>
-void PairGranMN::ended_pair(int i, int j, double dx, double dy, double dz, double rsq, int *touch,
-                            double *slots, int stride, int record_slot)
+// A contact that has just ended: its last force's second half booked (ENERGY), the observer's
+// row, and its history cleared.
+template <int DIM, bool OBSERVED, bool ENERGY>
+void PairGranMN::ended_pair(const LoopData &data, int i, int j, double dx, double dy, double dz,
+                            double rsq, int *touch, double *slots, int stride, int record_slot)
 {
   const double d[3] = {dx, dy, dz};
-  if (OBSERVED) report_end<DIM>(i, j, d, rsq, slots + record_slot, atom->tag);
+  if (ENERGY) {
+    const mn::ContactEnergy energy = book_ended<DIM>(data, i, j, d, rsq, slots);
+    report_end<DIM>(i, j, d, rsq, slots + record_slot, atom->tag, &energy);
+  } else if (OBSERVED) {
+    report_end<DIM>(i, j, d, rsq, slots + record_slot, atom->tag, nullptr);
+  }
   *touch = 0;
   for (int k = 0; k < stride; k++) slots[k] = 0.0;
 }
@@ -323,7 +374,7 @@ void PairGranMN::ended_pair(int i, int j, double dx, double dy, double dz, doubl
 // tallied to i and, where this process tallies it, to j. touch and slots: the pair's flag and
 // history (nullptr where the run keeps none). The components come by value: an array's address
 // would have the scan store it for every neighbour.
-template <int DIM, bool FRICTION, bool OBSERVED>
+template <int DIM, bool FRICTION, bool OBSERVED, bool ENERGY>
 void PairGranMN::touching_pair(const LoopData &data, int i, int j, double dx, double dy,
                                double dz, double rsq, double radsum, int *touch, double *slots)
 {
@@ -364,9 +415,21 @@ void PairGranMN::touching_pair(const LoopData &data, int i, int j, double dx, do
   double *vt_previous =
       FRICTION && data.vt_previous_slot >= 0 ? slots + data.vt_previous_slot : nullptr;
   double *torque = data.torque;
-  mn::force_and_torques(data.contact, scale, kin, ut, data.dt_history, data.scheme, vt_previous,
-                        fc_xyz, radi, torque + row(i), radj,
-                        tally_j ? torque + row(j) : nullptr);
+  if (ENERGY) {
+    const mn::EnergyStep booked = mn::force_and_torques_with_energy(
+        data.contact, scale, kin, lever, ut, data.dt_history, data.scheme, vt_previous,
+        slots + data.energy_slot, fc_xyz, radi, torque + row(i), radj,
+        tally_j ? torque + row(j) : nullptr);
+    const mn::StoredEnergy stored =
+        mn::stored_energy(data.contact, scale, kin.delta, ut_squared<DIM>(ut));
+    const double share_i = energy_share(i_wall, j_wall);
+    data.energies->add(i, share_i, booked, stored);
+    if (tally_j) data.energies->add(j, 1.0 - share_i, booked, stored);
+  } else {
+    mn::force_and_torques(data.contact, scale, kin, ut, data.dt_history, data.scheme,
+                          vt_previous, fc_xyz, radi, torque + row(i), radj,
+                          tally_j ? torque + row(j) : nullptr);
+  }
   double *f = data.f;
   for (int c = 0; c < DIM; c++) f[row(i) + c] += fc_xyz[c];
   if (tally_j)
@@ -374,6 +437,34 @@ void PairGranMN::touching_pair(const LoopData &data, int i, int j, double dx, do
   if (evflag)
     ev_tally_xyz(i, j, data.nlocal, data.newton_pair, 0.0, 0.0, fc_xyz[0], fc_xyz[1], fc_xyz[2],
                  d[0], d[1], d[2]);
+}
+
+// A contact found ended (d = x_i - x_j, its history not yet cleared): its last force's second
+// half and its springs' release booked to its atoms; what it dissipated in all.
+template <int DIM>
+mn::ContactEnergy PairGranMN::book_ended(const LoopData &data, int i, int j, const double *d,
+                                         double rsq, double *slots)
+{
+  const auto row = [](int k) { return granmn::row_start(k, 3); };
+  const double radi = data.radius[i], radj = data.radius[j];
+  const double *vi = data.v + row(i), *vj = data.v + row(j);
+  const double *wi = data.omega + row(i), *wj = data.omega + row(j);
+  const double dv[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
+  const double lever[3] = {radi * wi[0] + radj * wj[0], radi * wi[1] + radj * wj[1],
+                           radi * wi[2] + radj * wj[2]};
+  const auto kin = mn::kinematics(mn::Dim<DIM>(), d, sqrt(rsq), radi + radj, dv, lever);
+  const bool i_wall = data.is_wall[data.type[i]], j_wall = data.is_wall[data.type[j]];
+  const double scale =
+      contact_mass_scale(i_wall, j_wall, data.rmass[i], data.rmass[j]) * data.to_force;
+  const double *ut = data.ut_slot >= 0 ? slots + data.ut_slot : nullptr;
+  double *energy = slots + data.energy_slot;
+  const mn::EnergyStep booked =
+      book_ended_energy(data.contact, scale, kin, lever, ut_squared<DIM>(ut), data.dt_history,
+                        data.scheme, energy);
+  const double share_i = energy_share(i_wall, j_wall);
+  data.energies->add(i, share_i, booked, {0.0, 0.0});
+  if (data.newton_pair || j < data.nlocal) data.energies->add(j, 1.0 - share_i, booked, {0.0, 0.0});
+  return mn::contact_energy(data.contact, scale, 0.0, 0.0, energy);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -659,23 +750,26 @@ void PairGranMN::init_style()
 
   // The per-contact history: u_t when there is friction (and under Adams-Bashforth 2 the
   // previous v_t its rule for u_t needs), then the contact observer's record if there is one
-  // (fix contacts/mn).
+  // (fix contacts/mn), then the energy history if it books energies (energy yes).
   observer = granmn::find_observer(granmn::all_fixes(modify));
+  const bool energy = observer && observer->energy_tallies();
   const granmn::ContactLayout needed = granmn::pair_history_layout(
       law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, observer,
-      granmn::ut_width(lmp));
+      granmn::ut_width(lmp),
+      energy ? mn::energy_history_size(integrator, domain->dimension) : 0);
   if (fix_history && needed.size != layout.size)
     error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
-                      "mu, fix contacts/mn or integrator (Adams-Bashforth 2, fix nve/ab2 or fix "
-                      "nve/disc/mn scheme ab2, keeps one more value per contact when mu > 0); define fix contacts/mn, mu and the integrator "
-                      "before the first run");
+                      "mu, fix contacts/mn or integrator (fix contacts/mn energy yes keeps the "
+                      "contacts' energies; Adams-Bashforth 2, fix nve/ab2 or fix nve/disc/mn "
+                      "scheme ab2, keeps one more value per contact when mu > 0); define fix "
+                      "contacts/mn, mu and the integrator before the first run");
   // LAMMPS restores per-pair history with the size of the new run: a different size would
   // misread every partner, so the run must keep mu > 0 (or not), fix contacts/mn (or not) and
   // the integrator
   if (!fix_history && restart_history_size >= 0 && needed.size != restart_history_size)
     error->all(FLERR, "pair_style gran/mn: the restart file holds {} history values per contact, "
                       "this run needs {}: keep mu zero or non-zero, define fix contacts/mn "
-                      "(or not) and use the scheme (Adams-Bashforth 2 or not) as in the run that "
+                      "(or not) with energy yes (or not) and use the scheme (Adams-Bashforth 2 or not) as in the run that "
                       "wrote it", restart_history_size, needed.size);
   layout = needed;
   const bool history = layout.size > 0;
@@ -827,6 +921,16 @@ void PairGranMN::GRANMN_TRANSFER_HISTORY(source, target)
   for (int k = 0; k < layout.size; k++) target[k] = source[k];
   if (layout.ut >= 0 && layout.ut_width == 3)
     for (int k = layout.ut; k < layout.ut + 3; k++) target[k] = -source[k];
+  // The energy history's last force under velocity Verlet: its normal flips with the pair, its
+  // f_n (and in 2D f_t, a component along t, which flips too) does not; in 3D the tangential
+  // force on j is minus that on i. Energies and Adams-Bashforth 2's powers are the pair's.
+  if (layout.energy >= 0 && integrator == mn::Integrator::VelocityVerlet) {
+    const int previous = layout.energy + mn::ENERGY_PREVIOUS_FORCE;
+    const int dimension = domain->dimension;
+    for (int c = 0; c < dimension; c++) target[previous + c] = -source[previous + c];
+    if (dimension == 3)
+      for (int c = 4; c < 7; c++) target[previous + c] = -source[previous + c];
+  }
 }
 
 // For compute pair/local: fforce*(dx,dy) is the normal force; svector = ft, delta, vn, vt, ut

@@ -77,19 +77,22 @@ class PairGranMN : public Pair {
   void report_passed_through(int, int, double);
   void warn_deep_overlaps();
   template <int DIM> void report_end(int, int, const double *, double, const double *,
-                                     const tagint *);
-  template <int DIM> void compute_for(bool friction, bool observed);
+                                     const tagint *, const mn::ContactEnergy *);
+  template <int DIM> void compute_for(bool friction, bool observed, bool energy);
   struct LoopData;
-  template <int DIM, bool FRICTION, bool OBSERVED> void compute_loop();
+  template <int DIM, bool FRICTION, bool OBSERVED, bool ENERGY> void compute_loop();
   // called from compute_loop only: hidden, so that the call is direct, not through the PLT
-  template <int DIM, bool FRICTION, bool OBSERVED>
+  template <int DIM, bool FRICTION, bool OBSERVED, bool ENERGY>
   __attribute__((noinline, visibility("hidden"))) void
   touching_pair(const LoopData &, int, int, double, double, double, double, double, int *,
                 double *);
-  template <int DIM, bool OBSERVED>
+  template <int DIM, bool OBSERVED, bool ENERGY>
   __attribute__((noinline, visibility("hidden"))) void
-  ended_pair(int, int, double, double, double, double, int *, double *, int, int);
+  ended_pair(const LoopData &, int, int, double, double, double, double, int *, double *, int,
+             int);
   template <int DIM> double single_contact(int, int, double, double &);
+  template <int DIM>
+  mn::ContactEnergy book_ended(const LoopData &, int, int, const double *, double, double *);
 };
 
 }    // namespace LAMMPS_NS

@@ -33,6 +33,9 @@ ENERGY_COLUMNS = ("step", "e_trans", "e_rot", "e_total", *COUNTER_COLUMNS, "wind
 # the columns of fix contacts/mn's rows in order (contacts.txt, whose header names them f_c[1]
 # ...)
 ROW_COLUMNS = SCHEMA["rows"]
+# the columns a row goes on with when the run booked energies (fix contacts/mn energy yes):
+# read where the file has them
+ROW_ENERGY_COLUMNS = SCHEMA["row_energy"]
 # the codes of contacts.txt's kind column: a contact between two disks, of a disk with the
 # boundary
 CONTACT_KINDS = {name: int(code) for name, code in zip(SCHEMA["kinds"][0::2],
@@ -279,17 +282,25 @@ def read_profile(point):
 
 def read_rows(point):
     """contacts.txt (dump local of fix contacts/mn) as a dict of arrays, its columns named by
-    each snapshot's own header (ITEM: ENTRIES f_c[1] ...); empty if none."""
+    each snapshot's own header (ITEM: ENTRIES f_c[1] ...); empty if none. The energy columns
+    (ROW_ENERGY_COLUMNS) too where the first header names them (a run with energies = yes),
+    then every header must."""
     path = Path(point) / rundir.ROWS
     if not path.exists():
         raise DataError(f"{path}: missing (run the deck with -var rows yes)")
     fix_columns = {f"f_c[{k}]": name for k, name in enumerate(ROW_COLUMNS, 1)}
-    rows, columns = [], None
+    rows, columns, first_header = [], None, True
     for number, line in enumerate(read_text(path).splitlines(), 1):
         if line.startswith("ITEM:"):
             columns = None
             if line.startswith("ITEM: ENTRIES"):
                 names = line.split()[2:]
+                if first_header:
+                    first_header = False
+                    energy = {f"f_c[{k}]": name for k, name in
+                              enumerate(ROW_ENERGY_COLUMNS, len(ROW_COLUMNS) + 1)}
+                    if all(n in names for n in energy):
+                        fix_columns.update(energy)
                 missing = [n for n in fix_columns if n not in names]
                 if missing:
                     raise DataError(f"{path}:{number}: the header {' '.join(names)} names no "
@@ -304,8 +315,8 @@ def read_rows(point):
             raise DataError(f"{path}:{number}: {len(words)} columns, the header names {width}")
         values = numbers(path, number, words)
         rows.append([values[k] for k in columns])
-    data = np.array(rows).reshape(-1, len(ROW_COLUMNS))
-    return {name: data[:, k] for k, name in enumerate(ROW_COLUMNS)}
+    data = np.array(rows).reshape(-1, len(fix_columns))
+    return {name: data[:, k] for k, name in enumerate(fix_columns.values())}
 
 
 def read_trajectory(point):

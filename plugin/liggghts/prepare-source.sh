@@ -25,7 +25,7 @@ fi
 for file in "$here"/normal_model_mn.h "$here"/tangential_model_mn.h "$here"/granmn_liggghts_law.h \
             "$here"/fix_contacts_mn.h "$here"/fix_contacts_mn.cpp "$project/plugin/mn_contact.h" \
             "$project/plugin/mn_integration.h" "$project/plugin/mn_contact_events.h" \
-            "$project/plugin/mn_output_schema.h" \
+            "$project/plugin/mn_output_schema.h" "$project/plugin/mn_energy.h" \
             "$here/style_contact_model.whitelist"; do
   target=$tree/src/${file##*/}
   # a source file new to the tree: LIGGGHTS's CMakeLists.txt globs *.cpp when it configures

@@ -212,6 +212,10 @@ def test_integrators_agree_on_the_single_disk_period(tmp_path):
 
 
 BAD_VARIABLES = {
+    "energies neither yes nor no": (dict(energies="maybe"),
+                                    "deck variable energies = maybe must be yes or no"),
+    "energies without counters": (dict(energies="yes", counters="no"),
+                                  "energies = yes needs counters = yes"),
     "negative kn": (dict(kn=-1e5), "deck variable kn = -100000.0 must be > 0"),
     "sin_theta one": (dict(sin_theta=1.0), "deck variable sin_theta = 1.0 must lie in (0,1)"),
     "sin_theta above one": (dict(sin_theta=1.5), "sin_theta = 1.5 must lie in (0,1)"),

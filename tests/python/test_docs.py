@@ -9,6 +9,7 @@ import test_checkpoint
 import test_chute
 import test_chute_3d
 import test_counters
+import test_energy
 import test_nve_disc_mn
 import test_scenes
 import test_sweep
@@ -26,7 +27,7 @@ def test_every_bad_input_case_is_in_the_table():
               test_sweep.BAD_CONFIGS, test_sweep.BAD_OUTPUTS,
               test_sweep_runner.BAD_SETTINGS, test_chute_3d.BAD_3D,
               test_checkpoint.BAD_WINDOWS, test_bad_input_liggghts.BAD,
-              test_chute.BAD]
+              test_chute.BAD, test_energy.BAD]
     for table in tables:
         for case, (_, message) in table.items():
             assert f"| {case}" in DOC and message.replace("|", "\\|") in DOC, case

@@ -28,14 +28,30 @@ def test_the_energy_titles_name_the_counters_the_lines_print():
     for deck in ENERGY_DECKS:
         lines = [line for line in deck.read_text().splitlines()
                  if "fix energy all print" in line and "f_c[" in line]
-        assert len(lines) == 1, deck
+        counters = [line for line in lines if "dissipated" not in line]
+        assert len(counters) == 1, deck
         values, title = re.fullmatch(r".*print \S+ (['\"])(.*?)\1 .* title (['\"])# (.*?)\3.*",
-                                     lines[0]).group(2, 4)
+                                     counters[0]).group(2, 4)
         names = title.split()
         assert names[:4] == ["step", "e_trans", "e_rot", "e_total"], deck
         assert names[4:] == [*COUNTER_COLUMNS, SCHEMA["vector_extras"][0]], deck
         assert fix_columns(values) == list(range(1, len(names) - 3)), deck
         assert set(ENERGY_COLUMNS) <= set(names), deck
+    # energies = yes (LAMMPS's decks): the same, then the energy sums under the schema's names,
+    # after the global vector's extras (window, group_size: f_c[9] on), then the deck's own
+    lines = [line for line in ENERGY_DECKS[0].read_text().splitlines()
+             if "fix energy all print" in line and "dissipated" in line]
+    assert len(lines) == 1
+    values, title = re.fullmatch(r".*print \S+ (['\"])(.*?)\1 .* title (['\"])# (.*?)\3.*",
+                                 lines[0]).group(2, 4)
+    names = title.split()
+    first = len(COUNTER_COLUMNS) + len(SCHEMA["vector_extras"]) + 1
+    energy_names = SCHEMA["energy_sums"]
+    assert names[:4 + len(COUNTER_COLUMNS) + 1] == [
+        "step", "e_trans", "e_rot", "e_total", *COUNTER_COLUMNS, SCHEMA["vector_extras"][0]]
+    assert names[4 + len(COUNTER_COLUMNS) + 1:] == [*energy_names, "e_gravity", "e_budget"]
+    assert fix_columns(values) == [*range(1, len(COUNTER_COLUMNS) + 2),
+                                   *range(first, first + len(energy_names))]
 
 
 def test_the_dumps_write_every_column_of_the_schema():
@@ -48,7 +64,12 @@ def test_the_dumps_write_every_column_of_the_schema():
         assert fix_columns(lines[0]) == list(range(1, len(COUNTER_COLUMNS) + 1)), deck
     rows = [line for line in (ROOT / "inputs" / "lib" / "outputs.lmp").read_text().splitlines()
             if "contacts.txt" in line and "dump rows" in line]
-    assert len(rows) == 1
+    assert len(rows) == 2    # with energies = yes, and without
+    with_energy = [line for line in rows if f"f_c[{len(ROW_COLUMNS) + 1}]" in line]
+    assert len(with_energy) == 1
+    assert fix_columns(with_energy[0]) == list(range(1, len(ROW_COLUMNS) +
+                                                    len(SCHEMA["row_energy"]) + 1))
+    rows.remove(with_energy[0])
     assert fix_columns(rows[0]) == list(range(1, len(ROW_COLUMNS) + 1))
 
 
@@ -58,9 +79,13 @@ def test_the_docs_name_the_columns_and_variables_in_order():
     page = (ROOT / "docs" / "fix_contacts_mn.rst").read_text()
     listed = re.findall(r"^(\d+)\. ``(\w+)``", page, re.MULTILINE)
     names = [name for _, name in listed]
-    assert names == [*COUNTER_COLUMNS, *ROW_COLUMNS]
-    assert [int(n) for n, _ in listed] == [*range(1, len(COUNTER_COLUMNS) + 1),
-                                           *range(1, len(ROW_COLUMNS) + 1)]
+    energy_columns, row_energy = SCHEMA["energy_sums"][:-1], SCHEMA["row_energy"]
+    assert names == [*COUNTER_COLUMNS, *ROW_COLUMNS, *energy_columns, *row_energy]
+    assert [int(n) for n, _ in listed] == [
+        *range(1, len(COUNTER_COLUMNS) + 1), *range(1, len(ROW_COLUMNS) + 1),
+        *range(len(COUNTER_COLUMNS) + 1, len(COUNTER_COLUMNS) + len(energy_columns) + 1),
+        *range(len(ROW_COLUMNS) + 1, len(ROW_COLUMNS) + len(row_energy) + 1)]
+    assert f"``{SCHEMA['energy_sums'][-1]}``" in page
     kinds = re.search(r"``kind``: (.*)", page).group(1)
     assert re.findall(r"``(\w+)`` (\d+)", kinds) == [(k, str(c)) for k, c in CONTACT_KINDS.items()]
     for extra in SCHEMA["vector_extras"]:
@@ -108,3 +133,14 @@ def test_the_readers_take_columns_by_header_and_let_others_be(tmp_path):
     rows = read_rows(tmp_path)
     assert [rows[name].tolist() for name in ROW_COLUMNS] == \
         [[float(k)] for k in range(1, len(ROW_COLUMNS) + 1)]
+    assert set(rows) == set(ROW_COLUMNS)    # f_c[9] alone is not the energy columns
+
+    # a run with energies = yes: its rows' energy columns too, by name
+    width = len(ROW_COLUMNS) + len(SCHEMA["row_energy"])
+    header = "ITEM: ENTRIES " + " ".join(f"f_c[{k}]" for k in range(1, width + 1))
+    (tmp_path / "contacts.txt").write_text(
+        "ITEM: TIMESTEP\n10\nITEM: NUMBER OF ENTRIES\n1\nITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n"
+        f"0 1\n{header}\n" + " ".join(str(k) for k in range(1, width + 1)) + "\n")
+    rows = read_rows(tmp_path)
+    assert [rows[name].tolist() for name in (*ROW_COLUMNS, *SCHEMA["row_energy"])] == \
+        [[float(k)] for k in range(1, width + 1)]

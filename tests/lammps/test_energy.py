@@ -1,0 +1,468 @@
+"""Where a collision's energy goes, through lmp (fix contacts/mn energy yes; docs/model.md
+section 9): the global sums and the contact's row against the kinetic energy the disks lost, and
+against the law's closed forms for a sticking and a sliding collision."""
+import numpy as np
+import pytest
+
+from collision_decks import two_disks
+from granmn_run import (HEADER, ORDER_RATIO, PLUGIN, convergence_ratio, law, run_scene,
+                        restitution_error_bound, run_lammps)
+from postprocess.io import SCHEMA, read_rows
+
+# the global vector's entries (1-based, as f_c[k]) and a row's columns by the schema's names
+VECTOR = {name: k + 1 for k, name in enumerate(
+    (*SCHEMA["counters"], *SCHEMA["vector_extras"], *SCHEMA["energy_sums"]))}
+ROW = {name: k for k, name in enumerate((*SCHEMA["rows"], *SCHEMA["row_energy"]))}
+ENERGIES = SCHEMA["energy_sums"]
+# two unit disks (mass 1, radius 1/2, I = m r^2/2): reduced mass 1/2, q = 3 (docs/model.md 3.1)
+REDUCED_MASS, Q = 0.5, 3.0
+
+
+def kinetic(atoms):
+    """Translational and rotational kinetic energy of unit-density discs (mass = diameter^2)."""
+    mass = atoms["mass"]
+    inertia = 0.5 * mass * atoms["radius"] ** 2
+    return float(np.sum(0.5 * mass * (atoms["vx"] ** 2 + atoms["vy"] ** 2)
+                        + 0.5 * inertia * atoms["omegaz"] ** 2))
+
+
+def collide(tmp_path, material, dt_over_tau, vy=0.0, extra=""):
+    """Two unit disks meeting head-on at relative speed 1 (contact half-way through a step),
+    with spin 0.6 each if `spin`, and tangential velocities +-vy: the energies of fix
+    contacts/mn at the end, the kinetic energy before and after, the contact's row."""
+    tau = law(*material[:3])["tau_c"]
+    deck, _ = two_disks(material, tau * dt_over_tau, spin=0.6 if "spin" in extra else 0.0)
+    names = " ".join(f"$(f_c[{VECTOR[name]}]:%.17g)" for name in ENERGIES)
+    columns = " ".join(f"f_c[{k + 1}]" for k in range(len(ROW)))
+    deck = deck.replace("group mobile type 1", f"""group mobile type 1
+set atom 1 vy {vy!r}
+set atom 2 vy {-vy!r}
+write_dump all custom initial.txt id mass radius vx vy omegaz modify sort id format float %.17g
+fix c all contacts/mn local 1 energy yes
+dump rows all local 1 rows.txt {columns}
+dump_modify rows format float %.17g""")
+    if "limit_damping" in extra:
+        deck = deck.replace("pair_style gran/mn", "pair_style gran/mn limit_damping")
+    deck = deck.replace("write_dump all custom final.txt id x y vx vy omegaz",
+                        f'print "RESULT energies {names}"\n'
+                        "write_dump all custom final.txt id x y mass radius vx vy omegaz")
+    run = run_lammps(HEADER.format(plugin=PLUGIN) + deck, tmp_path, header=False)
+    before, after = run.atoms("initial.txt"), run.atoms()
+    rows = [line.split() for line in (tmp_path / "rows.txt").read_text().splitlines()
+            if line and not line.startswith("ITEM") and len(line.split()) == len(ROW)]
+    assert len(rows) == 1, rows    # one contact, one row
+    n = np.array([after["x"][0] - after["x"][1], after["y"][0] - after["y"][1]])
+    n /= np.linalg.norm(n)
+    v_n_after = n @ np.array([after["vx"][0] - after["vx"][1], after["vy"][0] - after["vy"][1]])
+    return dict(energies=dict(zip(ENERGIES, run.result("energies"))), row=np.array(
+        rows[0], dtype=float), kinetic_before=kinetic(before), kinetic_after=kinetic(after),
+        v_n_after=v_n_after)
+
+
+def check_budget(c):
+    """Once the contact has ended its springs store nothing, and under velocity Verlet the
+    booked work is the integrator's own: kinetic energy lost = dissipated, to rounding (the
+    residual (dt^2/8) sum |F|^2/m vanishes with no force at either end). A booking with the
+    force's power seen half a step late, a half counted twice or a term in the wrong frame
+    misses by O(dt) of the collision's energy, 1e-3 and more here. The row holds the same
+    contact's total and sliding part."""
+    e = c["energies"]
+    dissipated = e["dissipated_normal"] + e["dissipated_sticking"] + e["dissipated_sliding"]
+    lost = c["kinetic_before"] - c["kinetic_after"]
+    assert e["stored"] == 0.0
+    assert dissipated == pytest.approx(lost, rel=1e-10, abs=1e-14)
+    assert c["row"][ROW["dissipated"]] == pytest.approx(dissipated, rel=1e-12)
+    assert c["row"][ROW["dissipated_sliding"]] == pytest.approx(e["dissipated_sliding"],
+                                                                rel=1e-12, abs=1e-15)
+    return dissipated
+
+
+@pytest.mark.parametrize("e", [0.5, 0.9])
+def test_head_on_collision_dissipates_one_minus_e_squared(tmp_path, e):
+    """Head-on, no spin: the contact dissipates (1 - e^2) of the normal kinetic energy of the
+    relative motion, (reduced mass) v_n^2 / 2 = 1/4, in its normal force, nothing
+    tangentially. Velocity Verlet's restitution is first order in dt (restitution_error_bound):
+    the loss then errs by at most (2 e b + b^2)/4, and halving dt halves the error."""
+    errors = []
+    for dt_over_tau in (1 / 100, 1 / 200):
+        c = collide(tmp_path / f"dt{dt_over_tau}", (2e5, e, 0.7, 0.5), dt_over_tau)
+        dissipated = check_budget(c)
+        assert c["energies"]["dissipated_sticking"] == 0.0
+        assert c["energies"]["dissipated_sliding"] == 0.0
+        expected = (1 - e ** 2) * 0.25
+        bound = restitution_error_bound(e, dt_over_tau)
+        error = dissipated - expected
+        print(f"e={e} dt=tau/{1 / dt_over_tau:.0f}: dissipated {dissipated:.10f} expected "
+              f"{expected:.10f} error {error:+.3e} bound {(2 * e * bound + bound ** 2) / 4:.3e}")
+        assert abs(error) <= (2 * e * bound + bound ** 2) / 4
+        errors.append(error)
+    low, high = ORDER_RATIO["verlet"]
+    assert low <= errors[0] / errors[1] <= high, errors
+
+
+@pytest.mark.parametrize("beta", [0.5, 0.9])
+def test_sticking_collision_adds_the_tangential_share_for_beta(tmp_path, beta):
+    """Both disks spinning at 0.6 (v_t = -0.6), mu = 1000: the contact sticks, and the
+    tangential mode, of energy (reduced mass / q) v_t^2 / 2 = 0.03, keeps beta^2 of it: the
+    contact dissipates (1 - e^2) 1/4 + (1 - beta^2) 0.03, nothing while sliding. Tolerance: each
+    mode's restitution bound as above, the tangential one widened by 2 beta |ln beta| dt/tau
+    (its oscillation is cut where the normal contact ends, up to a step off) and both by 1e-3
+    for the line of centres' turn during the contact (as test_binary_collision's)."""
+    kn, e = 256e5, 0.7
+    kinetic_t = 0.5 * REDUCED_MASS / Q * 0.6 ** 2
+    errors = []
+    for dt_over_tau in (1 / 100, 1 / 200):
+        c = collide(tmp_path / f"dt{dt_over_tau}", (kn, e, beta, 1000.0), dt_over_tau,
+                    extra="spin")
+        dissipated = check_budget(c)
+        assert c["energies"]["dissipated_sliding"] == 0.0
+        expected_n = (1 - e ** 2) * 0.25
+        expected_t = (1 - beta ** 2) * kinetic_t
+        b_n = restitution_error_bound(e, dt_over_tau) + 1e-3
+        b_t = (restitution_error_bound(beta, dt_over_tau)
+               + 2 * beta * abs(np.log(beta)) * dt_over_tau + 1e-3)
+        bound = (2 * e * b_n + b_n ** 2) * 0.25 + (2 * beta * b_t + b_t ** 2) * kinetic_t
+        error = dissipated - expected_n - expected_t
+        print(f"beta={beta} dt=tau/{1 / dt_over_tau:.0f}: normal "
+              f"{c['energies']['dissipated_normal']:.8f} ({expected_n:.8f}) sticking "
+              f"{c['energies']['dissipated_sticking']:.8f} ({expected_t:.8f}) error "
+              f"{error:+.3e} bound {bound:.3e}")
+        assert abs(error) <= bound
+        # the tangential share is there, and only there: without it the sum misses
+        # (1 - beta^2) 0.03, more than the bound
+        assert abs(c["energies"]["dissipated_sticking"] - expected_t) <= (
+            2 * beta * b_t + b_t ** 2) * kinetic_t
+        errors.append(error)
+    low, high = ORDER_RATIO["verlet"]
+    assert low <= errors[0] / errors[1] <= high, errors
+
+
+def test_sliding_collision_does_the_coulomb_work(tmp_path):
+    """Head-on at v_n = 1 with tangential velocities +-1 (v_t = -2) and mu = 0.1: the contact
+    slides throughout (eta_t |v_t| > mu eta_n v_n from its first step), so the tangential force
+    is mu F_n against v_t and the relative tangential velocity drops by q mu J_n / (reduced
+    mass), J_n the normal impulse, (reduced mass)(v_n + v_n'), v_n' the speed the disks part at
+    (limit_damping: F_n >= 0, so that the cap's |F_n| is F_n). The Coulomb force does the work
+    (reduced mass / q)(v_t^2 - v_t'^2)/2, all of it booked as sliding. Velocity Verlet's forces
+    see velocities half a step old: the work errs at first order (halving dt halves it), within
+    the restitution bound's 3 (1 + e)|ln e| dt/tau of it. The closed form holds for a line of
+    centres that does not turn: during the contact it turns by |v_t| tau_c / sigma, which moves
+    the impulses between the normal and the tangent by as much (at k_n = 2e5, 1 %, more than the
+    integrator's error): k_n = 2^17 1e5 makes it 1e-4, and the bound takes 2 |v_t| tau_c of the
+    work on top. That part does not change with dt: the order is shown by the differences at
+    dt, dt/2 and dt/4 (convergence_ratio), which it leaves out."""
+    mu, e, kn = 0.1, 0.7, 2 ** 17 * 1e5
+    tau = law(kn, e, 0.7)["tau_c"]
+    errors = []
+    for dt_over_tau in (1 / 100, 1 / 200, 1 / 400):
+        c = collide(tmp_path / f"dt{dt_over_tau}", (kn, e, 0.7, mu), dt_over_tau, vy=1.0,
+                    extra="limit_damping")
+        check_budget(c)
+        v_t = 2.0
+        v_t_after = v_t - Q * mu * (1.0 + c["v_n_after"])
+        expected = 0.5 * REDUCED_MASS / Q * (v_t ** 2 - v_t_after ** 2)
+        sliding = c["energies"]["dissipated_sliding"]
+        error = sliding - expected
+        bound = (3 * (1 + e) * abs(np.log(e)) * dt_over_tau + 2 * v_t * tau) * expected
+        print(f"dt=tau/{1 / dt_over_tau:.0f}: sliding {sliding:.10f} expected {expected:.10f} "
+              f"error {error:+.3e} bound {bound:.3e} sticking "
+              f"{c['energies']['dissipated_sticking']:+.3e}")
+        assert abs(error) <= bound
+        errors.append(error)
+    low, high = ORDER_RATIO["verlet"]
+    assert low <= convergence_ratio(errors) <= high, errors
+
+
+# What fix contacts/mn energy yes refuses (docs/bad_input.md): deck text after a box with one
+# disk above a floor, and the message.
+BAD = {
+    "energy without yes or no": ("fix c all contacts/mn energy", "energy needs yes or no"),
+    "energy with a wall fix (its contacts book no energies yet)": (
+        "fix floor all wall/gran/mn yplane 0.0 NULL\nfix c all contacts/mn energy yes",
+        "fix floor (wall/gran/mn) does not book the energies of its contacts yet"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_energy_input(tmp_path, case):
+    text, message = BAD[case]
+    deck = f"""
+boundary p f p
+region box block -3 3 0 6 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 2 0
+set type 1 density/disc 1.2732395447351628
+pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+timestep 1e-5
+fix integrate all nve/sphere disc
+fix flat all enforce2d
+{text}
+run 1
+"""
+    run = run_lammps(deck, tmp_path, check=False)
+    assert run.returncode != 0 and message in run.output, run.output[-2000:]
+
+
+def test_energies_off_change_nothing(tmp_path):
+    """A run that does not ask for energies is the run it was before energy yes existed: the
+    same restart file to the byte (the pair's history per contact, the counters' state, their
+    layout) and the same trajectory; with energy yes the trajectory is still the same to the bit
+    (the booking reads the force, never changes it) and the restart file holds more. The
+    global vector has the energies only when asked (f_c[9] out of range otherwise)."""
+    def run(keyword, name):
+        deck, _ = two_disks((2e5, 0.7, 0.7, 0.5), law(2e5, 0.7, 0.7)["tau_c"] / 100, spin=0.6)
+        deck = deck.replace("group mobile type 1", "group mobile type 1\nset atom 1 vy 0.3\n"
+                            f"fix c all contacts/mn local 1 {keyword}")
+        # written mid-contact (it begins after step 10): the history holds a contact
+        deck = deck.replace("thermo 0\nrun ", "thermo 0\nrun 15\nwrite_restart state.restart\n"
+                            "run ")
+        return run_lammps(HEADER.format(plugin=PLUGIN) + deck, tmp_path / name, header=False)
+    for keyword, name in (("", "plain"), ("energy no", "off"), ("energy yes", "on")):
+        run(keyword, name)
+    read = lambda name, f: (tmp_path / name / f).read_bytes()
+    assert read("off", "state.restart") == read("plain", "state.restart")
+    assert len(read("on", "state.restart")) > len(read("plain", "state.restart"))
+    for name in ("off", "on"):
+        assert read(name, "final.txt") == read("plain", "final.txt")
+    deck = "fix c all contacts/mn\nvariable e equal f_c[9]\nprint $(v_e)"
+    out = run_lammps("region box block -3 3 -3 3 -0.5 0.5\ncreate_box 1 box\n"
+                     "pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5\npair_coeff * *\n" + deck,
+                     tmp_path / "vector", check=False)
+    assert out.returncode != 0 and "out-of-range" in out.output, out.output[-2000:]
+
+
+def pile(tmp_path, dt_over_tau, integrator="verlet", nprocs=1, time=2.0, restart_at=None):
+    """Five unit disks dropped from heights 1.1 to 2.3 onto a row of bumps (wall_types) under
+    unit gravity, moving sideways and spinning, mu = 0.5 (collisions, sliding, lasting contacts
+    in the row's dimples): step, the budget kinetic + gravitational + stored + dissipated - work
+    in flight, the sliding loss and the stored energy, every step."""
+    kn, e, beta = 2e5, 0.7, 0.7
+    dt = law(kn, e, beta)["tau_c"] * dt_over_tau
+    disks = "\n".join(f"create_atoms 1 single {x!r} {y!r} 0" for x, y in
+                      ((-2.2, 1.1), (-0.9, 1.4), (0.3, 1.7), (1.4, 2.0), (2.6, 2.3)))
+    integrate = {"verlet": "nve/sphere disc", "ab2": "nve/ab2"}[integrator]
+    f = {name: f"f_c[{k}]" for name, k in VECTOR.items()}
+    deck = f"""
+boundary p f p
+region box block -3.5 3.5 -1 6 -0.5 0.5
+create_box 2 box
+{chr(10).join(f"create_atoms 2 single {x}.0 0 0" for x in range(-3, 4))}
+{disks}
+set type * diameter 1.0
+set type * density/disc 1.2732395447351628
+velocity all set 0 0 0
+set type 1 vx 0.4 omega 0 0 1.0
+group mobile type 1
+pair_style gran/mn kn {kn} e {e} beta {beta} mu 0.5 wall_types 2
+pair_coeff * *
+timestep {dt!r}
+fix integrate mobile {integrate}
+fix gravity mobile gravity 1.0 vector 0 -1 0
+fix flat all enforce2d
+fix c all contacts/mn energy yes
+{{outputs}}"""
+    outputs = f"""compute spin mobile property/atom omegaz radius
+variable rotational atom 0.25*mass*c_spin[2]^2*c_spin[1]^2
+variable height atom mass*y
+compute erot mobile reduce sum v_rotational
+compute etrans mobile ke
+compute gravitational mobile reduce sum v_height
+variable budget equal c_etrans+c_erot+c_gravitational+{f['dissipated_normal']}+{f['dissipated_sticking']}+{f['dissipated_sliding']}+{f['stored']}-{f['work_in_flight']}
+thermo_style custom step c_etrans
+thermo_modify norm no
+thermo 0
+fix budget all print 1 "$(step) $(v_budget:%.17g) $({f['dissipated_sliding']}:%.17g) $({f['stored']}:%.17g) $({f['contacts_now']})" file budget.txt screen no
+"""
+    steps = round(time / dt)
+    if restart_at is None:
+        run_lammps(deck.format(outputs=outputs) + f"run {steps}\n", tmp_path, nprocs=nprocs)
+        return np.loadtxt(tmp_path / "budget.txt", ndmin=2)
+    first = round(restart_at / dt)
+    run_lammps(deck.format(outputs=outputs) + f"run {first}\nwrite_restart state.restart\n",
+               tmp_path, nprocs=nprocs)
+    (tmp_path / "budget.txt").rename(tmp_path / "before.txt")
+    run_lammps(f"""
+plugin load {PLUGIN}
+read_restart state.restart
+comm_modify vel yes
+neighbor 0.1 bin
+timestep {dt!r}
+fix integrate mobile {integrate}
+fix gravity mobile gravity 1.0 vector 0 -1 0
+fix flat all enforce2d
+fix c all contacts/mn energy yes
+{outputs}run {steps - first}
+""", tmp_path, nprocs=nprocs, header=False)
+    return np.vstack([np.loadtxt(tmp_path / "before.txt", ndmin=2),
+                      np.loadtxt(tmp_path / "budget.txt", ndmin=2)])
+
+
+@pytest.mark.parametrize("integrator", ["verlet", "ab2"])
+def test_the_budget_of_a_pile_closes_at_second_order(tmp_path, integrator):
+    """Five disks falling onto bumps, colliding, sliding and coming to rest: the budget keeps its
+    initial value to the integrator's error, which is second order in dt (velocity Verlet: the
+    exact residual (dt^2/8)(sum |F|^2/m + |T|^2/I, now - then); AB2: the trapezoidal rule's
+    O(dt^2) at each begin and end, once the work in flight is counted): the largest residual
+    over the run shrinks 4-fold when dt halves. Booking the power with the velocity the force saw
+    (a first-order error that accumulates) or leaving out the work in flight (O(dt) jumps at
+    each begin or end) would halve it only (ORDER_RATIO's lower bound 3). The residual is small
+    against the energy that went (the disks' fall, several units)."""
+    worst = []
+    for dt_over_tau in (1 / 25, 1 / 50, 1 / 100):
+        table = pile(tmp_path / f"dt{dt_over_tau}", dt_over_tau, integrator, time=3.0)
+        residual = np.abs(table[:, 1] - table[0, 1])
+        worst.append(residual.max())
+        print(f"{integrator} dt=tau/{1 / dt_over_tau:.0f}: largest residual {worst[-1]:.3e}, "
+              f"at the end {residual[-1]:.3e}, stored at the end {table[-1, 3]:.3e}, sliding "
+              f"{table[-1, 2]:.3e}")
+    ratios = [worst[0] / worst[1], worst[1] / worst[2]]
+    print(f"ratios {ratios}")
+    assert all(r >= ORDER_RATIO["ab2"][0] for r in ratios), ratios
+    assert worst[-1] <= 1e-3
+
+
+def test_the_budget_is_the_same_on_two_ranks(tmp_path):
+    """The pile on two ranks (the pairs across the boundary between them booked on one, their
+    ghosts' shares brought home by reverse communication) gives the budget and the sliding loss
+    of one rank to rounding amplified over the run (1e-9): a ghost's share lost or counted twice
+    changes them by a contact's energy, 1e-2 and more."""
+    one = pile(tmp_path / "one", 1 / 50, time=1.0)
+    two = pile(tmp_path / "two", 1 / 50, nprocs=2, time=1.0)
+    assert two.shape == one.shape
+    assert one[-1, 2] != 0.0    # the disks have slid on each other or on the bumps by then
+    assert two[:, 1:] == pytest.approx(one[:, 1:], rel=1e-9, abs=1e-12)
+
+
+def test_no_contacts_keep_the_budget_at_rounding(tmp_path):
+    """Disks falling freely, never touching: under a constant force velocity Verlet conserves
+    kinetic + gravitational energy exactly, and nothing is booked: the budget stays at its
+    initial value to rounding (1e-13 of it), and stored and dissipated stay 0."""
+    table = pile(tmp_path, 1 / 50, time=0.25)
+    assert np.all(table[:, 2:] == 0.0)
+    assert table[:, 1] == pytest.approx(table[0, 1], rel=1e-13)
+
+
+def energy_table(path):
+    """energy.txt as {column: array}, by its (last) header."""
+    lines = path.read_text().splitlines()
+    names = [line.split()[1:] for line in lines if line.startswith("# step")][-1]
+    data = np.array([[float(x) for x in line.split()] for line in lines
+                     if line and not line.startswith("#")])
+    return {name: data[:, k] for k, name in enumerate(names)}
+
+
+def test_the_collisional_scenes_budget(tmp_path):
+    """The collisional flow (100 disks on a bumpy slope, periodic in x; inputs/lib/energy.lmp's
+    budget with energies = yes), velocity Verlet: at each line where no contact is going on the
+    exact residual (dt^2/8)(sum |F|^2/m + |T|^2/I) is 0 (gravity alone: VV is exact under a
+    constant force), so e_budget is its first value to rounding, however many contacts began
+    and ended, crossed the periodic boundary, changed hands at a rebuild of the neighbor lists
+    (the pair (j, i) then keeps the last force with its normal flipped) or spanned the split of
+    the run at average_start. A contact's tail lost or booked twice, or a normal kept unflipped
+    at a rebuild, leaves a jump of the order of a collision's energy times dt/tau (1e-3 here).
+    And the trajectory is that of energies = no, to the bit. The rows (contacts.txt, read by
+    postprocess.io.read_rows with their energy columns) of the contacts ended by a quiet line
+    hold all that was dissipated by then: each contact's total once, the global sum two halves
+    of each (a half lost or counted twice differs by a collision's loss, 1e-2)."""
+    common = dict(kn=2e5, run_time=3, average_start=1, output_interval=0.05,
+                  integration="separate")
+    run_scene("collisional_flow", tmp_path / "on", energies="yes", rows="yes", **common)
+    run_scene("collisional_flow", tmp_path / "off", **common)
+    on, off = energy_table(tmp_path / "on" / "energy.txt"), energy_table(
+        tmp_path / "off" / "energy.txt")
+    for name in ("e_trans", "e_rot", *SCHEMA["counters"]):
+        assert np.array_equal(on[name], off[name]), name
+    quiet = on["contacts_now"] == 0
+    dissipated = on["dissipated_normal"] + on["dissipated_sticking"] + on["dissipated_sliding"]
+    assert np.any(quiet & (dissipated > 1.0))    # lines after many collisions
+    assert np.all(on["stored"][quiet] == 0.0)
+    assert on["e_budget"][quiet] == pytest.approx(on["e_budget"][0], rel=1e-10)
+    rows = read_rows(tmp_path / "on")
+    dt = float(dict(line.split() for line in (tmp_path / "on" / "params.txt").read_text()
+                    .splitlines())["dt"])
+    last = np.flatnonzero(quiet & (dissipated > 1.0))[-1]
+    ended = rows["start"] + rows["duration"] <= on["step"][last] * dt * (1 + 1e-12)
+    assert np.sum(rows["dissipated"][ended]) == pytest.approx(dissipated[last], rel=1e-8)
+    assert np.sum(rows["dissipated_sliding"][ended]) == pytest.approx(
+        on["dissipated_sliding"][last], rel=1e-8, abs=1e-9)
+
+
+def pile_3d(tmp_path, dt_over_tau, time=2.0):
+    """pile() in 3D: eight unit spheres dropped onto a 7 x 3 grid of bumps (periodic in x and
+    y), moving sideways and spinning; step, budget, sliding loss, stored energy every step and
+    the number of contacts."""
+    kn, e, beta = 2e5, 0.7, 0.7
+    dt = law(kn, e, beta, "sphere")["tau_c"] * dt_over_tau
+    bumps = "\n".join(f"create_atoms 2 single {x}.0 {y}.0 0" for x in range(-3, 4)
+                      for y in (-1, 0, 1))
+    spheres = "\n".join(f"create_atoms 1 single {x!r} {y!r} {z!r}" for x, y, z in (
+        (-2.4, -0.6, 1.1), (-1.2, 0.5, 1.4), (0.1, -0.2, 1.6), (1.3, 0.7, 1.9),
+        (2.5, -0.8, 2.1), (-0.6, 0.9, 2.5), (0.8, -0.9, 2.8), (2.0, 0.2, 3.1)))
+    f = {name: f"f_c[{k}]" for name, k in VECTOR.items()}
+    deck = HEADER.format(plugin=PLUGIN).replace("dimension 2", "dimension 3") + f"""
+boundary p p f
+region box block -3.5 3.5 -1.5 1.5 -1 6
+create_box 2 box
+{bumps}
+{spheres}
+set type * diameter 1.0
+set type * density 1.0
+velocity all set 0 0 0
+set type 1 vx 0.4 vy -0.3 omega 0.5 0 1.0
+group mobile type 1
+pair_style gran/mn kn {kn} e {e} beta {beta} mu 0.5 wall_types 2
+pair_coeff * *
+timestep {dt!r}
+fix integrate mobile nve/sphere
+fix gravity mobile gravity 1.0 vector 0 0 -1
+fix c all contacts/mn energy yes
+variable height atom mass*z
+compute erot mobile erotate/sphere
+compute etrans mobile ke
+compute gravitational mobile reduce sum v_height
+variable budget equal c_etrans+c_erot+c_gravitational+{f['dissipated_normal']}+{f['dissipated_sticking']}+{f['dissipated_sliding']}+{f['stored']}-{f['work_in_flight']}
+thermo_modify norm no
+thermo 0
+fix budget all print 1 "$(step) $(v_budget:%.17g) $({f['dissipated_sliding']}:%.17g) $({f['stored']}:%.17g) $({f['contacts_now']})" file budget.txt screen no
+run {round(time / dt)}
+"""
+    return run_lammps(deck, tmp_path, header=False).table("budget.txt")
+
+
+def test_the_budget_of_a_3d_pile(tmp_path):
+    """The 3D overloads (u_t a vector in the tangent plane, the last force's normal and
+    tangential vector kept): with no contact going on the budget is its initial value to
+    rounding (velocity Verlet's residual vanishes with the contact forces), and its largest
+    residual shrinks 4-fold when dt halves (ORDER_RATIO's lower bound 3: first order would halve
+    it). A tail in the wrong frame or a 2D-only term leaves a jump of a collision's energy times
+    dt/tau. (No pair here changes lists while in contact: the flip of the kept vectors then is
+    checked in 2D only, by the collisional scene.)"""
+    worst = []
+    for dt_over_tau in (1 / 25, 1 / 50, 1 / 100):
+        table = pile_3d(tmp_path / f"dt{dt_over_tau}", dt_over_tau)
+        residual = np.abs(table[:, 1] - table[0, 1])
+        quiet = table[:, 4] == 0
+        assert np.any(quiet & (table[:, 0] > table[np.argmax(table[:, 4] > 0), 0]))
+        assert np.all(residual[quiet] <= 1e-12 * abs(table[0, 1]) + 1e-12)
+        worst.append(residual.max())
+        print(f"3D dt=tau/{1 / dt_over_tau:.0f}: largest residual {worst[-1]:.3e}, sliding "
+              f"{table[-1, 2]:.3e}")
+    ratios = [worst[0] / worst[1], worst[1] / worst[2]]
+    print(f"ratios {ratios}")
+    assert all(r >= ORDER_RATIO["ab2"][0] for r in ratios), ratios
+
+
+def test_the_budget_across_a_restart_file(tmp_path):
+    """The pile written to a restart file in the middle of its collisions (t = 0.8) and continued
+    from it: the per-atom energies (fix contacts/mn's state) and each contact's energy history
+    (the pair's, with its last force) come back, so that at every step with no contact going
+    on, before the restart and after, the budget is its first value to rounding. A contact's
+    history not restored (its account started afresh) or the per-atom sums lost would leave a
+    jump of the energy dissipated so far, of order 1."""
+    table = pile(tmp_path, 1 / 50, time=2.0, restart_at=0.8)
+    quiet = table[:, 4] == 0
+    after = table[:, 0] > table[np.argmax(table[:, 4] > 0), 0]
+    assert np.any(quiet & after & (np.arange(len(table)) > len(table) // 2))
+    assert table[quiet, 1] == pytest.approx(table[0, 1], rel=1e-12)
+    assert table[-1, 2] != 0.0
