@@ -71,13 +71,13 @@ from .write_summaries import write_summaries
 from .write_transition import write_transition_report
 
 DATA = Path(__file__).resolve().parents[1] / "data"
+COMMANDS = ("report", "compare", "transition", "limit", "summarize", "engines", "finite-size")
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m postprocess", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("command", choices=("report", "compare", "transition", "limit",
-                                            "summarize", "engines", "finite-size"))
+    parser.add_argument("command", choices=COMMANDS)
     parser.add_argument("sweeps", type=Path, nargs="+", metavar="sweep")
     parser.add_argument("--output", type=Path)
     parser.add_argument("--to", type=Path)

@@ -664,7 +664,7 @@ def test_the_runner_follows_the_decks_time_step_rule(tmp_path, monkeypatch):
     import shutil
     from granmn_sweep import decks
     from granmn_sweep.cost import predicted_steps
-    from mn_law import derived
+    from granmn_sweep.mn_law import derived
     shutil.copytree(ROOT / "inputs", tmp_path / "inputs")
     dynamics = tmp_path / "inputs" / "lib" / "time_step.lmp"
     text = dynamics.read_text()
