@@ -72,6 +72,10 @@ def test_installed_granmn_summarize_writes_what_python_m_postprocess_writes(gran
     match, mismatch, errors = filecmp.cmpfiles(tmp_path / "by-module", tmp_path / "by-granmn",
                                                [str(p) for p in written], shallow=False)
     assert not mismatch and not errors, (mismatch, errors)
+    # installed, there is no repository data/ to be summarize's default (it would have written
+    # into site-packages)
+    code, _, err = run([granmn, "summarize", results], tmp_path)
+    assert code == 2 and "summarize needs --to DIR where postprocess is installed" in err, err
 
 
 def test_installed_granmn_compare_on_committed_summaries_is_python_m_postprocess_compare(
