@@ -55,6 +55,11 @@ def test_the_installed_command_lists_its_subcommands_and_each_has_its_help(granm
     assert code == 0 and "--partitions" in out and "Config (TOML)" in out, out + err
     code, out, err = run([granmn, "summarize", "--help"], tmp_path)
     assert code == 0 and "--replace" in out, out + err
+    # a copy installed without -e has no decks beside it: the runner says so rather than
+    # finding no scenes
+    code, out, err = run([granmn, "sweep", ROOT / "inputs" / "sweeps" / "quick.toml",
+                          "--dry-run"], tmp_path)
+    assert code == 2 and "is not the project's checkout (no inputs/ with the decks)" in err, err
     code, out, err = run([granmn, "frobnicate"], tmp_path)
     assert code == 2 and "unknown command 'frobnicate'" in err
 
