@@ -591,8 +591,8 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
 
 
 
-# scripts/granmn_sweep's modules in the order of docs/index.md (mn_law, mpirun_slots and checkpoints,
-# which import none of them, first): each imports only those before it
+# scripts/granmn_sweep's modules in the order of docs/index.md (mn_law, mpirun_slots and
+# checkpoints, which import none of them, first): each imports only those before it
 RUNNER_MODULES = ["mn_law", "mpirun_slots", "checkpoints", "decks", "event_driven", "config",
                   "cost", "processes", "points", "schedule", "cli", "command"]
 
