@@ -33,9 +33,9 @@ import sys
 import tempfile
 from pathlib import Path
 
+from granmn_sweep.event_driven import START, START_DUMP, START_FLOOR, write_start
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "scripts"))
-from granmn_sweep.event_driven import START, START_DUMP, START_FLOOR, write_start  # noqa: E402
 
 BUILD = ROOT / "build"
 LMP = BUILD / "lammps" / "lmp"

@@ -45,7 +45,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from mn_law import derived    # bench/mn_law.py links scripts/mn_law.py
+from granmn_sweep.mn_law import derived
 from paired import against_goal, median_and_range, paired_ratios
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -47,8 +47,8 @@ import tempfile
 import time
 from pathlib import Path
 
-import checkpoints    # bench/checkpoints.py links scripts/checkpoints.py
-from mpirun_slots import slots_problem    # bench/mpirun_slots.py links scripts/mpirun_slots.py
+from granmn_sweep import checkpoints
+from granmn_sweep.mpirun_slots import slots_problem
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))

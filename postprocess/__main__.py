@@ -70,14 +70,14 @@ from .write_report import write_report
 from .write_summaries import write_summaries
 from .write_transition import write_transition_report
 
-DATA = Path(__file__).resolve().parents[1] / "data"
+DATA = Path(__file__).resolve().parents[1] / "data"    # the repository's, run in place
+COMMANDS = ("report", "compare", "transition", "limit", "summarize", "engines", "finite-size")
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m postprocess", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("command", choices=("report", "compare", "transition", "limit",
-                                            "summarize", "engines", "finite-size"))
+    parser.add_argument("command", choices=COMMANDS)
     parser.add_argument("sweeps", type=Path, nargs="+", metavar="sweep")
     parser.add_argument("--output", type=Path)
     parser.add_argument("--to", type=Path)
@@ -109,6 +109,10 @@ def main(argv=None):
                           min_length=args.min_span, max_width=args.max_width)
     if (args.to is not None or args.replace) and args.command != "summarize":
         parser.error("--to and --replace are for summarize")
+    in_repository = (DATA.parent / "pyproject.toml").exists()
+    if args.command == "summarize" and args.to is None and not in_repository:
+        parser.error("summarize needs --to DIR where postprocess is installed: its default, "
+                     "data/<name>, is the repository's")
     # where the command writes (compare: nowhere), and the option that named it
     out, option = {"summarize": (args.to or DATA / args.sweep.resolve().name, "--to"),
                    "compare": (None, None)}.get(

@@ -11,7 +11,6 @@ by bin (mean and standard error). Prints the largest difference of each profile 
 in units of their combined error.
 """
 import argparse
-import sys
 from pathlib import Path
 
 import matplotlib
@@ -19,9 +18,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 from postprocess.io import Point  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def profiles(results, kn):

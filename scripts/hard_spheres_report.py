@@ -21,9 +21,9 @@ import statistics
 import sys
 from pathlib import Path
 
+from postprocess.runs import load_runs
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from postprocess.runs import load_runs  # noqa: E402
 
 
 def engine_files(data, record, suffix):

@@ -3,7 +3,9 @@ its modules each importing only those before it: decks (what the runner reads fr
 event_driven (an event-driven point's run: the deck's start, then the engine), config (a
 config's points and their names), cost (the predicted CPU time), processes (the runner's lmp
 processes), points (the output directory and its points' directories), schedule (running the
-points) and cli (the command)."""
+points) and cli (the command); mn_law (the law's derived numbers from build/plugin/mn-law),
+mpirun_slots (the slots mpirun gives) and checkpoints (a run cut back to a checkpoint) import
+none of them; command (`granmn`: the runner and the post-processing) imports cli."""
 
 
 class SweepError(Exception):

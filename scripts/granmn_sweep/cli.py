@@ -176,6 +176,10 @@ def main(argv=None):
              "mn_law": args.build / "plugin" / "mn-law",
              "mpiexec": shutil.which("mpirun") or "mpirun"}
     try:
+        if not (ROOT / "inputs").is_dir():
+            raise SweepError(f"{ROOT} is not the project's checkout (no inputs/ with the decks): "
+                             "the runner runs from one; install it there with `pip install "
+                             "--no-deps --no-build-isolation -e .`, or run scripts/sweep.py")
         config = with_settings(load_config(args.config), args.set, args.config)
         points = expand(config, args.config)
         output = args.output or ROOT / "results" / config.get("name", Path(args.config).stem)

@@ -10,7 +10,7 @@ import re
 import shutil
 import signal
 
-import checkpoints
+from granmn_sweep import checkpoints
 from granmn_sweep import SweepError
 from granmn_sweep import processes
 from postprocess.rundir import SUMMARY_SUFFIX     # scripts/postprocess links the package

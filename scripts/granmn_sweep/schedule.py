@@ -14,7 +14,7 @@ from granmn_sweep.cost import format_seconds
 from granmn_sweep.decks import LIB, ROOT, engine, point_deck
 from granmn_sweep.points import cpu_seconds, error_lines, failed_to_start, finish, \
     resume_or_prepare, set_aside_failed_resume, wrote_done
-from mpirun_slots import slots_problem
+from granmn_sweep.mpirun_slots import slots_problem
 
 
 def point_variables(point, directory, paths, token):

@@ -17,7 +17,7 @@ import pytest
 from test_sweep import (BUILD, ROOT, SWEEP, kill_processes_mentioning, kill_session,
                         processes_mentioning, signal_all, sweep, wait_for)
 
-import checkpoints
+from granmn_sweep import checkpoints
 from granmn_run import PLUGIN, SERIAL, SERIAL_REASON, run_lammps
 
 # A contact-rich stretch: the frictional pile falls and flows (friction, multiple contacts,

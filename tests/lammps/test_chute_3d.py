@@ -125,7 +125,6 @@ def test_the_chute_preset_is_known_to_the_runner_and_within_budget(tmp_path):
 
 def preset_points(name):
     """The points of inputs/sweeps/<name>.toml as the runner expands them."""
-    sys.path.insert(0, str(ROOT / "scripts"))
     from granmn_sweep.config import expand, load_config
     path = ROOT / "inputs" / "sweeps" / f"{name}.toml"
     return expand(load_config(path), path)

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from granmn_run import PLUGIN
-from mn_law import derived
+from granmn_sweep.mn_law import derived
 from postprocess.io import read_counts, read_energy, read_params, read_profile
 from postprocess.runs import read_run
 

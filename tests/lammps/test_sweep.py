@@ -16,6 +16,8 @@ from granmn_run import MPIEXEC, PLUGIN, needs_mpi
 
 ROOT = Path(__file__).resolve().parents[2]
 SWEEP = [sys.executable, str(ROOT / "scripts" / "sweep.py")]
+# a child python running the runner's modules finds them as scripts/sweep.py does
+RUNNER_PATH = dict(os.environ, PYTHONPATH=str(ROOT / "scripts"))
 BUILD = Path(PLUGIN).resolve().parents[1]
 
 CONFIG = """
@@ -345,13 +347,12 @@ def test_a_nice_runners_runs_stay_nice_in_their_own_sessions(tmp_path):
     if Path("/proc/sys/kernel/sched_autogroup_enabled").read_text().strip() != "1":
         pytest.skip("this kernel schedules no autogroups")
     # the runner's niceness is 7 above the suite's own (which may itself run under nice)
-    code = ("import os, sys; sys.path.insert(0, sys.argv[1]); print(os.nice(7));"
+    code = ("import os, sys; print(os.nice(7));"
             "from granmn_sweep import processes;"
-            "p = processes.start(['sleep', '1'], sys.argv[2], dict(os.environ), []);"
+            "p = processes.start(['sleep', '1'], sys.argv[1], dict(os.environ), []);"
             "print(open(f'/proc/{p.pid}/autogroup').read()); processes.wait(p, [])")
-    proc = subprocess.run([sys.executable, "-c", code, str(ROOT / "scripts"),
-                           str(tmp_path / "run.out")], capture_output=True, text=True,
-                          timeout=60)
+    proc = subprocess.run([sys.executable, "-c", code, str(tmp_path / "run.out")],
+                          env=RUNNER_PATH, capture_output=True, text=True, timeout=60)
     assert proc.returncode == 0, proc.stderr
     runner_niceness = proc.stdout.split()[0]
     assert runner_niceness != "0" and proc.stdout.split()[-1] == runner_niceness, proc.stdout
@@ -590,9 +591,10 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
 
 
 
-# scripts/granmn_sweep's modules in the order of docs/index.md: each imports only those before it
-RUNNER_MODULES = ["decks", "event_driven", "config", "cost", "processes", "points", "schedule",
-                  "cli"]
+# scripts/granmn_sweep's modules in the order of docs/index.md (mn_law, mpirun_slots and
+# checkpoints, which import none of them, first): each imports only those before it
+RUNNER_MODULES = ["mn_law", "mpirun_slots", "checkpoints", "decks", "event_driven", "config",
+                  "cost", "processes", "points", "schedule", "cli", "command"]
 
 
 @pytest.mark.parametrize("module", RUNNER_MODULES)
@@ -664,7 +666,7 @@ def test_the_runner_follows_the_decks_time_step_rule(tmp_path, monkeypatch):
     import shutil
     from granmn_sweep import decks
     from granmn_sweep.cost import predicted_steps
-    from mn_law import derived
+    from granmn_sweep.mn_law import derived
     shutil.copytree(ROOT / "inputs", tmp_path / "inputs")
     dynamics = tmp_path / "inputs" / "lib" / "time_step.lmp"
     text = dynamics.read_text()
@@ -802,15 +804,15 @@ def test_an_unexpected_error_in_the_runner_stops_its_runs_and_lets_go_of_the_loc
     config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\n"
                                           "kn = [5e4, 1e5, 2e5]\n")
     output = tmp_path / "out"
-    code = ("import sys\nsys.path.insert(0, sys.argv[1])\n"
+    code = ("import sys\n"
             "from granmn_sweep import schedule\n"
             "def fault(*args, **kwargs):\n    raise RuntimeError('a fault of the runner')\n"
             "schedule.finish = fault\n"
             "from granmn_sweep.cli import main\n"
-            "sys.exit(main(sys.argv[2:]))\n")
-    proc = subprocess.run([sys.executable, "-c", code, str(ROOT / "scripts"), str(config),
+            "sys.exit(main(sys.argv[1:]))\n")
+    proc = subprocess.run([sys.executable, "-c", code, str(config),
                            "--output", str(output), "--build", str(BUILD), "--jobs", "1"],
-                          capture_output=True, text=True, timeout=300)
+                          env=RUNNER_PATH, capture_output=True, text=True, timeout=300)
     assert proc.returncode == 3, proc.stdout + proc.stderr
     assert "sweep: the runner failed: RuntimeError: a fault of the runner; the runs under way " \
         "were stopped" in proc.stderr and "Traceback" in proc.stderr, proc.stderr

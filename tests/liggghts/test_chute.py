@@ -150,7 +150,6 @@ def test_through_the_runner_and_the_post_processing(tmp_path):
         "average_start1_dt_fraction0.05_engineliggghts_kn200000_run_time2_seed1_spheres50"
     assert json.loads((point / "point.json").read_text())["engine"] == "liggghts"
     assert "liggghts" in (point / "command.txt").read_text()
-    sys.path.insert(0, str(ROOT))
     from postprocess.runs import load_runs
     [run] = load_runs(tmp_path / "out")
     assert run.reason is None and run.ended == "flowing", run.reason

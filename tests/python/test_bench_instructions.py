@@ -1,10 +1,7 @@
 """bench/instructions.py's arithmetic: per-step counts are the difference of two runs over the
 steps between them (set-up and warm-up drop out), and names are shortened without merging."""
-import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
-import instructions    # noqa: E402
+import instructions
 
 
 def test_per_step_differences_out_what_both_runs_share():

@@ -1,10 +1,7 @@
 """bench/paired.py's goal verdict: a one-sided sign test on paired ratios, three ways."""
 import math
-import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
-import paired    # noqa: E402
+import paired
 
 
 def test_binomial_tail_against_its_definition():

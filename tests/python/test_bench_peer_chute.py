@@ -2,13 +2,10 @@
 spaces (2025 on): every variant edited as meant in both, and a deck it was not written for
 refused with a message instead of run unedited."""
 import re
-import sys
-from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
-import peer_chute    # noqa: E402
+import peer_chute
 
 # the commands of LAMMPS's bench/in.chute that the variants edit, in its order
 SHIPPED = """units\t\tlj

@@ -3,13 +3,10 @@ distribution passes; one shifted by 5 of its standard errors fails, as does a va
 single run (its error undefined) or with many more piles that stop; a mutant that passes
 makes the verdict fail."""
 import json
-import sys
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
-import newton_check    # noqa: E402
+import newton_check
 
 SCATTER = 0.1      # per-run scatter of every observable about 1
 

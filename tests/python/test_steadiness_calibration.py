@@ -1,15 +1,12 @@
 """scripts/steadiness_calibration.py's ratio, on made-up energy curves as a run summary keeps
 them (1-unit window means from t = 0): a steady energy gives 1, an energy growing linearly from
 rest 650/350 (the figure the collisional steadiness test's docstring gives such a flow)."""
-import sys
-from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
-import steadiness_calibration    # noqa: E402
+import steadiness_calibration
 
 
 def summary_record(energy_of_t):

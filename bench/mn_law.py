@@ -1,1 +1,0 @@
-../scripts/mn_law.py

@@ -1,1 +1,0 @@
-../scripts/mpirun_slots.py
