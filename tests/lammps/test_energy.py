@@ -543,3 +543,25 @@ def test_the_budget_across_a_restart_file(tmp_path):
     assert table[quiet, 1] == pytest.approx(table[0, 1], rel=1e-12)
     assert table[-1, 2] != 0.0
 
+
+
+def test_the_frictional_scenes_budget(tmp_path):
+    """The frictional flow (its floor a plane wall fix, fix wall/gran/mn; energies = yes),
+    velocity Verlet: at each line where no contact is going on the exact residual
+    (dt^2/8)(sum |F|^2/m + |T|^2/I) is 0, so e_budget is its first value to rounding once the
+    disks have hit the floor and one another. A floor contact's energies booked half, twice, a
+    step late or not at all leave a jump of the order of its loss times dt/tau or more (1e-4
+    and up here). And the trajectory is that of energies = no, to the bit."""
+    common = dict(kn=2e5, run_time=4, average_start=0.5, output_interval=0.05)
+    run_scene("frictional_flow", tmp_path / "on", energies="yes", **common)
+    run_scene("frictional_flow", tmp_path / "off", **common)
+    on, off = energy_table(tmp_path / "on" / "energy.txt"), energy_table(
+        tmp_path / "off" / "energy.txt")
+    for name in ("e_trans", "e_rot", *SCHEMA["counters"]):
+        assert np.array_equal(on[name], off[name]), name
+    quiet = on["contacts_now"] == 0
+    dissipated = on["dissipated_normal"] + on["dissipated_sticking"] + on["dissipated_sliding"]
+    assert on["begun_boundary"][-1] > 0    # the floor's contacts are in the budget
+    assert np.any(quiet & (dissipated > 1.0))
+    assert np.all(on["stored"][quiet] == 0.0)
+    assert on["e_budget"][quiet] == pytest.approx(on["e_budget"][0], rel=1e-10)
