@@ -115,15 +115,17 @@ void FixContactsMN::init()
   if (!force->pair_match("gran/mn", 1) && holders.empty())
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");
-  // the wall fixes do not book their contacts' energies yet: a budget without them would not
+  // a wall fix that does not book its contacts' energies: a budget without them would not
   // close, and silently
-  if (energy && !holders.empty())
-    error->all(FLERR, "Fix contacts/mn energy yes: fix {} ({}) does not book the energies of "
-                      "its contacts yet (only pair_style gran/mn's contacts, bumps included, "
-                      "do): the energies and the budget would miss the walls' share; use bumps "
-                      "(pair_style gran/mn wall_types) or energy no",
-               dynamic_cast<const Fix *>(holders.front())->id,
-               dynamic_cast<const Fix *>(holders.front())->style);
+  if (energy)
+    for (const granmn::HeldContacts *holder : holders)
+      if (!holder->books_energies())
+        error->all(FLERR, "Fix contacts/mn energy yes: fix {} ({}) does not book the energies "
+                          "of its contacts yet (pair_style gran/mn's contacts, bumps included, "
+                          "and fix wall/gran/mn's do): the energies and the budget would miss "
+                          "the walls' share; use bumps (pair_style gran/mn wall_types) or "
+                          "energy no",
+                   dynamic_cast<const Fix *>(holder)->id, dynamic_cast<const Fix *>(holder)->style);
   integrator = granmn::integrator_in_use(modify);
   fold_ghosts = comm->nprocs == 1 && atom->map_style != Atom::MAP_NONE;
   set_recounting(recounting);
@@ -316,10 +318,11 @@ void FixContactsMN::boundary_touching(int i, bool began)
   change(i, 0.0, 1.0);
 }
 
-void FixContactsMN::boundary_ended(int i, const double *record, double vn)
+void FixContactsMN::boundary_ended(int i, const double *record, double vn,
+                                   const mn::ContactEnergy *energy)
 {
   change(i, 0.0, -1.0);
-  if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, KIND_BOUNDARY, vn, nullptr);
+  if (atom->mask[i] & groupbit) ended(record, atom->tag[i], 0, KIND_BOUNDARY, vn, energy);
 }
 
 void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_boundary,

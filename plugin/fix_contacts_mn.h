@@ -50,7 +50,8 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
                   double vn, bool write_row, bool tally_j,
                   const mn::ContactEnergy *energy) override;
   void boundary_touching(int i, bool began) override;
-  void boundary_ended(int i, const double *record, double vn) override;
+  void boundary_ended(int i, const double *record, double vn,
+                      const mn::ContactEnergy *energy) override;
 
  private:
   // The state per atom: the output columns (granmn::output::Counter, mn_output_schema.h: the

@@ -171,7 +171,7 @@ template <int DIM, bool CYLINDER, bool OBSERVED> void FixWallGranMN::post_force_
       // the work here is only for a contact that has just ended, the observer's event and the
       // history to clear (as in the pair style)
       if (OBSERVED && __builtin_expect(row[layout.touching] != 0.0, 0))
-        side_ended<CYLINDER>(i, side, rho);
+        side_ended<DIM, CYLINDER>(i, side, dist, rho, dt_history);
       if (ut_at >= 0)
         for (int k = 0; k < width; k++) row[ut_at + k] = 0.0;
       if (vt_previous_at >= 0)
@@ -192,18 +192,26 @@ template <int DIM, bool CYLINDER, bool OBSERVED> void FixWallGranMN::post_force_
   forces_evaluated(on_walls);
 }
 
-// Side `side` of the wall has just stopped touching atom i: the observer's event, the flag
-// cleared.
-template <bool CYLINDER> void FixWallGranMN::side_ended(int i, int side, double rho)
+// Side `side` of the wall has just stopped touching atom i, now at dist from it: its last
+// force's energies booked (energy yes), the observer's event, the flag cleared.
+template <int DIM, bool CYLINDER>
+void FixWallGranMN::side_ended(int i, int side, double dist, double rho, double dt_history)
 {
   const granmn::ContactLayout &layout = side_layout[side];
   double *row = state[i];
   row[layout.touching] = 0.0;
   row[granmn::WallSlots::HELD] -= 1.0;
   double n[3];
-  observer->boundary_ended(i, row + layout.record,
-                           inward_normal<CYLINDER>(atom->x, atom->v, i, axis,
-                                                   side == 0 ? 1.0 : -1.0, rho, n));
+  const double vn =
+      inward_normal<CYLINDER>(atom->x, atom->v, i, axis, side == 0 ? 1.0 : -1.0, rho, n);
+  double *energy = slot_energy(i, side);
+  if (!energy) {
+    observer->boundary_ended(i, row + layout.record, vn, nullptr);
+    return;
+  }
+  const mn::ContactEnergy total = book_ended_wall_energy<DIM>(
+      i, n, dist, dt_history, layout.ut >= 0 ? row + layout.ut : nullptr, energy);
+  observer->boundary_ended(i, row + layout.record, vn, &total);
 }
 
 // Side `side` of the wall touches atom i, whose centre is at dist from it (rho: from a
@@ -246,10 +254,14 @@ void FixWallGranMN::touching_side(int i, int side, double dist, double rho, doub
   }
   const double d[3] = {n[0] * dist, n[1] * dist, n[2] * dist};    // dist > 0 here
   const auto kin = mn::wall_kinematics<DIM>(d, dist, radius[i], v[i], atom->omega[i]);
-  mn::add_wall_contact<DIM>(law, mn::boundary_mass_scale(atom->rmass[i]) *
-                                     force_per_mass_acceleration,
-                            kin, ut, dt_history, integrator, vt_previous, radius[i], atom->f[i],
-                            atom->torque[i], on_walls);
+  const double scale = mn::boundary_mass_scale(atom->rmass[i]) * force_per_mass_acceleration;
+  double *energy = OBSERVED ? slot_energy(i, side) : nullptr;
+  if (energy)
+    add_wall_contact_with_energy<DIM>(i, scale, kin, ut, dt_history, vt_previous, energy,
+                                      on_walls);
+  else
+    mn::add_wall_contact<DIM>(law, scale, kin, ut, dt_history, integrator, vt_previous,
+                              radius[i], atom->f[i], atom->torque[i], on_walls);
 }
 
 // The rows are in slots (granmn::WallSlots): a global record (the number of slots) says so. A

@@ -20,7 +20,8 @@ using namespace FixConst;
 FixWallGranMNBase::FixWallGranMNBase(LAMMPS *lmp, int narg, char **arg) :
     FixPerAtomState(lmp, narg, arg), own_law(false), use_history(false),
     integrator(mn::Integrator::VelocityVerlet), force_per_mass_acceleration(1.0),
-    observer(nullptr), ut_block(-1), record_block(-1), vt_block(-1), keyed(false),
+    observer(nullptr), ut_block(-1), record_block(-1), vt_block(-1), energy_block(-1),
+    energy_size(0), keyed(false),
     radii_change(false), force_reduced(false)
 {
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
@@ -94,7 +95,90 @@ void FixWallGranMNBase::keep_slots()
   if (use_history && integrator == mn::Integrator::AdamsBashforth2) widen_state(slots.end());
   record_block = observer ? slots.record_block() : -1;
   vt_block = use_history && ncols >= slots.end() ? slots.vt_block() : -1;
+  // the energy histories after the other blocks, only when booked: a run without them keeps
+  // the rows as they were
+  const bool energies = observer && observer->energy_tallies() && books_wall_energies();
+  energy_size = mn::energy_history_size(integrator, domain->dimension);
+  energy_block = energies ? slots.end() : -1;
+  if (energies) widen_state(slots.end() + slots.count * energy_size);
 }
+
+static inline double ut_squared(int dimension, const double *ut)
+{
+  if (!ut) return 0.0;
+  return dimension == 3 ? ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2] : ut[0] * ut[0];
+}
+
+template <int DIM, class K>
+void FixWallGranMNBase::add_wall_contact_with_energy(int i, double scale, const K &kin,
+                                                     double *ut, double dt_history,
+                                                     double *vt_previous, double *energy,
+                                                     double *on_walls)
+{
+  const double radius = atom->radius[i];
+  const double *omega = atom->omega[i];
+  const double lever[3] = {radius * omega[0], radius * omega[1], radius * omega[2]};
+  double f[3];
+  const mn::EnergyStep booked =
+      mn::force_and_torques_with_energy(law, scale, kin, lever, ut, dt_history, integrator,
+                                        vt_previous, energy, f, radius, atom->torque[i], 0.0,
+                                        nullptr);
+  for (int c = 0; c < DIM; c++) {
+    atom->f[i][c] += f[c];
+    on_walls[c] -= f[c];
+  }
+  // the wall is at rest and takes no energy: the contact's energies are all the atom's
+  observer->energy_tallies()->add(i, 1.0, booked,
+                                  mn::stored_energy(law, scale, kin.delta, ut_squared(DIM, ut)));
+}
+
+// mn::book_ended_contact_energy in the dimension of the kinematics (3D: velocity Verlet).
+static inline mn::EnergyStep book_ended_energy(const mn::Law &law, double scale,
+                                               const mn::Kinematics &k, const double lever[3],
+                                               double ut2, double dt, mn::Integrator integrator,
+                                               double *energy)
+{
+  return mn::book_ended_contact_energy(law, scale, k, lever[2], ut2, dt, integrator, energy);
+}
+
+static inline mn::EnergyStep book_ended_energy(const mn::Law &law, double scale,
+                                               const mn::Kinematics3 &k, const double lever[3],
+                                               double ut2, double dt, mn::Integrator,
+                                               double *energy)
+{
+  return mn::book_ended_contact_energy(law, scale, k, lever, ut2, dt, energy);
+}
+
+template <int DIM>
+mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy(int i, const double n[3],
+                                                            double dist, double dt_history,
+                                                            const double *ut, double *energy)
+{
+  const double radius = atom->radius[i];
+  const double *omega = atom->omega[i];
+  const double d[3] = {n[0] * dist, n[1] * dist, n[2] * dist};
+  const auto kin = mn::wall_kinematics<DIM>(d, dist, radius, atom->v[i], omega);
+  const double lever[3] = {radius * omega[0], radius * omega[1], radius * omega[2]};
+  const double scale = mn::boundary_mass_scale(atom->rmass[i]) * force_per_mass_acceleration;
+  const mn::EnergyStep booked = book_ended_energy(law, scale, kin, lever, ut_squared(DIM, ut),
+                                                  dt_history, integrator, energy);
+  observer->energy_tallies()->add(i, 1.0, booked, {0.0, 0.0});
+  const mn::ContactEnergy total = mn::contact_energy(law, scale, 0.0, 0.0, energy);
+  // the slot's next contact starts its account afresh
+  for (int s = 0; s < energy_size; s++) energy[s] = 0.0;
+  return total;
+}
+
+template void FixWallGranMNBase::add_wall_contact_with_energy<2, mn::Kinematics>(
+    int, double, const mn::Kinematics &, double *, double, double *, double *, double *);
+template void FixWallGranMNBase::add_wall_contact_with_energy<3, mn::Kinematics3>(
+    int, double, const mn::Kinematics3 &, double *, double, double *, double *, double *);
+template mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy<2>(int, const double *,
+                                                                         double, double,
+                                                                         const double *, double *);
+template mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy<3>(int, const double *,
+                                                                         double, double,
+                                                                         const double *, double *);
 
 int FixWallGranMNBase::contacts_held(int i) const
 {

@@ -31,6 +31,7 @@ class FixWallGranMNBase : public FixPerAtomState, public granmn::HeldContacts {
   // With a contact observer (fix contacts/mn): the wall elements atom i touches (as of this
   // fix's last evaluation).
   int contacts_held(int i) const override;
+  bool books_energies() const override { return books_wall_energies(); }
 
  protected:
   // Refuses an atom style without the attributes the law needs.
@@ -49,6 +50,27 @@ class FixWallGranMNBase : public FixPerAtomState, public granmn::HeldContacts {
   virtual bool within_reach(int i, double reach) = 0;
   // A wall that moves: every atom is visited.
   virtual bool surface_moves() const { return false; }
+  // Whether this wall books its contacts' energies when asked (fix contacts/mn energy yes).
+  virtual bool books_wall_energies() const { return false; }
+
+  // Slot `slot`'s energy history in atom i's row, nullptr unless energies are booked.
+  double *slot_energy(int i, int slot) const
+  {
+    return energy_block >= 0 ? state[i] + energy_block + slot * energy_size : nullptr;
+  }
+  // A touching contact of atom i (kin: mn::wall_kinematics) with its energies booked into
+  // energy (slot_energy) and the observer's tallies: the force and torque on i, minus the force
+  // into on_walls, as mn::add_wall_contact.
+  template <int DIM, class K>
+  void add_wall_contact_with_energy(int i, double scale, const K &kin, double *ut,
+                                    double dt_history, double *vt_previous, double *energy,
+                                    double *on_walls);
+  // The first evaluation after atom i's contact along inward normal n ended (its centre at
+  // dist from the wall), its history not yet cleared: its last force's second half booked;
+  // what it dissipated in all.
+  template <int DIM>
+  mn::ContactEnergy book_ended_wall_energy(int i, const double n[3], double dist,
+                                           double dt_history, const double *ut, double *energy);
 
   // Ends a force evaluation: the force the atoms exerted on the wall (x, y[, z]).
   void forces_evaluated(const double *on_walls)
@@ -67,6 +89,8 @@ class FixWallGranMNBase : public FixPerAtomState, public granmn::HeldContacts {
   granmn::WallSlots slots;
   // Where this run keeps each block of the slots (granmn::WallSlots), -1 where it does not
   int ut_block, record_block, vt_block;
+  // Where the energy histories start (-1: energies not booked) and their size per slot
+  int energy_block, energy_size;
   // The atoms that can touch the wall before the next neighbour-list build, in index order:
   // those within the neighbour skin of an element at the last build, and any still holding a
   // contact's state. Between builds an atom moves less than the skin (LAMMPS's trigger is half

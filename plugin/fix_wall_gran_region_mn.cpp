@@ -173,7 +173,8 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
     // (no normal to the face they had)
     if (faces_renumbered && touching_before > 0) {
       for (int old = 0; events && old < touching_before; old++)
-        events->boundary_ended(i, &row[record_block + old * granmn::RECORD_SIZE], no_normal);
+        events->boundary_ended(i, &row[record_block + old * granmn::RECORD_SIZE], no_normal,
+                               nullptr);
       for (int k = 0; k < ncols; k++) row[k] = 0.0;
       touching_before = 0;
     }
@@ -249,7 +250,8 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
     for (int old = 0; events && old < touching_before; old++)
       if (before[slots.key(old)] >= 0.0)
         events->boundary_ended(i, &before[record_block + old * granmn::RECORD_SIZE],
-                               ended_normal_velocity(i, static_cast<int>(before[slots.key(old)])));
+                               ended_normal_velocity(i, static_cast<int>(before[slots.key(old)])),
+                               nullptr);
     // slots beyond the faces touched hold no history (a face touched again starts afresh)
     for (int slot = kept; slot < touching_before && slot < nslots; slot++) {
       row[slots.key(slot)] = 0.0;

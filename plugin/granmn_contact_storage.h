@@ -77,7 +77,9 @@ inline ContactLayout pair_history_layout(bool friction, bool adams_bashforth, bo
 // plane's side, 1 while it touches); then u_t of each slot, the observer's record of each, the
 // previous v_t of each: each block at a place of its own whether kept or not, so that a block
 // kept from a later run on moves no other (restart files hold the rows so). A fix keeps the row
-// up to its last block kept. u_t and v_t have ut_width values each.
+// up to its last block kept. u_t and v_t have ut_width values each. With energies booked
+// (fix contacts/mn energy yes) each slot's energy history follows, energy_size values a slot
+// from end() on: a run without them keeps the rows as before.
 struct WallSlots {
   static constexpr int HELD = 0;
   int count = 0;

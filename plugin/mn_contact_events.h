@@ -119,7 +119,9 @@ class ContactObserver {
   // Local atom i touches a boundary element a fix holds (a wall side), as pair_touching.
   virtual void boundary_touching(int i, bool began) = 0;
   // ... and stopped touching it.
-  virtual void boundary_ended(int i, const double *record, double vn) = 0;
+  // energy: what the contact dissipated (nullptr where energies are not booked).
+  virtual void boundary_ended(int i, const double *record, double vn,
+                              const mn::ContactEnergy *energy) = 0;
 
  protected:
   ~ContactObserver() = default;
@@ -150,6 +152,8 @@ class HeldContacts {
   // The contacts local atom i has with this publisher's boundary elements, as of its last
   // evaluation (0 without an observer: none are kept).
   virtual int contacts_held(int i) const = 0;
+  // Whether this publisher books its contacts' energies for the observer (energy yes).
+  virtual bool books_energies() const { return false; }
 
  protected:
   ~HeldContacts() = default;
