@@ -81,11 +81,16 @@ def check_names(output, names):
 def foreign(directory, point):
     """Why the runner may not remove a point's directory to run the point afresh, or None: it
     removes only a directory it made for a point of this scene (point.json, the first file it
-    writes there) that holds files alone (a run writes no folder: one is someone else's)."""
+    writes there) that holds files alone (a run writes no folder: one is someone else's), or one
+    holding nothing but perhaps an empty point.json (nothing to lose)."""
     if not directory.exists():
         return None
     if not directory.is_dir():
         return "it is a file"
+    entries = list(directory.iterdir())
+    if not entries or (len(entries) == 1 and entries[0].name == "point.json"
+                       and entries[0].is_file() and entries[0].stat().st_size == 0):
+        return None     # a runner stopped between making the directory and writing point.json
     try:
         record = json.loads((directory / "point.json").read_text())
     except (OSError, ValueError):

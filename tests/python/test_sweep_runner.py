@@ -250,6 +250,23 @@ def test_a_point_whose_files_cannot_be_written_fails_and_the_sweep_goes_on(tmp_p
             assert runner_points.foreign(directory, point) is None   # the runner's to rerun
 
 
+def test_a_point_directory_left_before_its_point_json_is_the_runners(tmp_path):
+    """A runner killed between making a point's directory and writing its point.json left a
+    directory the next sweep refused as someone else's: one holding nothing, or only an empty
+    point.json, is the runner's to remove and run afresh; one holding anything else is not."""
+    point = {"scene": "single_disk", "kn": 50000}
+    directory = tmp_path / "single_disk" / "kn50000"
+    directory.mkdir(parents=True)
+    assert runner_points.foreign(directory, point) is None
+    (directory / "point.json").touch()
+    assert runner_points.foreign(directory, point) is None
+    runner_points.prepare(directory, point, {})
+    assert json.loads((directory / "point.json").read_text()) == point
+    (directory / "point.json").write_text("")
+    (directory / "notes.txt").write_text("a user's\n")
+    assert "no point.json" in runner_points.foreign(directory, point)
+
+
 def test_a_run_whose_running_json_cannot_be_written_is_stopped(tmp_path, monkeypatch):
     """running.json names a run's process (a later sweep must not start a point under it): a
     run it cannot name is stopped at once, and the OSError raised (the point fails with it);
