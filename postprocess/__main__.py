@@ -4,6 +4,7 @@ python3 -m postprocess transition SWEEP_DIR [--output DIR]
 python3 -m postprocess summarize RESULTS_DIR [--to DIR] [--replace]
 python3 -m postprocess engines SWEEP_DIR [SWEEP_DIR ...] [--output DIR]
 python3 -m postprocess finite-size SWEEP_DIR [SWEEP_DIR ...] [--output DIR] [selection options]
+python3 -m postprocess dissipation SWEEP_DIR [SWEEP_DIR ...] [--output DIR]
 
 Several SWEEP_DIRs are analysed as one sweep (a preset and its extension, e.g. data/chute_3d
 data/chute_3d_stiff); the output goes to the first's report/ or limit/ unless --output says.
@@ -31,6 +32,11 @@ finite-size the frictional scene at several widths (the deck's width, docs/hard_
             "The width"): per law, k_n and width how the runs ended, each quantity's mean,
             error and scatter, the width dependence against the widest width, and the width
             and seeds the rule gives the wide series, in DIR (default SWEEP_DIR/finite-size)
+dissipation where the contacts' energy goes as k_n grows (runs with energies = yes and rows =
+            yes, docs/hard_sphere_limit.md "Where the energy goes"): per scene, tangential
+            law and k_n the shares of the dissipated energy lost in lasting contacts, in
+            multiple contacts and in binary collisions, the negative sliding work, and rule 2
+            on the lasting share, in DIR (default SWEEP_DIR/dissipation)
 summarize   one compact summary per run of RESULTS_DIR, DIR/<scene>/<point>.json (default
             DIR: data/<name of RESULTS_DIR> in the repository); report and compare take a
             directory of summaries as SWEEP_DIR as well as a results directory (docs/sweeps.md);
@@ -63,6 +69,7 @@ from .study import analyse
 from .transition import analyse_transition
 from .runs import load_runs
 from .write_compare import write_compare
+from .write_dissipation import write_dissipation
 from .write_engines import write_engines
 from .write_finite_size import write_finite_size
 from .write_limit import write_limit
@@ -71,7 +78,8 @@ from .write_summaries import write_summaries
 from .write_transition import write_transition_report
 
 DATA = Path(__file__).resolve().parents[1] / "data"    # the repository's, run in place
-COMMANDS = ("report", "compare", "transition", "limit", "summarize", "engines", "finite-size")
+COMMANDS = ("report", "compare", "transition", "limit", "summarize", "engines", "finite-size",
+            "dissipation")
 
 
 def main(argv=None):
@@ -134,13 +142,14 @@ def main(argv=None):
         print(f"summaries: {len(written)} runs written in {to} ({size / 1024:.0f} kB)" +
               (f", {len(kept)} kept as they were" if kept else ""))
         return 0
-    if args.command in ("engines", "finite-size"):
+    if args.command in ("engines", "finite-size", "dissipation"):
         try:
             runs = load_runs(sources, selection)
         except DataError as error:
             print(f"postprocess: {error}", file=sys.stderr)
             return 2
-        write = write_engines if args.command == "engines" else write_finite_size
+        write = {"engines": write_engines, "finite-size": write_finite_size,
+                 "dissipation": write_dissipation}[args.command]
         return write(named, runs, out)
     if args.command == "transition":
         try:

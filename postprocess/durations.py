@@ -5,7 +5,8 @@ values (so that summaries carry them), the report, the limit rule and the transi
 take them from there or from here."""
 import numpy as np
 
-from .io import CONTACT_KINDS, DataError
+from . import rundir
+from .io import CONTACT_KINDS, DataError, header_columns, numeric_table
 
 # P(tau): log bins of tau/tau_c (tau/tau_w for boundary contacts), ten per decade; the tail
 # beyond TAIL_CUT binary durations holds the lasting contacts (a binary collision lasts 1).
@@ -133,6 +134,98 @@ def run_split(point, rows_time, first, lasting=LASTING, margin=0.5):
     return split
 
 
+def multiple_contacts(rows):
+    """Per row, whether the contact overlapped in time another contact (of any row) of one of
+    its particles: one of its disks had two contacts or more while it lasted. Touching in time
+    (one ends at the step the other begins) is not overlapping."""
+    with_disk = rows["kind"] == CONTACT_KINDS["disk"]
+    index = np.arange(len(rows["kind"]))
+    owner = np.concatenate([rows["id_i"], rows["id_j"][with_disk]]).astype(int)
+    index = np.concatenate([index, index[with_disk]])
+    begin = rows["start"][index]
+    end = begin + rows["duration"][index]
+    order = np.lexsort((begin, owner))
+    owner, index, begin, end = owner[order], index[order], begin[order], end[order]
+    found = np.zeros(len(rows["kind"]), dtype=bool)
+    for first, last in zip(*group_bounds(owner)):
+        b, e = begin[first:last], end[first:last]
+        # sorted by start: a contact overlaps an earlier one if any earlier one ends after it
+        # begins, a later one if the next one begins before it ends
+        earlier = np.concatenate([[-np.inf], np.maximum.accumulate(e)[:-1]]) > b
+        later = np.concatenate([b[1:] < e[:-1], [False]])
+        found[index[first:last][earlier | later]] = True
+    return found
+
+
+def group_bounds(sorted_keys):
+    """The [first, last) bounds of each run of equal values in a sorted array."""
+    if len(sorted_keys) == 0:
+        return np.array([], dtype=int), np.array([], dtype=int)
+    starts = np.flatnonzero(np.concatenate([[True], sorted_keys[1:] != sorted_keys[:-1]]))
+    return starts, np.concatenate([starts[1:], [len(sorted_keys)]])
+
+
+# what dissipation_split gives (its names in a summary)
+DISSIPATION_NAMES = ("dissipated", "lasting", "multiple", "binary", "sliding",
+                     "negative_sliding", "negative_sliding_contacts", "contacts",
+                     "global_dissipated")
+
+
+def dissipation_split(rows, tau_c, tau_w, start, stop, lasting=LASTING):
+    """Where the contacts that ended within [start, stop] lost their energy (rows of a run with
+    energies = yes: io.read_rows with the dissipated columns), docs/hard_sphere_limit.md "Where
+    the energy goes": `dissipated`, what they dissipated in all (D), and as shares of D what was
+    lost in lasting contacts (longer than `lasting` binary durations), in contacts that
+    overlapped another contact of one of their particles (multiple_contacts; a contact counted
+    whole), in the rest (binary: short and alone), and while sliding; `negative_sliding`, the
+    sum of the sliding work of the contacts whose sliding work is negative (the literal u_t's
+    sliding that gives energy back) as a share of D, and `negative_sliding_contacts` how many
+    of the `contacts` there were. Shares are None where D is not positive."""
+    if not stop > start:
+        raise ValueError(f"an empty window [{start:g}, {stop:g}]")
+    end = rows["start"] + rows["duration"]
+    ended = (end >= start) & (end <= stop)
+    unit = np.where(rows["kind"] == CONTACT_KINDS["disk"], tau_c, tau_w)
+    long = rows["duration"] > lasting * unit
+    several = multiple_contacts(rows)
+    dissipated = rows["dissipated"]
+    sliding = rows["dissipated_sliding"]
+    total = float(dissipated[ended].sum())
+    negative = ended & (sliding < 0)
+
+    def share(mask):
+        return float(dissipated[ended & mask].sum()) / total if total > 0 else None
+    return {"dissipated": total, "lasting": share(long), "multiple": share(several),
+            "binary": share(~long & ~several),
+            "sliding": float(sliding[ended].sum()) / total if total > 0 else None,
+            "negative_sliding": float(sliding[negative].sum()) / total if total > 0 else None,
+            "negative_sliding_contacts": int(np.count_nonzero(negative)),
+            "contacts": int(np.count_nonzero(ended))}
+
+
+# energy.txt's columns of the energy the contacts dissipated since the run began (a run with
+# energies = yes)
+DISSIPATED_COLUMNS = ("dissipated_normal", "dissipated_sticking", "dissipated_sliding")
+
+
+def run_dissipation(point, rows_time, margin=0.5):
+    """dissipation_split over the rows window of a run (an io.Point with energy columns in its
+    rows), as run_split's window, with `global_dissipated`: the growth of the whole system's
+    dissipated energy (energy.txt) over the same window, which the rows' D differs from by
+    what the contacts open at the window's edges lost outside it."""
+    params = point.params
+    start = params["average_start"]
+    stop = start + rows_time - margin
+    split = dissipation_split(point.rows, params["tau_c"], params["tau_w"], start, stop)
+    path = point.directory / rundir.ENERGY
+    table = numeric_table(path, header_columns(path, "step", ("step",) + DISSIPATED_COLUMNS))
+    time = table["step"] * params["dt"]
+    a, b = np.argmin(np.abs(time - start)), np.argmin(np.abs(time - stop))
+    split["global_dissipated"] = float(sum(table[c][b] - table[c][a]
+                                           for c in DISSIPATED_COLUMNS))
+    return split
+
+
 def run_contacts(point, first):
     """What measure() keeps of a run's rows (None if it has none): the histogram of the
     durations of the contacts that ended after average_start, per kind, on DURATION_EDGES
@@ -158,6 +251,8 @@ def run_contacts(point, first):
         out["split"] = {f"{lasting:g}": {k: float(v) if np.isfinite(v) else None for k, v in
                                          run_split(point, rows_time, first, lasting).items()}
                         for lasting in (LASTING, LASTING_ALSO)}
+        if "dissipated" in point.rows:
+            out["dissipation"] = run_dissipation(point, rows_time)
     return out
 
 

@@ -350,3 +350,28 @@ def limit_figure(decisions, path):
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def dissipation_figure(groups, path):
+    """Where the energy goes as k_n grows (postprocess/dissipation.py): per scene and law, the
+    shares of the dissipated energy lost in lasting contacts, in multiple contacts and in
+    binary collisions, and the negative sliding work's, with their errors over the runs."""
+    from .dissipation import per_kn
+    fig, axes = plt.subplots(1, len(groups), figsize=(4.2 * len(groups), 3.8), squeeze=False)
+    for ax, group in zip(axes[0], groups):
+        rows = per_kn(group)
+        kn = [r[0] for r in rows]
+        for share, label in (("lasting", "lasting (> 3 binary durations)"),
+                             ("multiple", "in a multiple contact"), ("binary", "binary"),
+                             ("negative_sliding", "negative sliding work")):
+            ax.errorbar(kn, [r[2][share][0] for r in rows],
+                        yerr=[np.nan_to_num(r[2][share][1]) for r in rows], fmt="o-", ms=4,
+                        capsize=2, label=label)
+        ax.axhline(0.0, color="k", lw=0.5)
+        verdict = group.decision.verdict if group.decision else "n/a"
+        ax.set(xscale="log", xlabel="k_n", ylabel="share of the dissipated energy",
+               title=textwrap.fill(f"{group.scene} ({group.law}): lasting share {verdict}", 40))
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -8,14 +8,15 @@ min_length and max_width the steady parts were found with), then the record's fi
 (point, scene, ended, stopped_at, failure, variables, params, measured, energy, cpu_seconds,
 reason); measured's steady parts are keyed by resolution written with %g; a run with contact
 rows adds measured.contacts (durations.run_contacts: the histogram of P(tau) on
-durations.DURATION_EDGES and the split of the time with two or more contacts) and
+durations.DURATION_EDGES, the split of the time with two or more contacts and, where the run
+booked its contacts' energies, where they went: durations.dissipation_split) and
 measured.contacts_problem, which readers of older summaries do without. A file that is not
 this, or of another version, is refused by name (the run is left out, saying why)."""
 import json
 import math
 from pathlib import Path
 
-from .durations import DURATION_EDGES, LASTING, LASTING_ALSO, SPLIT_NAMES
+from .durations import DISSIPATION_NAMES, DURATION_EDGES, LASTING, LASTING_ALSO, SPLIT_NAMES
 from .io import CONTACT_KINDS, DataError, checked_agreement, checked_params, checked_values, \
     checked_variables, unique_keys
 from .observables import RESOLUTIONS
@@ -257,6 +258,17 @@ class _Checker:
                 out["split"][key] = {name: self.number(self.key(part, name, where),
                                                        f"{where}.{name}", optional=True)
                                      for name in SPLIT_NAMES}
+        if "dissipation" in data:
+            where = "measured.contacts.dissipation"
+            part = self.mapping(data["dissipation"], where)
+            out["dissipation"] = {name: self.number(self.key(part, name, where),
+                                                    f"{where}.{name}", optional=True)
+                                  for name in DISSIPATION_NAMES}
+            for name in ("negative_sliding_contacts", "contacts"):
+                count = out["dissipation"][name]
+                if count is None or count < 0 or count != int(count):
+                    self.fail(f"{where}.{name}", f"is {count}, not a count")
+                out["dissipation"][name] = int(count)
         return out
 
     def energy(self, data):
