@@ -3,6 +3,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from .budget import budget_problem
 from .durations import run_contacts
 from .quantities import BLOCKS
 from .io import CUMULATIVE_COUNTERS, DataError, Point
@@ -138,6 +139,8 @@ def measure(point, resolutions=(), selection=Selection()):
       n_boundary    the disks the boundary rates are per (all, or the bottom layer)
       period, bump_time, period_problem   (scenes with has_period) the v_y period and the
                     time to pass a bump, or why there are none
+      budget_problem   (runs with energies = yes whose energy budget does not close:
+                    budget.budget_problem) why; absent where it closes
       contacts, contacts_problem   (runs with contact rows) durations.run_contacts: P(tau)'s
                     histogram and the split of the time with two or more contacts; or why the
                     rows could not be read (contacts None)
@@ -207,6 +210,9 @@ def measure(point, resolutions=(), selection=Selection()):
         except DataError as error:
             measured.update(period=None, bump_time=None,
                             period_problem=relative(error, point.directory))
+    problem = budget_problem(point.directory, params)
+    if problem:
+        measured["budget_problem"] = problem
     if (point.directory / "contacts.txt").exists():
         try:
             measured.update(contacts=run_contacts(point, first), contacts_problem=None)
@@ -227,6 +233,8 @@ def observables(params, measured, stopped_at, selection=Selection(), scene_def=N
         raise DataError(measured["problem"])
     scene_def = scene_def or scene(params["scene"])
     notes = [f"stopped at t = {stopped_at:g}"] if stopped_at is not None else []
+    if measured.get("budget_problem"):
+        notes.append(measured["budget_problem"])
     if scene_def.selects_steady_parts:
         if selection.resolution not in measured["steady"]:
             raise DataError(f"no steady parts at resolution {selection.resolution:g} here "

@@ -211,6 +211,9 @@ class _Checker:
                 value = self.number(self.key(data, name, "measured"), f"measured.{name}",
                                     optional=True)
                 measured[name] = math.nan if value is None else value
+        if "budget_problem" in data:
+            measured["budget_problem"] = self.text(data["budget_problem"],
+                                                   "measured.budget_problem")
         if "contacts" in data:
             measured["contacts"] = self.contacts(data["contacts"])
             measured["contacts_problem"] = self.text(data.get("contacts_problem"),

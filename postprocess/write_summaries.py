@@ -1,5 +1,6 @@
 """The summarize command: one compact summary (postprocess/summary.py says the format) per run
 of a results directory."""
+import sys
 from pathlib import Path
 
 from . import rundir
@@ -34,6 +35,8 @@ def write_summaries(results_dir, to, selection=Selection(), replace=False):
             if why:
                 kept.append((path, why))
                 continue
+        if record.measured and record.measured.get("budget_problem"):
+            print(f"warning: {point}: {record.measured['budget_problem']}", file=sys.stderr)
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(summary_text(record, selection))
         written.append(path)
