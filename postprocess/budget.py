@@ -12,34 +12,24 @@ disk, below 1e-5 (dt/tau_c)^2 for the piles of these decks. BOUND_FACTOR keeps a
 over the collision's term, and E is counted as at least the energy scale m g d = 1."""
 import numpy as np
 
-from . import rundir
-from .io import DataError, header_columns, numeric_table
-
 BOUND_FACTOR = 10.0
 COLUMN = "e_budget"
 
 
-def budget_problem(point, params):
+def budget_problem(energy, params):
     """Why the run's budget does not close (text naming the first step where its residual is
     beyond BOUND_FACTOR (dt/tau_c)^2 max(1, E) per disk, E the energy per disk then), or None:
-    also for a run that printed no budget."""
-    path = point / rundir.ENERGY
-    try:
-        names = header_columns(path, "step", ())
-    except DataError:
+    also for a run that printed no budget. energy: energy.txt's columns (io.read_energy)."""
+    if COLUMN not in energy:
         return None
-    if COLUMN not in names:
-        return None
-    table = numeric_table(path, header_columns(path, "step", ("step", "e_total", COLUMN)))
-    budget = table[COLUMN]
-    residual = np.abs(budget - budget[0])
+    residual = np.abs(energy[COLUMN] - energy[COLUMN][0])
     bound = BOUND_FACTOR * (params["dt"] / params["tau_c"]) ** 2 * np.maximum(
-        1.0, table["e_total"])
+        1.0, energy["e_total"])
     beyond = np.flatnonzero(residual > bound)
     if len(beyond) == 0:
         return None
     k = beyond[0]
     return (f"energy.txt: the energy budget does not close: its residual is {residual[k]:.3g} "
-            f"per disk at step {table['step'][k]:.0f} (t = {table['step'][k] * params['dt']:g}),"
-            f" beyond the integrator's bound {bound[k]:.3g} ({BOUND_FACTOR:g} (dt/tau_c)^2 "
-            f"max(1, E)); its largest is {residual.max():.3g}")
+            f"per disk at step {energy['step'][k]:.0f} (t = {energy['time'][k]:g}), beyond the "
+            f"integrator's bound {bound[k]:.3g} ({BOUND_FACTOR:g} (dt/tau_c)^2 max(1, E)); its "
+            f"largest is {residual.max():.3g}")

@@ -6,7 +6,7 @@ take them from there or from here."""
 import numpy as np
 
 from . import rundir
-from .io import CONTACT_KINDS, DataError, header_columns, numeric_table
+from .io import CONTACT_KINDS, DataError
 
 # P(tau): log bins of tau/tau_c (tau/tau_w for boundary contacts), ten per decade; the tail
 # beyond TAIL_CUT binary durations holds the lasting contacts (a binary collision lasts 1).
@@ -217,11 +217,13 @@ def run_dissipation(point, rows_time, margin=0.5):
     start = params["average_start"]
     stop = start + rows_time - margin
     split = dissipation_split(point.rows, params["tau_c"], params["tau_w"], start, stop)
-    path = point.directory / rundir.ENERGY
-    table = numeric_table(path, header_columns(path, "step", ("step",) + DISSIPATED_COLUMNS))
-    time = table["step"] * params["dt"]
-    a, b = np.argmin(np.abs(time - start)), np.argmin(np.abs(time - stop))
-    split["global_dissipated"] = float(sum(table[c][b] - table[c][a]
+    energy = point.energy
+    missing = [c for c in DISSIPATED_COLUMNS if c not in energy]
+    if missing:
+        raise DataError(f"{point.directory / rundir.ENERGY}: the header names no column "
+                        f"{', '.join(missing)}, which a run whose rows have energies prints")
+    a, b = (int(np.argmin(np.abs(energy["time"] - t))) for t in (start, stop))
+    split["global_dissipated"] = float(sum(energy[c][b] - energy[c][a]
                                            for c in DISSIPATED_COLUMNS))
     return split
 

@@ -210,7 +210,7 @@ def measure(point, resolutions=(), selection=Selection()):
         except DataError as error:
             measured.update(period=None, bump_time=None,
                             period_problem=relative(error, point.directory))
-    problem = budget_problem(point.directory, params)
+    problem = budget_problem(energy, params)
     if problem:
         measured["budget_problem"] = problem
     if (point.directory / "contacts.txt").exists():
