@@ -61,7 +61,7 @@ PairGranMN::~PairGranMN()
     modify->delete_fix("GRANMN_ATOM_IDS" + std::to_string(instance_me));
   // replaced by another pair style: the former wall types interact again (at exit the
   // neighbor class is already gone)
-  if (neighbor) remove_exclusions();
+  if (neighbor) bumps.release_exclusions(lmp);
   delete[] svector;
   if (!fix_history)
     modify->delete_fix("NEIGH_HISTORY_GRANMN_DUMMY" + std::to_string(instance_me));
@@ -132,8 +132,8 @@ void PairGranMN::report_end(int i, int j, const double *d, double rsq, const dou
   const double vn = dot<DIM>(d, dv) / sqrt(rsq);
   const bool tally_j = force->newton_pair || j < atom->nlocal;
   const bool record = tally_j || tag[i] < tag[j];
-  observer->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
-                       record, tally_j, energy);
+  observer->pair_ended(i, j, bumps.is_bump(atom->type[j]), bumps.is_bump(atom->type[i]), state,
+                       vn, record, tally_j, energy);
 }
 
 // Two disks whose centres came within the larger radius: the law has lost them (their normal
@@ -161,7 +161,7 @@ void PairGranMN::report_passed_through(int i, int j, double r)
   double dot = 0.0;
   for (int c = 0; c < domain->dimension; c++) dot += (x[i][c] - x[j][c]) * (v[i][c] - v[j][c]);
   const double vn = fabs(dot) / r;
-  const bool boundary = is_wall_type[atom->type[i]] || is_wall_type[atom->type[j]];
+  const bool boundary = bumps.is_bump(atom->type[i]) || bumps.is_bump(atom->type[j]);
   const double dt = update->dt;
   const int itype = atom->type[i], jtype = atom->type[j];
   const double radsum = atom->radius[i] + atom->radius[j];
@@ -295,7 +295,7 @@ template <int DIM, bool FRICTION, bool OBSERVED, bool ENERGY> void PairGranMN::c
   data.nlocal = atom->nlocal;
   data.newton_pair = force->newton_pair;
   data.contact = law;
-  data.is_wall = is_wall_type.data();
+  data.is_wall = bumps.by_type();
   data.to_force = force_per_mass_acceleration;
   data.dt_history = granmn::history_dt(update);
   data.events = observer;
@@ -526,7 +526,7 @@ void PairGranMN::warn_deep_overlaps()
       count++;
       const double radius_min = MIN(radius[i], radius[j]);
       if (delta / radius_min <= deepest[0]) continue;
-      const bool boundary = is_wall_type[atom->type[i]] || is_wall_type[atom->type[j]];
+      const bool boundary = bumps.is_bump(atom->type[i]) || bumps.is_bump(atom->type[j]);
       const double found[6] = {delta / radius_min, double(MIN(tag[i], tag[j])),
                                double(MAX(tag[i], tag[j])), delta, radius_min,
                                mn::release_speed(law, delta, boundary)};
@@ -607,21 +607,14 @@ void PairGranMN::unpack_forward_comm(int n, int first, double *buf)
 void PairGranMN::settings(int narg, char **arg)
 {
   granmn::LawArguments parsed;
-  wall_types.clear();
+  bumps.types.clear();
   int iarg = 0;
   while (iarg < narg) {
-    const int used = granmn::parse_law_keyword(lmp, "pair_style gran/mn", narg, arg, iarg, parsed);
-    if (used) {
-      iarg += used;
-    } else if (strcmp(arg[iarg], "wall_types") == 0) {
-      iarg++;
-      while (iarg < narg && utils::is_integer(arg[iarg]))
-        wall_types.push_back(utils::inumeric(FLERR, arg[iarg++], false, lmp));
-      if (wall_types.empty())
-        error->all(FLERR, "Illegal pair_style gran/mn command: wall_types needs atom types");
-    } else {
+    int used = granmn::parse_law_keyword(lmp, "pair_style gran/mn", narg, arg, iarg, parsed);
+    if (!used) used = bumps.parse(lmp, narg, arg, iarg);
+    if (!used)
       error->all(FLERR, "Illegal pair_style gran/mn command: unknown keyword {}", arg[iarg]);
-    }
+    iarg += used;
   }
   // One law per simulation: fix wall/gran/mn, fix contacts/mn and the v_mn_* variables take
   // it from the gran/mn style. pair_style hybrid declares its sub-styles in order, so a second
@@ -633,47 +626,7 @@ void PairGranMN::settings(int narg, char **arg)
                       "variables take their law from it): give one gran/mn sub-style");
   law = granmn::law_from_arguments(lmp, "pair_style gran/mn", parsed, nullptr);
   publish_law();
-  if (domain->box_exist) check_wall_types();
-}
-
-void PairGranMN::check_wall_types()
-{
-  is_wall_type.assign(atom->ntypes + 1, 0);
-  for (int t : wall_types) {
-    if (t < 1 || t > atom->ntypes)
-      error->all(FLERR, "pair_style gran/mn: wall type {} is out of range 1..{}", t, atom->ntypes);
-    is_wall_type[t] = 1;
-  }
-}
-
-// The boundary rule holds for immobile bumps: a bump that moves would collide with e and
-// tau of neither a pair nor the boundary. A bump of diameter 0 would have its centre inside
-// the disk at the first touch.
-void PairGranMN::check_bumps()
-{
-  if (wall_types.empty()) return;
-  const int *type = atom->type, *mask = atom->mask;
-  bigint points = 0;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (is_wall_type[type[i]] && atom->radius[i] == 0.0) points++;
-  bigint points_all = 0;
-  MPI_Allreduce(&points, &points_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  if (points_all)
-    error->all(FLERR, "pair_style gran/mn: {} atoms of wall_types have diameter 0: a bump is a "
-                      "fixed {} with a radius (a disk would touch its centre at once); set "
-                      "their diameter", points_all, domain->dimension == 3 ? "sphere" : "disk");
-  for (const Fix *fix : granmn::all_fixes(modify)) {
-    if (!fix->time_integrate) continue;
-    bigint integrated = 0;
-    for (int i = 0; i < atom->nlocal; i++)
-      if ((mask[i] & fix->groupbit) && is_wall_type[type[i]]) integrated++;
-    bigint integrated_all = 0;
-    MPI_Allreduce(&integrated, &integrated_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-    if (integrated_all)
-      error->all(FLERR, "pair_style gran/mn: fix {} ({}) integrates {} atoms of wall_types, "
-                        "which are immobile bumps with the boundary rule: leave them out of "
-                        "its group", fix->id, fix->style, integrated_all);
-  }
+  if (domain->box_exist) bumps.check_types(lmp);
 }
 
 void PairGranMN::coeff(int narg, char **arg)
@@ -693,7 +646,7 @@ void PairGranMN::coeff(int narg, char **arg)
       count++;
     }
   if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients");
-  check_wall_types();
+  bumps.check_types(lmp);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -721,8 +674,8 @@ void PairGranMN::init_style()
   if (domain->dimension == 3) comm->ghost_velocity = 1;
   sends_ghost_velocity = comm->ghost_velocity == 0;
   comm_forward = sends_ghost_velocity ? 3 : 0;
-  check_wall_types();
-  check_bumps();
+  bumps.check_types(lmp);
+  bumps.check_atoms(lmp);
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
   // fix nve/disc/mn neigh_check yes asks for the builds
@@ -797,7 +750,7 @@ void PairGranMN::init_style()
     fix_history->pair = this;
   }
 
-  update_exclusions();
+  bumps.exclude_bump_pairs(lmp);
 
   // Cutoffs follow the largest radius of each type: of the atoms present and of those fix pour
   // and fix deposit will insert during the run (they tell it through extract("radius"), as
@@ -816,43 +769,10 @@ void PairGranMN::init_style()
   MPI_Allreduce(&local_max[1], &max_radius[1], atom->ntypes, MPI_DOUBLE, MPI_MAX, world);
 }
 
-// Two immobile boundary elements never interact: keep such type pairs out of the neighbor list,
-// and follow wall_types when pair_style is given again with others.
-void PairGranMN::update_exclusions()
-{
-  std::vector<std::pair<int, int>> wanted;
-  for (size_t a = 0; a < wall_types.size(); a++)
-    for (size_t b = a; b < wall_types.size(); b++) wanted.emplace_back(wall_types[a], wall_types[b]);
-  if (wanted == excluded_types) return;
-  remove_exclusions();
-  for (const auto &types : wanted) {
-    std::string ti = std::to_string(types.first), tj = std::to_string(types.second);
-    char *words[4] = {(char *) "exclude", (char *) "type", &ti[0], &tj[0]};
-    neighbor->modify_params(4, words);
-  }
-  excluded_types = wanted;
-}
-
-// Takes out of the neighbor's type exclusions the ones this style added, and no others.
-void PairGranMN::remove_exclusions()
-{
-  for (const auto &types : excluded_types)
-    for (int k = 0; k < neighbor->nex_type; k++)
-      if (neighbor->ex1_type[k] == types.first && neighbor->ex2_type[k] == types.second) {
-        for (int m = k + 1; m < neighbor->nex_type; m++) {
-          neighbor->ex1_type[m - 1] = neighbor->ex1_type[m];
-          neighbor->ex2_type[m - 1] = neighbor->ex2_type[m];
-        }
-        neighbor->nex_type--;
-        break;
-      }
-  excluded_types.clear();
-}
-
 double PairGranMN::init_one(int i, int j)
 {
   if (!allocated) allocate();
-  if (is_wall_type[i] && is_wall_type[j]) return 0.0;
+  if (bumps.is_bump(i) && bumps.is_bump(j)) return 0.0;
   return max_radius[i] + max_radius[j];
 }
 
@@ -863,10 +783,10 @@ void PairGranMN::write_restart_settings(FILE *fp)
   const mn::Material &m = law.material;
   const double values[4] = {m.kn, m.e, m.beta, m.mu};
   fwrite(values, sizeof(double), 4, fp);
-  const int flags[4] = {law.options.limit_damping, law.options.coulomb_cutback, (int) wall_types.size(),
-                        layout.size};
+  const int flags[4] = {law.options.limit_damping, law.options.coulomb_cutback,
+                        (int) bumps.types.size(), layout.size};
   fwrite(flags, sizeof(int), 4, fp);
-  if (!wall_types.empty()) fwrite(wall_types.data(), sizeof(int), wall_types.size(), fp);
+  if (!bumps.types.empty()) fwrite(bumps.types.data(), sizeof(int), bumps.types.size(), fp);
 }
 
 void PairGranMN::read_restart_settings(FILE *fp)
@@ -880,10 +800,10 @@ void PairGranMN::read_restart_settings(FILE *fp)
   MPI_Bcast(values, 4, MPI_DOUBLE, 0, world);
   MPI_Bcast(flags, 4, MPI_INT, 0, world);
   restart_history_size = flags[3];
-  wall_types.resize(flags[2]);
+  bumps.types.resize(flags[2]);
   if (comm->me == 0 && flags[2] > 0)
-    utils::sfread(FLERR, wall_types.data(), sizeof(int), flags[2], fp, nullptr, error);
-  if (flags[2] > 0) MPI_Bcast(wall_types.data(), flags[2], MPI_INT, 0, world);
+    utils::sfread(FLERR, bumps.types.data(), sizeof(int), flags[2], fp, nullptr, error);
+  if (flags[2] > 0) MPI_Bcast(bumps.types.data(), flags[2], MPI_INT, 0, world);
   mn::Options options;
   options.limit_damping = flags[0];
   options.coulomb_cutback = flags[1];
@@ -903,7 +823,7 @@ void PairGranMN::read_restart(FILE *fp)
 {
   read_restart_settings(fp);
   allocate();
-  check_wall_types();
+  bumps.check_types(lmp);
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       if (comm->me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
@@ -985,8 +905,8 @@ template <int DIM> double PairGranMN::single_contact(int i, int j, double rsq, d
   }
   const double ut_reported = DIM == 3 ? reported(ut) : ut[0];
   const auto fc = mn::contact_force(law,
-                                    contact_mass_scale(is_wall_type[atom->type[i]],
-                                                       is_wall_type[atom->type[j]],
+                                    contact_mass_scale(bumps.is_bump(atom->type[i]),
+                                                       bumps.is_bump(atom->type[j]),
                                                        atom->rmass[i], atom->rmass[j]) *
                                         force_per_mass_acceleration,
                                     kin, law.material.mu > 0.0 ? ut : nullptr, 0.0);

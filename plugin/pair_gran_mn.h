@@ -8,15 +8,13 @@
 #ifndef LMP_PAIR_GRAN_MN_H
 #define LMP_PAIR_GRAN_MN_H
 
+#include "granmn_bump_types.h"
 #include "granmn_compat.h"
 #include "granmn_contact_storage.h"
 #include "pair.h"
 
 #include "mn_contact.h"
 #include "mn_contact_events.h"
-
-#include <utility>
-#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -50,13 +48,11 @@ class PairGranMN : public Pair {
 
  private:
   mn::Law law;
-  std::vector<int> wall_types;       // types of immobile boundary elements (bumps)
-  std::vector<char> is_wall_type;    // per type, 1..ntypes
+  granmn::BumpTypes bumps;           // the wall_types: immobile boundary elements
   granmn::ContactLayout layout;      // of a contact's neighbor history (none: size 0)
   mn::Integrator integrator = mn::Integrator::VelocityVerlet;    // the run's, found at init_style
   int restart_history_size;          // per-pair history size in the restart read, -1 if none
   granmn::ContactObserver *observer;    // nullptr unless fix contacts/mn is defined
-  std::vector<std::pair<int, int>> excluded_types;    // type pairs this style excluded
   bool law_reported;
   // comm_modify vel no in 2D: this style sends the ghosts' vx, vy and omega_z itself at each
   // compute (comm_forward values an atom)
@@ -69,11 +65,7 @@ class PairGranMN : public Pair {
 
   void allocate();
   void publish_law();
-  void check_wall_types();
-  void check_bumps();
   void check_in_plane();
-  void update_exclusions();
-  void remove_exclusions();
   void report_passed_through(int, int, double);
   void warn_deep_overlaps();
   template <int DIM> void report_end(int, int, const double *, double, const double *,
