@@ -16,6 +16,8 @@
 #include "granmn_compat.h"
 #include "granmn_flat_arrays.h"
 #include "granmn_law_arguments.h"
+#include "granmn_overlap_reports.h"
+#include "granmn_pair_checks.h"
 #include "granmn_run_checks.h"
 #include "input.h"
 #include "memory.h"
@@ -136,77 +138,10 @@ void PairGranMN::report_end(int i, int j, const double *d, double rsq, const dou
                        vn, record, tally_j, energy);
 }
 
-// Two disks whose centres came within the larger radius: the law has lost them (their normal
-// flips once the centres cross, and they fly apart on swapped sides). Says what stops them.
-// A pair whose radii the cut-off of their types does not cover was not in the neighbour list
-// when they met (atoms larger than the run was set up for): no step or stiffness helps. An
-// atom of diameter 0 has its centre inside the other at its first touch. A pair that got
-// there within one step (its overlap is less than the step's motion) needs a finer step: one
-// with ten steps across the smaller radius r. Otherwise the spring was already acting and is
-// too soft: a head-on approach at speed v stops within an overlap v/w (undamped; w^2 = 2 kn for
-// two disks, kn against a bump), which must stay below r.
-void PairGranMN::report_passed_through(int i, int j, double r)
-{
-  const tagint *tag = atom->tag;
-  if (r == 0.0)
-    error->one(FLERR, "pair_style gran/mn: atoms {} and {} are at the same position: the "
-                      "contact has no normal", tag[i], tag[j]);
-  const double radius_min = MIN(atom->radius[i], atom->radius[j]);
-  const double delta = atom->radius[i] + atom->radius[j] - r;
-  if (update->setupflag)
-    error->one(FLERR, "pair_style gran/mn: atoms {} and {} overlap by {:.6g}, more than the "
-                      "smaller radius {:.6g}: the centre of one is inside the other (placed so?)",
-                      tag[i], tag[j], delta, radius_min);
-  double **x = atom->x, **v = atom->v;
-  double dot = 0.0;
-  for (int c = 0; c < domain->dimension; c++) dot += (x[i][c] - x[j][c]) * (v[i][c] - v[j][c]);
-  const double vn = fabs(dot) / r;
-  const bool boundary = bumps.is_bump(atom->type[i]) || bumps.is_bump(atom->type[j]);
-  const double dt = update->dt;
-  const int itype = atom->type[i], jtype = atom->type[j];
-  const double radsum = atom->radius[i] + atom->radius[j];
-  std::string cause;
-  double speed = vn;
-  if (radsum * radsum > cutsq[itype][jtype]) {
-    cause = fmt::format("the pair style's cut-off for atom types {} and {}, {:.6g}, is less "
-                        "than their radii's sum {:.6g}, so they were not in the neighbor list "
-                        "when they met: atoms larger than the cut-offs were set for (at the "
-                        "start of the run, from the atoms present and the radii fix pour and "
-                        "fix deposit insert) came in or grew during the run; create or set "
-                        "them before the run, or insert them with fix pour or fix deposit",
-                        itype, jtype, sqrt(cutsq[itype][jtype]), radsum);
-  } else if (radius_min == 0.0) {
-    cause = fmt::format("atom {} has diameter 0 (a point particle), so its centre is inside "
-                        "the other at its first touch: the law is for {}; give it a diameter",
-                        atom->radius[i] == 0.0 ? tag[i] : tag[j],
-                        domain->dimension == 3 ? "spheres" : "disks");
-  } else if (vn * dt >= delta) {
-    cause = fmt::format("they got there within one step (the time step {:.6g} moves them by "
-                        "{:.6g}): use a time step below {:.6g} (ten steps across the radius)",
-                        dt, vn * dt, 0.1 * radius_min / vn);
-  } else {
-    // the speed they met at, from the energy of the normal motion: damping only lowers it
-    const double omega2 = (boundary ? 1.0 : 2.0) * law.material.kn;
-    speed = sqrt(vn * vn + omega2 * delta * delta);
-    const double stopped_within = speed / sqrt(omega2);
-    cause = fmt::format("kn = {:.6g} stops them only within an overlap of {:.6g}: it takes "
-                        "kn > {:.6g} to stop them within the radius",
-                        law.material.kn, stopped_within,
-                        law.material.kn * pow(stopped_within / radius_min, 2));
-  }
-  error->one(FLERR, "pair_style gran/mn: atoms {} and {} have passed through each other at step "
-                    "{}: the centre of one is inside the other (overlap {:.6g} > {:.6g}, the "
-                    "smaller radius); they met at a relative speed of about {:.6g} ({}); {}",
-             tag[i], tag[j], update->ntimestep, delta, radius_min, speed,
-             boundary ? (domain->dimension == 3 ? "a sphere and a bump" : "a disk and a bump")
-                      : (domain->dimension == 3 ? "two spheres" : "two disks"),
-             cause);
-}
-
 void PairGranMN::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (domain->dimension == 2 && neighbor->ago == 0) check_in_plane();
+  if (domain->dimension == 2 && neighbor->ago == 0) granmn::check_in_plane(lmp);
   const bool friction = layout.ut >= 0, observed = observer != nullptr;
   const bool energy = layout.energy >= 0;
   if (sends_ghost_velocity) granmn::forward_comm(comm, this);
@@ -233,21 +168,6 @@ template <int DIM> void PairGranMN::compute_for(bool friction, bool observed, bo
       observed ? compute_loop<DIM, false, true, false>()
                : compute_loop<DIM, false, false, false>();
   }
-}
-
-// In 2D the law measures distances in the plane, the neighbor list in 3D: an atom off z = 0
-// would be missed by disks it touches, which then get inside it. Atoms come in at a build
-// (fix deposit places them at random z within its region): checked after each.
-void PairGranMN::check_in_plane()
-{
-  double **x = atom->x;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (x[i][2] != 0.0)
-      error->one(FLERR, "pair_style gran/mn: atom {} is at z = {:.6g} in a 2D simulation, where "
-                        "every disk must be at z = 0 (the neighbor list measures distances in "
-                        "3D and would miss its contacts); fix deposit places atoms at random z "
-                        "within its region: give the region a z extent of 0 0",
-                 atom->tag[i], x[i][2]);
 }
 
 // What the force loop reads, gathered once per force evaluation: the neighbour scan keeps
@@ -384,7 +304,7 @@ void PairGranMN::touching_pair(const LoopData &data, int i, int j, double dx, do
   const double radi = radius[i], radj = radius[j];
   const double r = sqrt(rsq);
   // the centre of one inside the other: as the wall fix's centre that reached its wall
-  if (r <= MAX(radi, radj)) report_passed_through(i, j, r);
+  if (r <= MAX(radi, radj)) granmn::report_passed_through(lmp, law, bumps, cutsq, i, j, r);
   const double *vi = data.v + row(i), *vj = data.v + row(j);
   const double *wi = data.omega + row(i), *wj = data.omega + row(j);
   const double dv[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
@@ -499,83 +419,12 @@ void PairGranMN::publish_law()
   });
 }
 
-// Pairs that overlap deeply (mn::deep_overlap) at a run's setup, from the list just built: a
-// warning with their number and the deepest (LAMMPS says nothing of them).
-void PairGranMN::warn_deep_overlaps()
-{
-  const double *x = granmn::rows(atom->x), *radius = atom->radius;
-  const tagint *tag = atom->tag;
-  const int dimension = domain->dimension, nlocal = atom->nlocal;
-  bigint count = 0;
-  // the deepest here: its overlap as a fraction of the smaller radius, the tags (the smaller
-  // first), the overlap, that radius, its release speed
-  double deepest[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = list->firstneigh[i][jj] & NEIGHMASK;
-      double rsq = 0.0;
-      for (int c = 0; c < dimension; c++) {
-        const double d = x[granmn::row_start(i, 3) + c] - x[granmn::row_start(j, 3) + c];
-        rsq += d * d;
-      }
-      const double delta = radius[i] + radius[j] - sqrt(rsq);
-      if (!mn::deep_overlap(delta, radius[i], radius[j])) continue;
-      // newton off: a pair with a ghost is listed by both of its processes; counted by one
-      if (!force->newton_pair && j >= nlocal && tag[i] > tag[j]) continue;
-      count++;
-      const double radius_min = MIN(radius[i], radius[j]);
-      if (delta / radius_min <= deepest[0]) continue;
-      const bool boundary = bumps.is_bump(atom->type[i]) || bumps.is_bump(atom->type[j]);
-      const double found[6] = {delta / radius_min, double(MIN(tag[i], tag[j])),
-                               double(MAX(tag[i], tag[j])), delta, radius_min,
-                               mn::release_speed(law, delta, boundary)};
-      for (int k = 0; k < 6; k++) deepest[k] = found[k];
-    }
-  }
-  bigint all = 0;
-  MPI_Allreduce(&count, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  if (all == 0) return;
-  // the deepest from the first process that holds it
-  double fraction = 0.0;
-  MPI_Allreduce(&deepest[0], &fraction, 1, MPI_DOUBLE, MPI_MAX, world);
-  // not const: a serial LAMMPS's STUBS mpi.h declares the send buffers `void *`
-  int mine = deepest[0] == fraction ? comm->me : comm->nprocs;
-  int holder = 0;
-  MPI_Allreduce(&mine, &holder, 1, MPI_INT, MPI_MIN, world);
-  MPI_Bcast(deepest, 6, MPI_DOUBLE, holder, world);
-  if (comm->me == 0)
-    error->warning(FLERR, "pair_style gran/mn: {} pair(s) of particles overlap by more than {:g} "
-                          "of the smaller radius at the start of the run; the deepest, atoms "
-                          "{:.0f} and {:.0f}, by {:.6g} ({:.3g} of radius {:.6g}): released, it "
-                          "drives them apart at up to {:.3g} (placed closer than their radii's "
-                          "sum?)",
-                   all, mn::DEEP_OVERLAP_FRACTION, deepest[1], deepest[2], deepest[3],
-                   deepest[0], deepest[4], deepest[5]);
-}
-
-// What is known only at a run's setup, after the domain's and the neighbor's init:
-// - a fix deform with remap v shifts the velocities of ghosts across a periodic boundary by
-//   the box's rate, in LAMMPS's own ghost communication only;
-// - bonded atoms (a molecular atom style): LAMMPS keeps a 1-2, 1-3 or 1-4 pair in the neighbor
-//   list, flagged, unless its special_bonds lj and coul weights are both 0 or both 1
-//   (Neighbor::special_flag 2), and its granular styles (2025 on) skip such a pair at lj 0 and
-//   scale its force otherwise. The law weighs no contact: the pair would touch in full.
-//   (LAMMPS 2021's granular lists keep every bonded pair, unflagged, for its own styles as for
-//   this one.)
+// What is known only at a run's setup, after the domain's and the neighbor's init.
 void PairGranMN::setup()
 {
-  warn_deep_overlaps();
-  if (sends_ghost_velocity && domain->deform_vremap)
-    error->all(FLERR, "Pair style gran/mn with fix deform remap v requires comm_modify vel "
-                      "yes (the ghosts' velocities then carry the box's rate)");
-  if (atom->molecular == Atom::ATOMIC) return;
-  for (int level = 1; level <= 3; level++)
-    if (neighbor->special_flag[level] == 2 && force->special_lj[level] != 1.0)
-      error->all(FLERR, "pair_style gran/mn: special_bonds lj {:g} coul {:g} keeps 1-{} pairs in "
-                        "the neighbor list with a weight the law does not apply (a contact of "
-                        "this style is full or absent): use lj 0 with coul 0, or lj 1",
-                 force->special_lj[level], force->special_coul[level], level + 1);
+  granmn::warn_deep_overlaps(lmp, law, bumps, list);
+  granmn::check_deform_remap(lmp, sends_ghost_velocity);
+  granmn::check_special_bonds(lmp);
 }
 
 int PairGranMN::pack_forward_comm(int n, int *list, double *buf, int, int *)
@@ -616,14 +465,7 @@ void PairGranMN::settings(int narg, char **arg)
       error->all(FLERR, "Illegal pair_style gran/mn command: unknown keyword {}", arg[iarg]);
     iarg += used;
   }
-  // One law per simulation: fix wall/gran/mn, fix contacts/mn and the v_mn_* variables take
-  // it from the gran/mn style. pair_style hybrid declares its sub-styles in order, so a second
-  // gran/mn finds the first here.
-  const Pair *first = force->pair_match("gran/mn", 1);
-  if (first && first != this)
-    error->all(FLERR, "pair_style gran/mn: pair_style hybrid holds gran/mn twice; the gran/mn "
-                      "styles support one (fix wall/gran/mn, fix contacts/mn and the v_mn_* "
-                      "variables take their law from it): give one gran/mn sub-style");
+  granmn::check_one_gran_mn(lmp, this);
   law = granmn::law_from_arguments(lmp, "pair_style gran/mn", parsed, nullptr);
   publish_law();
   if (domain->box_exist) bumps.check_types(lmp);
@@ -661,9 +503,7 @@ void PairGranMN::init_style()
                               granmn::dimension_q(lmp));
     publish_law();
   }
-  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
-    error->all(FLERR, "Pair style gran/mn requires atom attributes radius, rmass, omega, torque "
-                      "(atom_style sphere)");
+  granmn::check_sphere_attributes(lmp);
   // The law reads the ghosts' v and omega. LAMMPS's own comm_modify vel yes sends them with x,
   // 3 values each, in one message through a buffer; without it LAMMPS sends x alone, in place.
   // In 3D the style turns LAMMPS's own on (as LAMMPS's granular styles require it): sending
@@ -678,11 +518,7 @@ void PairGranMN::init_style()
   bumps.check_atoms(lmp);
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
-  // fix nve/disc/mn neigh_check yes asks for the builds
-  if (neighbor->build_once && !granmn::neighbor_builds_checked(modify) && comm->me == 0)
-    error->warning(FLERR, "pair_style gran/mn: neigh_modify once yes builds the neighbor list "
-                          "only at the start of a run: disks that come into contact later are "
-                          "never seen (no force, no contact); leave out 'once yes'");
+  granmn::warn_builds_once(lmp);
 
   integrator = granmn::integrator_in_use(modify);
   if (!law_reported && comm->me == 0) {
@@ -710,20 +546,8 @@ void PairGranMN::init_style()
       law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, observer,
       granmn::ut_width(lmp),
       energy ? mn::energy_history_size(integrator, domain->dimension) : 0);
-  if (fix_history && needed.size != layout.size)
-    error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
-                      "mu, fix contacts/mn or integrator (fix contacts/mn energy yes keeps the "
-                      "contacts' energies; Adams-Bashforth 2, fix nve/ab2 or fix nve/disc/mn "
-                      "scheme ab2, keeps one more value per contact when mu > 0); define fix "
-                      "contacts/mn, mu and the integrator before the first run");
-  // LAMMPS restores per-pair history with the size of the new run: a different size would
-  // misread every partner, so the run must keep mu > 0 (or not), fix contacts/mn (or not) and
-  // the integrator
-  if (!fix_history && restart_history_size >= 0 && needed.size != restart_history_size)
-    error->all(FLERR, "pair_style gran/mn: the restart file holds {} history values per contact, "
-                      "this run needs {}: keep mu zero or non-zero, define fix contacts/mn "
-                      "(or not) with energy yes (or not) and use the scheme (Adams-Bashforth 2 or not) as in the run that "
-                      "wrote it", restart_history_size, needed.size);
+  granmn::check_history_size(lmp, needed.size, fix_history ? layout.size : -1,
+                             restart_history_size);
   layout = needed;
   const bool history = layout.size > 0;
   // At a reneighboring, fix neigh/history keeps a pair's history only if the pair overlapped

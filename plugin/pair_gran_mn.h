@@ -65,9 +65,6 @@ class PairGranMN : public Pair {
 
   void allocate();
   void publish_law();
-  void check_in_plane();
-  void report_passed_through(int, int, double);
-  void warn_deep_overlaps();
   template <int DIM> void report_end(int, int, const double *, double, const double *,
                                      const tagint *, const mn::ContactEnergy *);
   template <int DIM> void compute_for(bool friction, bool observed, bool energy);
