@@ -1,7 +1,9 @@
 /* ----------------------------------------------------------------------
    pair_style gran/mn: the law of mn_contact.h between disks and bumps.
    Structure follows LAMMPS's pair gran/hooke/history (neighbor history through
-   FixNeighHistory, created in init_style in place of a placeholder fix).
+   FixNeighHistory, created in init_style in place of a placeholder fix). Here the force loop
+   and its history; the bump types, the checks, the overlap reports, the published law, the
+   cut-offs' radii and the restart settings are in the granmn_*.h units included below.
 ------------------------------------------------------------------------- */
 
 #include "pair_gran_mn.h"
@@ -15,19 +17,19 @@
 #include "force.h"
 #include "granmn_compat.h"
 #include "granmn_flat_arrays.h"
+#include "granmn_insertion_radii.h"
 #include "granmn_law_arguments.h"
 #include "granmn_overlap_reports.h"
 #include "granmn_pair_checks.h"
+#include "granmn_pair_restart.h"
+#include "granmn_published_law.h"
 #include "granmn_run_checks.h"
-#include "input.h"
 #include "memory.h"
-#include "mn_output_schema.h"
 #include "modify.h"
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
 #include "update.h"
-#include "variable.h"
 
 #include <cmath>
 #include <cstring>
@@ -404,19 +406,7 @@ void PairGranMN::allocate()
 void PairGranMN::publish_law()
 {
   law_reported = false;
-
-  // Decks read the derived scales from here, e.g. timestep $(v_mn_tau_c/100).
-  Variable *variables = input->variable;
-  granmn::output::for_each_published(law, [&](const char *name, double value) {
-    const int ivar = variables->find(name);
-    if (ivar < 0)
-      variables->set(fmt::format("{} internal {:.17g}", name, value));
-    else if (variables->internalstyle(ivar))
-      variables->internal_set(ivar, value);
-    else
-      error->all(FLERR, "pair_style gran/mn: variable {} is defined by the deck; pair_style "
-                        "gran/mn publishes its derived values under that name", name);
-  });
+  granmn::publish_law_variables(lmp, law);
 }
 
 // What is known only at a run's setup, after the domain's and the neighbor's init.
@@ -495,51 +485,56 @@ void PairGranMN::coeff(int narg, char **arg)
 
 void PairGranMN::init_style()
 {
-  // The law was derived for the dimension's shape of inertia when the pair style was given
-  // (after the box, and so after the dimension command: its constructor adds a fix); kept
-  // right here should the dimension ever be known only later
-  if (law.q != granmn::dimension_q(lmp)) {
-    law = granmn::checked_law(lmp, "pair_style gran/mn", law.material, law.options,
-                              granmn::dimension_q(lmp));
-    publish_law();
-  }
+  follow_dimension();
   granmn::check_sphere_attributes(lmp);
-  // The law reads the ghosts' v and omega. LAMMPS's own comm_modify vel yes sends them with x,
-  // 3 values each, in one message through a buffer; without it LAMMPS sends x alone, in place.
-  // In 3D the style turns LAMMPS's own on (as LAMMPS's granular styles require it): sending
-  // v and omega in a second message of its own cost more (the 3D chute, docs/performance.md).
-  // In 2D it sends them itself at compute(), only vx, vy and omega_z: a third of the values
-  // LAMMPS's own would add. The values are the same, so is every force to the bit. (Comm's
-  // init, after the pair's, sizes the messages for the setting.)
-  if (domain->dimension == 3) comm->ghost_velocity = 1;
-  sends_ghost_velocity = comm->ghost_velocity == 0;
-  comm_forward = sends_ghost_velocity ? 3 : 0;
+  set_ghost_velocity();
   bumps.check_types(lmp);
   bumps.check_atoms(lmp);
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
   granmn::warn_builds_once(lmp);
-
   integrator = granmn::integrator_in_use(modify);
   if (!law_reported && comm->me == 0) {
-    utils::logmesg(lmp,
-                   "pair_style gran/mn: kn = {:.8g} e = {} beta = {} mu = {} ({})\n"
-                   "  eta_n = {:.8g} kt = {:.8g} eta_t = {:.8g}\n"
-                   "  tau_c = {:.8g} tau_w = {:.8g} e_w = {:.8g}\n"
-                   "  largest stable dt: {:.6g} (velocity Verlet), {:.6g} (Adams-Bashforth 2)\n",
-                   law.material.kn, law.material.e, law.material.beta, law.material.mu,
-                   domain->dimension == 3 ? "3D: solid spheres, q = 7/2" : "2D: disks, q = 3",
-                   law.eta_n, law.kt, law.eta_t,
-                   law.tau_c, law.tau_w, law.e_w,
-                   mn::max_stable_dt(law, mn::Integrator::VelocityVerlet),
-                   mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
+    granmn::report_law(lmp, law);
     law_reported = true;
   }
   granmn::check_timestep(lmp, "pair_style gran/mn", update->dt, law, integrator);
+  set_up_history();
+  bumps.exclude_bump_pairs(lmp);
+  // cut-offs follow the largest radius of each type, inserted atoms' too
+  granmn::largest_radii(lmp, max_radius);
+}
 
-  // The per-contact history: u_t when there is friction (and under Adams-Bashforth 2 the
-  // previous v_t its rule for u_t needs), then the contact observer's record if there is one
-  // (fix contacts/mn), then the energy history if it books energies (energy yes).
+// The law was derived for the dimension's shape of inertia when the pair style was given
+// (after the box, and so after the dimension command: its constructor adds a fix); kept
+// right here should the dimension ever be known only later.
+void PairGranMN::follow_dimension()
+{
+  if (law.q == granmn::dimension_q(lmp)) return;
+  law = granmn::checked_law(lmp, "pair_style gran/mn", law.material, law.options,
+                            granmn::dimension_q(lmp));
+  publish_law();
+}
+
+// The law reads the ghosts' v and omega. LAMMPS's own comm_modify vel yes sends them with x,
+// 3 values each, in one message through a buffer; without it LAMMPS sends x alone, in place.
+// In 3D the style turns LAMMPS's own on (as LAMMPS's granular styles require it): sending
+// v and omega in a second message of its own cost more (the 3D chute, docs/performance.md).
+// In 2D it sends them itself at compute(), only vx, vy and omega_z: a third of the values
+// LAMMPS's own would add. The values are the same, so is every force to the bit. (Comm's
+// init, after the pair's, sizes the messages for the setting.)
+void PairGranMN::set_ghost_velocity()
+{
+  if (domain->dimension == 3) comm->ghost_velocity = 1;
+  sends_ghost_velocity = comm->ghost_velocity == 0;
+  comm_forward = sends_ghost_velocity ? 3 : 0;
+}
+
+// The per-contact history: u_t when there is friction (and under Adams-Bashforth 2 the
+// previous v_t its rule for u_t needs), then the contact observer's record if there is one
+// (fix contacts/mn), then the energy history if it books energies (energy yes).
+void PairGranMN::set_up_history()
+{
   observer = granmn::find_observer(granmn::all_fixes(modify));
   const bool energy = observer && observer->energy_tallies();
   const granmn::ContactLayout needed = granmn::pair_history_layout(
@@ -573,24 +568,6 @@ void PairGranMN::init_style()
         "NEIGH_HISTORY_GRANMN_DUMMY" + std::to_string(instance_me), cmd, 1);
     fix_history->pair = this;
   }
-
-  bumps.exclude_bump_pairs(lmp);
-
-  // Cutoffs follow the largest radius of each type: of the atoms present and of those fix pour
-  // and fix deposit will insert during the run (they tell it through extract("radius"), as
-  // LAMMPS's granular pair styles ask them; every such fix here, not the first one only).
-  std::vector<double> local_max(atom->ntypes + 1, 0.0);
-  for (int i = 0; i < atom->nlocal; i++)
-    local_max[atom->type[i]] = MAX(local_max[atom->type[i]], atom->radius[i]);
-  std::vector<Fix *> inserting = granmn::fixes_by_style(modify, "^pour");
-  for (Fix *fix : granmn::fixes_by_style(modify, "^deposit")) inserting.push_back(fix);
-  for (Fix *fix : inserting)
-    for (int type = 1; type <= atom->ntypes; type++) {
-      int asked = type;    // extract() overwrites it with the dimension of what it returns
-      const auto *inserted = static_cast<const double *>(fix->extract("radius", asked));
-      if (inserted) local_max[type] = MAX(local_max[type], *inserted);
-    }
-  MPI_Allreduce(&local_max[1], &max_radius[1], atom->ntypes, MPI_DOUBLE, MPI_MAX, world);
 }
 
 double PairGranMN::init_one(int i, int j)
@@ -604,35 +581,16 @@ double PairGranMN::init_one(int i, int j)
 
 void PairGranMN::write_restart_settings(FILE *fp)
 {
-  const mn::Material &m = law.material;
-  const double values[4] = {m.kn, m.e, m.beta, m.mu};
-  fwrite(values, sizeof(double), 4, fp);
-  const int flags[4] = {law.options.limit_damping, law.options.coulomb_cutback,
-                        (int) bumps.types.size(), layout.size};
-  fwrite(flags, sizeof(int), 4, fp);
-  if (!bumps.types.empty()) fwrite(bumps.types.data(), sizeof(int), bumps.types.size(), fp);
+  granmn::write_pair_settings(fp, {law.material, law.options, bumps.types, layout.size});
 }
 
 void PairGranMN::read_restart_settings(FILE *fp)
 {
-  double values[4];
-  int flags[4];
-  if (comm->me == 0) {
-    utils::sfread(FLERR, values, sizeof(double), 4, fp, nullptr, error);
-    utils::sfread(FLERR, flags, sizeof(int), 4, fp, nullptr, error);
-  }
-  MPI_Bcast(values, 4, MPI_DOUBLE, 0, world);
-  MPI_Bcast(flags, 4, MPI_INT, 0, world);
-  restart_history_size = flags[3];
-  bumps.types.resize(flags[2]);
-  if (comm->me == 0 && flags[2] > 0)
-    utils::sfread(FLERR, bumps.types.data(), sizeof(int), flags[2], fp, nullptr, error);
-  if (flags[2] > 0) MPI_Bcast(bumps.types.data(), flags[2], MPI_INT, 0, world);
-  mn::Options options;
-  options.limit_damping = flags[0];
-  options.coulomb_cutback = flags[1];
-  law = granmn::checked_law(lmp, "pair_style gran/mn", {values[0], values[1], values[2], values[3]},
-                            options, granmn::dimension_q(lmp));
+  const granmn::PairSettings settings = granmn::read_pair_settings(lmp, fp);
+  restart_history_size = settings.history_size;
+  bumps.types = settings.bump_types;
+  law = granmn::checked_law(lmp, "pair_style gran/mn", settings.material, settings.options,
+                            granmn::dimension_q(lmp));
   publish_law();
 }
 

@@ -1,8 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
    pair_style gran/mn: the Mitarai-Nakanishi 2D linear spring-dashpot law (and its 3D form for
    spheres in dimension 3).
-   The LAMMPS side of the law (neighbour history, bumps, checks, restart files); the law
-   itself is in mn_contact.h.
+   The LAMMPS side of the law: the force loop and its neighbour history; the law itself is in
+   mn_contact.h, the style's other jobs in the granmn_*.h units it names.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_PAIR_GRAN_MN_H
@@ -65,6 +65,9 @@ class PairGranMN : public Pair {
 
   void allocate();
   void publish_law();
+  void follow_dimension();
+  void set_ghost_velocity();
+  void set_up_history();
   template <int DIM> void report_end(int, int, const double *, double, const double *,
                                      const tagint *, const mn::ContactEnergy *);
   template <int DIM> void compute_for(bool friction, bool observed, bool energy);
