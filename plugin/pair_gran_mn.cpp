@@ -196,8 +196,8 @@ struct PairGranMN::LoopData {
 // told of contacts. A pair keeps history if either holds.
 // Most neighbours do not touch (in a dense 2D flow four in five): the scan over them is kept
 // small, and a contact's work is a call (touching_pair, ended_pair). With that work inlined the
-// scan had the registers of both and reloaded its own values from the stack: 40 instructions
-// a neighbour that does not touch (callgrind, the 2D frictional scene).
+// scan had the registers of both and reloaded its own values from the stack at every
+// neighbour, the many that do not touch included.
 template <int DIM, bool FRICTION, bool OBSERVED, bool ENERGY> void PairGranMN::compute_loop()
 {
   // The per-atom vectors as flat arrays (granmn_flat_arrays.h): atom j's position is at
@@ -245,7 +245,7 @@ template <int DIM, bool FRICTION, bool OBSERVED, bool ENERGY> void PairGranMN::c
     const int i = ilist[ii];
     const int jnum = numneigh[i];
     // an atom without neighbours (most of a dilute flow's) has nothing to do; marked unlikely,
-    // which keeps a dense flow's loop as it was within 1 % of its instructions
+    // so that a dense flow, where every atom has some, keeps its loop as it was
     if (__builtin_expect(jnum == 0, 0)) continue;
     const double xi[3] = {x[row(i)], x[row(i) + 1], DIM == 3 ? x[row(i) + 2] : 0.0};
     const double radi = radius[i];
