@@ -602,12 +602,12 @@ void FixContactsMN::grow_arrays(int nmax)
 
 // The first value marks the layout, STATE_LAYOUT: the clock, then the rows not yet dumped,
 // gathered from all processes (a run continued from the file dumps them at its next multiple
-// of N); the per-atom state holds what the times are made of. Versions of the plugin before
-// 1 Dec 2026 (commit b76d7a4) wrote other layouts (a step >= 0, kept contact start steps;
+// of N); the per-atom state holds what the times are made of. Earlier versions of the plugin
+// marked other layouts by the same first value (a step >= 0, kept contact start steps;
 // -2, the clock alone; -3, clock and rows; the per-atom state of the output columns only):
-// refused, with the date, rather than converted. With energy yes the layout is
-// STATE_LAYOUT_WITH_ENERGY: the rows have the energy columns (the per-atom state its columns:
-// LAMMPS's per-atom restart records say how many).
+// refused by it, rather than converted (they lack what this state is made of). With energy
+// yes the layout is STATE_LAYOUT_WITH_ENERGY: the rows have the energy columns (the per-atom
+// state its columns: LAMMPS's per-atom restart records say how many).
 static constexpr double STATE_LAYOUT = -4.0;
 static constexpr double STATE_LAYOUT_WITH_ENERGY = -5.0;
 static constexpr int CLOCK_VALUES = 4;

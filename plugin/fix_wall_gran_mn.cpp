@@ -141,7 +141,7 @@ static inline double inward_normal(double **x, double **v, int i, int wall_axis,
 // the pair style's loop. Only the atoms near a wall are visited (near_wall); of those most do
 // not touch it: the scan over them is kept small, and a contact's work is a call
 // (touching_side, side_ended). With that work inlined the scan reloaded its own values from
-// the stack: 37 instructions an atom away from a wall (callgrind, the 2D frictional scene).
+// the stack at every atom near a wall, the many that do not touch it included.
 template <int DIM, bool CYLINDER, bool OBSERVED> void FixWallGranMN::post_force_loop()
 {
   const double dt_history = granmn::history_dt(update);

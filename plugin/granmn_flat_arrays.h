@@ -2,8 +2,8 @@
 // each 2D array's rows one after the other): atom i's row of width w starts at i w of the first
 // row. The pair loop and the disc integrator read them so, as LAMMPS's OPT styles do: an access
 // loads no row pointer first (the arrays of row pointers of a large system also crowd the data
-// cache). The wall fix does not: in its loop the offsets cost more instructions than the row
-// pointers' loads (callgrind, the 2D frictional scene, whose arrays fit the cache).
+// cache). The wall fix does not: it visits the few atoms near a wall, where the offsets cost
+// more instructions than the loads of row pointers that stay in the cache.
 #ifndef GRANMN_FLAT_ARRAYS_H
 #define GRANMN_FLAT_ARRAYS_H
 

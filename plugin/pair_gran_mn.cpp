@@ -1,7 +1,9 @@
 /* ----------------------------------------------------------------------
    pair_style gran/mn: the law of mn_contact.h between disks and bumps.
    Structure follows LAMMPS's pair gran/hooke/history (neighbor history through
-   FixNeighHistory, created in init_style in place of a placeholder fix).
+   FixNeighHistory, created in init_style in place of a placeholder fix). Here the force loop
+   and its history; the bump types, the checks, the overlap reports, the published law, the
+   cut-offs' radii and the restart settings are in the granmn_*.h units included below.
 ------------------------------------------------------------------------- */
 
 #include "pair_gran_mn.h"
@@ -15,17 +17,19 @@
 #include "force.h"
 #include "granmn_compat.h"
 #include "granmn_flat_arrays.h"
+#include "granmn_insertion_radii.h"
 #include "granmn_law_arguments.h"
+#include "granmn_overlap_reports.h"
+#include "granmn_pair_checks.h"
+#include "granmn_pair_restart.h"
+#include "granmn_published_law.h"
 #include "granmn_run_checks.h"
-#include "input.h"
 #include "memory.h"
-#include "mn_output_schema.h"
 #include "modify.h"
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
 #include "update.h"
-#include "variable.h"
 
 #include <cmath>
 #include <cstring>
@@ -61,7 +65,7 @@ PairGranMN::~PairGranMN()
     modify->delete_fix("GRANMN_ATOM_IDS" + std::to_string(instance_me));
   // replaced by another pair style: the former wall types interact again (at exit the
   // neighbor class is already gone)
-  if (neighbor) remove_exclusions();
+  if (neighbor) bumps.release_exclusions(lmp);
   delete[] svector;
   if (!fix_history)
     modify->delete_fix("NEIGH_HISTORY_GRANMN_DUMMY" + std::to_string(instance_me));
@@ -132,81 +136,14 @@ void PairGranMN::report_end(int i, int j, const double *d, double rsq, const dou
   const double vn = dot<DIM>(d, dv) / sqrt(rsq);
   const bool tally_j = force->newton_pair || j < atom->nlocal;
   const bool record = tally_j || tag[i] < tag[j];
-  observer->pair_ended(i, j, is_wall_type[atom->type[j]], is_wall_type[atom->type[i]], state, vn,
-                       record, tally_j, energy);
-}
-
-// Two disks whose centres came within the larger radius: the law has lost them (their normal
-// flips once the centres cross, and they fly apart on swapped sides). Says what stops them.
-// A pair whose radii the cut-off of their types does not cover was not in the neighbour list
-// when they met (atoms larger than the run was set up for): no step or stiffness helps. An
-// atom of diameter 0 has its centre inside the other at its first touch. A pair that got
-// there within one step (its overlap is less than the step's motion) needs a finer step: one
-// with ten steps across the smaller radius r. Otherwise the spring was already acting and is
-// too soft: a head-on approach at speed v stops within an overlap v/w (undamped; w^2 = 2 kn for
-// two disks, kn against a bump), which must stay below r.
-void PairGranMN::report_passed_through(int i, int j, double r)
-{
-  const tagint *tag = atom->tag;
-  if (r == 0.0)
-    error->one(FLERR, "pair_style gran/mn: atoms {} and {} are at the same position: the "
-                      "contact has no normal", tag[i], tag[j]);
-  const double radius_min = MIN(atom->radius[i], atom->radius[j]);
-  const double delta = atom->radius[i] + atom->radius[j] - r;
-  if (update->setupflag)
-    error->one(FLERR, "pair_style gran/mn: atoms {} and {} overlap by {:.6g}, more than the "
-                      "smaller radius {:.6g}: the centre of one is inside the other (placed so?)",
-                      tag[i], tag[j], delta, radius_min);
-  double **x = atom->x, **v = atom->v;
-  double dot = 0.0;
-  for (int c = 0; c < domain->dimension; c++) dot += (x[i][c] - x[j][c]) * (v[i][c] - v[j][c]);
-  const double vn = fabs(dot) / r;
-  const bool boundary = is_wall_type[atom->type[i]] || is_wall_type[atom->type[j]];
-  const double dt = update->dt;
-  const int itype = atom->type[i], jtype = atom->type[j];
-  const double radsum = atom->radius[i] + atom->radius[j];
-  std::string cause;
-  double speed = vn;
-  if (radsum * radsum > cutsq[itype][jtype]) {
-    cause = fmt::format("the pair style's cut-off for atom types {} and {}, {:.6g}, is less "
-                        "than their radii's sum {:.6g}, so they were not in the neighbor list "
-                        "when they met: atoms larger than the cut-offs were set for (at the "
-                        "start of the run, from the atoms present and the radii fix pour and "
-                        "fix deposit insert) came in or grew during the run; create or set "
-                        "them before the run, or insert them with fix pour or fix deposit",
-                        itype, jtype, sqrt(cutsq[itype][jtype]), radsum);
-  } else if (radius_min == 0.0) {
-    cause = fmt::format("atom {} has diameter 0 (a point particle), so its centre is inside "
-                        "the other at its first touch: the law is for {}; give it a diameter",
-                        atom->radius[i] == 0.0 ? tag[i] : tag[j],
-                        domain->dimension == 3 ? "spheres" : "disks");
-  } else if (vn * dt >= delta) {
-    cause = fmt::format("they got there within one step (the time step {:.6g} moves them by "
-                        "{:.6g}): use a time step below {:.6g} (ten steps across the radius)",
-                        dt, vn * dt, 0.1 * radius_min / vn);
-  } else {
-    // the speed they met at, from the energy of the normal motion: damping only lowers it
-    const double omega2 = (boundary ? 1.0 : 2.0) * law.material.kn;
-    speed = sqrt(vn * vn + omega2 * delta * delta);
-    const double stopped_within = speed / sqrt(omega2);
-    cause = fmt::format("kn = {:.6g} stops them only within an overlap of {:.6g}: it takes "
-                        "kn > {:.6g} to stop them within the radius",
-                        law.material.kn, stopped_within,
-                        law.material.kn * pow(stopped_within / radius_min, 2));
-  }
-  error->one(FLERR, "pair_style gran/mn: atoms {} and {} have passed through each other at step "
-                    "{}: the centre of one is inside the other (overlap {:.6g} > {:.6g}, the "
-                    "smaller radius); they met at a relative speed of about {:.6g} ({}); {}",
-             tag[i], tag[j], update->ntimestep, delta, radius_min, speed,
-             boundary ? (domain->dimension == 3 ? "a sphere and a bump" : "a disk and a bump")
-                      : (domain->dimension == 3 ? "two spheres" : "two disks"),
-             cause);
+  observer->pair_ended(i, j, bumps.is_bump(atom->type[j]), bumps.is_bump(atom->type[i]), state,
+                       vn, record, tally_j, energy);
 }
 
 void PairGranMN::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (domain->dimension == 2 && neighbor->ago == 0) check_in_plane();
+  if (domain->dimension == 2 && neighbor->ago == 0) granmn::check_in_plane(lmp);
   const bool friction = layout.ut >= 0, observed = observer != nullptr;
   const bool energy = layout.energy >= 0;
   if (sends_ghost_velocity) granmn::forward_comm(comm, this);
@@ -235,21 +172,6 @@ template <int DIM> void PairGranMN::compute_for(bool friction, bool observed, bo
   }
 }
 
-// In 2D the law measures distances in the plane, the neighbor list in 3D: an atom off z = 0
-// would be missed by disks it touches, which then get inside it. Atoms come in at a build
-// (fix deposit places them at random z within its region): checked after each.
-void PairGranMN::check_in_plane()
-{
-  double **x = atom->x;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (x[i][2] != 0.0)
-      error->one(FLERR, "pair_style gran/mn: atom {} is at z = {:.6g} in a 2D simulation, where "
-                        "every disk must be at z = 0 (the neighbor list measures distances in "
-                        "3D and would miss its contacts); fix deposit places atoms at random z "
-                        "within its region: give the region a z extent of 0 0",
-                 atom->tag[i], x[i][2]);
-}
-
 // What the force loop reads, gathered once per force evaluation: the neighbour scan keeps
 // only its own few values in registers, and a contact's work reads the rest from here.
 struct PairGranMN::LoopData {
@@ -274,8 +196,8 @@ struct PairGranMN::LoopData {
 // told of contacts. A pair keeps history if either holds.
 // Most neighbours do not touch (in a dense 2D flow four in five): the scan over them is kept
 // small, and a contact's work is a call (touching_pair, ended_pair). With that work inlined the
-// scan had the registers of both and reloaded its own values from the stack: 40 instructions
-// a neighbour that does not touch (callgrind, the 2D frictional scene).
+// scan had the registers of both and reloaded its own values from the stack at every
+// neighbour, the many that do not touch included.
 template <int DIM, bool FRICTION, bool OBSERVED, bool ENERGY> void PairGranMN::compute_loop()
 {
   // The per-atom vectors as flat arrays (granmn_flat_arrays.h): atom j's position is at
@@ -295,7 +217,7 @@ template <int DIM, bool FRICTION, bool OBSERVED, bool ENERGY> void PairGranMN::c
   data.nlocal = atom->nlocal;
   data.newton_pair = force->newton_pair;
   data.contact = law;
-  data.is_wall = is_wall_type.data();
+  data.is_wall = bumps.by_type();
   data.to_force = force_per_mass_acceleration;
   data.dt_history = granmn::history_dt(update);
   data.events = observer;
@@ -323,7 +245,7 @@ template <int DIM, bool FRICTION, bool OBSERVED, bool ENERGY> void PairGranMN::c
     const int i = ilist[ii];
     const int jnum = numneigh[i];
     // an atom without neighbours (most of a dilute flow's) has nothing to do; marked unlikely,
-    // which keeps a dense flow's loop as it was within 1 % of its instructions
+    // so that a dense flow, where every atom has some, keeps its loop as it was
     if (__builtin_expect(jnum == 0, 0)) continue;
     const double xi[3] = {x[row(i)], x[row(i) + 1], DIM == 3 ? x[row(i) + 2] : 0.0};
     const double radi = radius[i];
@@ -384,7 +306,7 @@ void PairGranMN::touching_pair(const LoopData &data, int i, int j, double dx, do
   const double radi = radius[i], radj = radius[j];
   const double r = sqrt(rsq);
   // the centre of one inside the other: as the wall fix's centre that reached its wall
-  if (r <= MAX(radi, radj)) report_passed_through(i, j, r);
+  if (r <= MAX(radi, radj)) granmn::report_passed_through(lmp, law, bumps, cutsq, i, j, r);
   const double *vi = data.v + row(i), *vj = data.v + row(j);
   const double *wi = data.omega + row(i), *wj = data.omega + row(j);
   const double dv[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
@@ -484,98 +406,15 @@ void PairGranMN::allocate()
 void PairGranMN::publish_law()
 {
   law_reported = false;
-
-  // Decks read the derived scales from here, e.g. timestep $(v_mn_tau_c/100).
-  Variable *variables = input->variable;
-  granmn::output::for_each_published(law, [&](const char *name, double value) {
-    const int ivar = variables->find(name);
-    if (ivar < 0)
-      variables->set(fmt::format("{} internal {:.17g}", name, value));
-    else if (variables->internalstyle(ivar))
-      variables->internal_set(ivar, value);
-    else
-      error->all(FLERR, "pair_style gran/mn: variable {} is defined by the deck; pair_style "
-                        "gran/mn publishes its derived values under that name", name);
-  });
+  granmn::publish_law_variables(lmp, law);
 }
 
-// Pairs that overlap deeply (mn::deep_overlap) at a run's setup, from the list just built: a
-// warning with their number and the deepest (LAMMPS says nothing of them).
-void PairGranMN::warn_deep_overlaps()
-{
-  const double *x = granmn::rows(atom->x), *radius = atom->radius;
-  const tagint *tag = atom->tag;
-  const int dimension = domain->dimension, nlocal = atom->nlocal;
-  bigint count = 0;
-  // the deepest here: its overlap as a fraction of the smaller radius, the tags (the smaller
-  // first), the overlap, that radius, its release speed
-  double deepest[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = list->firstneigh[i][jj] & NEIGHMASK;
-      double rsq = 0.0;
-      for (int c = 0; c < dimension; c++) {
-        const double d = x[granmn::row_start(i, 3) + c] - x[granmn::row_start(j, 3) + c];
-        rsq += d * d;
-      }
-      const double delta = radius[i] + radius[j] - sqrt(rsq);
-      if (!mn::deep_overlap(delta, radius[i], radius[j])) continue;
-      // newton off: a pair with a ghost is listed by both of its processes; counted by one
-      if (!force->newton_pair && j >= nlocal && tag[i] > tag[j]) continue;
-      count++;
-      const double radius_min = MIN(radius[i], radius[j]);
-      if (delta / radius_min <= deepest[0]) continue;
-      const bool boundary = is_wall_type[atom->type[i]] || is_wall_type[atom->type[j]];
-      const double found[6] = {delta / radius_min, double(MIN(tag[i], tag[j])),
-                               double(MAX(tag[i], tag[j])), delta, radius_min,
-                               mn::release_speed(law, delta, boundary)};
-      for (int k = 0; k < 6; k++) deepest[k] = found[k];
-    }
-  }
-  bigint all = 0;
-  MPI_Allreduce(&count, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  if (all == 0) return;
-  // the deepest from the first process that holds it
-  double fraction = 0.0;
-  MPI_Allreduce(&deepest[0], &fraction, 1, MPI_DOUBLE, MPI_MAX, world);
-  // not const: a serial LAMMPS's STUBS mpi.h declares the send buffers `void *`
-  int mine = deepest[0] == fraction ? comm->me : comm->nprocs;
-  int holder = 0;
-  MPI_Allreduce(&mine, &holder, 1, MPI_INT, MPI_MIN, world);
-  MPI_Bcast(deepest, 6, MPI_DOUBLE, holder, world);
-  if (comm->me == 0)
-    error->warning(FLERR, "pair_style gran/mn: {} pair(s) of particles overlap by more than {:g} "
-                          "of the smaller radius at the start of the run; the deepest, atoms "
-                          "{:.0f} and {:.0f}, by {:.6g} ({:.3g} of radius {:.6g}): released, it "
-                          "drives them apart at up to {:.3g} (placed closer than their radii's "
-                          "sum?)",
-                   all, mn::DEEP_OVERLAP_FRACTION, deepest[1], deepest[2], deepest[3],
-                   deepest[0], deepest[4], deepest[5]);
-}
-
-// What is known only at a run's setup, after the domain's and the neighbor's init:
-// - a fix deform with remap v shifts the velocities of ghosts across a periodic boundary by
-//   the box's rate, in LAMMPS's own ghost communication only;
-// - bonded atoms (a molecular atom style): LAMMPS keeps a 1-2, 1-3 or 1-4 pair in the neighbor
-//   list, flagged, unless its special_bonds lj and coul weights are both 0 or both 1
-//   (Neighbor::special_flag 2), and its granular styles (2025 on) skip such a pair at lj 0 and
-//   scale its force otherwise. The law weighs no contact: the pair would touch in full.
-//   (LAMMPS 2021's granular lists keep every bonded pair, unflagged, for its own styles as for
-//   this one.)
+// What is known only at a run's setup, after the domain's and the neighbor's init.
 void PairGranMN::setup()
 {
-  warn_deep_overlaps();
-  if (sends_ghost_velocity && domain->deform_vremap)
-    error->all(FLERR, "Pair style gran/mn with fix deform remap v requires comm_modify vel "
-                      "yes (the ghosts' velocities then carry the box's rate)");
-  if (atom->molecular == Atom::ATOMIC) return;
-  for (int level = 1; level <= 3; level++)
-    if (neighbor->special_flag[level] == 2 && force->special_lj[level] != 1.0)
-      error->all(FLERR, "pair_style gran/mn: special_bonds lj {:g} coul {:g} keeps 1-{} pairs in "
-                        "the neighbor list with a weight the law does not apply (a contact of "
-                        "this style is full or absent): use lj 0 with coul 0, or lj 1",
-                 force->special_lj[level], force->special_coul[level], level + 1);
+  granmn::warn_deep_overlaps(lmp, law, bumps, list);
+  granmn::check_deform_remap(lmp, sends_ghost_velocity);
+  granmn::check_special_bonds(lmp);
 }
 
 int PairGranMN::pack_forward_comm(int n, int *list, double *buf, int, int *)
@@ -607,73 +446,19 @@ void PairGranMN::unpack_forward_comm(int n, int first, double *buf)
 void PairGranMN::settings(int narg, char **arg)
 {
   granmn::LawArguments parsed;
-  wall_types.clear();
+  bumps.types.clear();
   int iarg = 0;
   while (iarg < narg) {
-    const int used = granmn::parse_law_keyword(lmp, "pair_style gran/mn", narg, arg, iarg, parsed);
-    if (used) {
-      iarg += used;
-    } else if (strcmp(arg[iarg], "wall_types") == 0) {
-      iarg++;
-      while (iarg < narg && utils::is_integer(arg[iarg]))
-        wall_types.push_back(utils::inumeric(FLERR, arg[iarg++], false, lmp));
-      if (wall_types.empty())
-        error->all(FLERR, "Illegal pair_style gran/mn command: wall_types needs atom types");
-    } else {
+    int used = granmn::parse_law_keyword(lmp, "pair_style gran/mn", narg, arg, iarg, parsed);
+    if (!used) used = bumps.parse(lmp, narg, arg, iarg);
+    if (!used)
       error->all(FLERR, "Illegal pair_style gran/mn command: unknown keyword {}", arg[iarg]);
-    }
+    iarg += used;
   }
-  // One law per simulation: fix wall/gran/mn, fix contacts/mn and the v_mn_* variables take
-  // it from the gran/mn style. pair_style hybrid declares its sub-styles in order, so a second
-  // gran/mn finds the first here.
-  const Pair *first = force->pair_match("gran/mn", 1);
-  if (first && first != this)
-    error->all(FLERR, "pair_style gran/mn: pair_style hybrid holds gran/mn twice; the gran/mn "
-                      "styles support one (fix wall/gran/mn, fix contacts/mn and the v_mn_* "
-                      "variables take their law from it): give one gran/mn sub-style");
+  granmn::check_one_gran_mn(lmp, this);
   law = granmn::law_from_arguments(lmp, "pair_style gran/mn", parsed, nullptr);
   publish_law();
-  if (domain->box_exist) check_wall_types();
-}
-
-void PairGranMN::check_wall_types()
-{
-  is_wall_type.assign(atom->ntypes + 1, 0);
-  for (int t : wall_types) {
-    if (t < 1 || t > atom->ntypes)
-      error->all(FLERR, "pair_style gran/mn: wall type {} is out of range 1..{}", t, atom->ntypes);
-    is_wall_type[t] = 1;
-  }
-}
-
-// The boundary rule holds for immobile bumps: a bump that moves would collide with e and
-// tau of neither a pair nor the boundary. A bump of diameter 0 would have its centre inside
-// the disk at the first touch.
-void PairGranMN::check_bumps()
-{
-  if (wall_types.empty()) return;
-  const int *type = atom->type, *mask = atom->mask;
-  bigint points = 0;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (is_wall_type[type[i]] && atom->radius[i] == 0.0) points++;
-  bigint points_all = 0;
-  MPI_Allreduce(&points, &points_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  if (points_all)
-    error->all(FLERR, "pair_style gran/mn: {} atoms of wall_types have diameter 0: a bump is a "
-                      "fixed {} with a radius (a disk would touch its centre at once); set "
-                      "their diameter", points_all, domain->dimension == 3 ? "sphere" : "disk");
-  for (const Fix *fix : granmn::all_fixes(modify)) {
-    if (!fix->time_integrate) continue;
-    bigint integrated = 0;
-    for (int i = 0; i < atom->nlocal; i++)
-      if ((mask[i] & fix->groupbit) && is_wall_type[type[i]]) integrated++;
-    bigint integrated_all = 0;
-    MPI_Allreduce(&integrated, &integrated_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-    if (integrated_all)
-      error->all(FLERR, "pair_style gran/mn: fix {} ({}) integrates {} atoms of wall_types, "
-                        "which are immobile bumps with the boundary rule: leave them out of "
-                        "its group", fix->id, fix->style, integrated_all);
-  }
+  if (domain->box_exist) bumps.check_types(lmp);
 }
 
 void PairGranMN::coeff(int narg, char **arg)
@@ -693,84 +478,71 @@ void PairGranMN::coeff(int narg, char **arg)
       count++;
     }
   if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients");
-  check_wall_types();
+  bumps.check_types(lmp);
 }
 
 /* ---------------------------------------------------------------------- */
 
 void PairGranMN::init_style()
 {
-  // The law was derived for the dimension's shape of inertia when the pair style was given
-  // (after the box, and so after the dimension command: its constructor adds a fix); kept
-  // right here should the dimension ever be known only later
-  if (law.q != granmn::dimension_q(lmp)) {
-    law = granmn::checked_law(lmp, "pair_style gran/mn", law.material, law.options,
-                              granmn::dimension_q(lmp));
-    publish_law();
-  }
-  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
-    error->all(FLERR, "Pair style gran/mn requires atom attributes radius, rmass, omega, torque "
-                      "(atom_style sphere)");
-  // The law reads the ghosts' v and omega. LAMMPS's own comm_modify vel yes sends them with x,
-  // 3 values each, in one message through a buffer; without it LAMMPS sends x alone, in place.
-  // In 3D the style turns LAMMPS's own on (as LAMMPS's granular styles require it): sending
-  // v and omega in a second message of its own cost more (the 3D chute, docs/performance.md).
-  // In 2D it sends them itself at compute(), only vx, vy and omega_z: a third of the values
-  // LAMMPS's own would add. The values are the same, so is every force to the bit. (Comm's
-  // init, after the pair's, sizes the messages for the setting.)
-  if (domain->dimension == 3) comm->ghost_velocity = 1;
-  sends_ghost_velocity = comm->ghost_velocity == 0;
-  comm_forward = sends_ghost_velocity ? 3 : 0;
-  check_wall_types();
-  check_bumps();
+  follow_dimension();
+  granmn::check_sphere_attributes(lmp);
+  set_ghost_velocity();
+  bumps.check_types(lmp);
+  bumps.check_atoms(lmp);
   granmn::check_disc_integration(lmp, "pair_style gran/mn");
   force_per_mass_acceleration = 1.0 / force->ftm2v;
-  // fix nve/disc/mn neigh_check yes asks for the builds
-  if (neighbor->build_once && !granmn::neighbor_builds_checked(modify) && comm->me == 0)
-    error->warning(FLERR, "pair_style gran/mn: neigh_modify once yes builds the neighbor list "
-                          "only at the start of a run: disks that come into contact later are "
-                          "never seen (no force, no contact); leave out 'once yes'");
-
+  granmn::warn_builds_once(lmp);
   integrator = granmn::integrator_in_use(modify);
   if (!law_reported && comm->me == 0) {
-    utils::logmesg(lmp,
-                   "pair_style gran/mn: kn = {:.8g} e = {} beta = {} mu = {} ({})\n"
-                   "  eta_n = {:.8g} kt = {:.8g} eta_t = {:.8g}\n"
-                   "  tau_c = {:.8g} tau_w = {:.8g} e_w = {:.8g}\n"
-                   "  largest stable dt: {:.6g} (velocity Verlet), {:.6g} (Adams-Bashforth 2)\n",
-                   law.material.kn, law.material.e, law.material.beta, law.material.mu,
-                   domain->dimension == 3 ? "3D: solid spheres, q = 7/2" : "2D: disks, q = 3",
-                   law.eta_n, law.kt, law.eta_t,
-                   law.tau_c, law.tau_w, law.e_w,
-                   mn::max_stable_dt(law, mn::Integrator::VelocityVerlet),
-                   mn::max_stable_dt(law, mn::Integrator::AdamsBashforth2));
+    granmn::report_law(lmp, law);
     law_reported = true;
   }
   granmn::check_timestep(lmp, "pair_style gran/mn", update->dt, law, integrator);
+  set_up_history();
+  bumps.exclude_bump_pairs(lmp);
+  // cut-offs follow the largest radius of each type, inserted atoms' too
+  granmn::largest_radii(lmp, max_radius);
+}
 
-  // The per-contact history: u_t when there is friction (and under Adams-Bashforth 2 the
-  // previous v_t its rule for u_t needs), then the contact observer's record if there is one
-  // (fix contacts/mn), then the energy history if it books energies (energy yes).
+// The law was derived for the dimension's shape of inertia when the pair style was given
+// (after the box, and so after the dimension command: its constructor adds a fix); kept
+// right here should the dimension ever be known only later.
+void PairGranMN::follow_dimension()
+{
+  if (law.q == granmn::dimension_q(lmp)) return;
+  law = granmn::checked_law(lmp, "pair_style gran/mn", law.material, law.options,
+                            granmn::dimension_q(lmp));
+  publish_law();
+}
+
+// The law reads the ghosts' v and omega. LAMMPS's own comm_modify vel yes sends them with x,
+// 3 values each, in one message through a buffer; without it LAMMPS sends x alone, in place.
+// In 3D the style turns LAMMPS's own on (as LAMMPS's granular styles require it): sending
+// v and omega in a second message of its own cost more (the 3D chute, docs/performance.md).
+// In 2D it sends them itself at compute(), only vx, vy and omega_z: a third of the values
+// LAMMPS's own would add. The values are the same, so is every force to the bit. (Comm's
+// init, after the pair's, sizes the messages for the setting.)
+void PairGranMN::set_ghost_velocity()
+{
+  if (domain->dimension == 3) comm->ghost_velocity = 1;
+  sends_ghost_velocity = comm->ghost_velocity == 0;
+  comm_forward = sends_ghost_velocity ? 3 : 0;
+}
+
+// The per-contact history: u_t when there is friction (and under Adams-Bashforth 2 the
+// previous v_t its rule for u_t needs), then the contact observer's record if there is one
+// (fix contacts/mn), then the energy history if it books energies (energy yes).
+void PairGranMN::set_up_history()
+{
   observer = granmn::find_observer(granmn::all_fixes(modify));
   const bool energy = observer && observer->energy_tallies();
   const granmn::ContactLayout needed = granmn::pair_history_layout(
       law.material.mu > 0.0, integrator == mn::Integrator::AdamsBashforth2, observer,
       granmn::ut_width(lmp),
       energy ? mn::energy_history_size(integrator, domain->dimension) : 0);
-  if (fix_history && needed.size != layout.size)
-    error->all(FLERR, "pair_style gran/mn: its contact history was set up for a different "
-                      "mu, fix contacts/mn or integrator (fix contacts/mn energy yes keeps the "
-                      "contacts' energies; Adams-Bashforth 2, fix nve/ab2 or fix nve/disc/mn "
-                      "scheme ab2, keeps one more value per contact when mu > 0); define fix "
-                      "contacts/mn, mu and the integrator before the first run");
-  // LAMMPS restores per-pair history with the size of the new run: a different size would
-  // misread every partner, so the run must keep mu > 0 (or not), fix contacts/mn (or not) and
-  // the integrator
-  if (!fix_history && restart_history_size >= 0 && needed.size != restart_history_size)
-    error->all(FLERR, "pair_style gran/mn: the restart file holds {} history values per contact, "
-                      "this run needs {}: keep mu zero or non-zero, define fix contacts/mn "
-                      "(or not) with energy yes (or not) and use the scheme (Adams-Bashforth 2 or not) as in the run that "
-                      "wrote it", restart_history_size, needed.size);
+  granmn::check_history_size(lmp, needed.size, fix_history ? layout.size : -1,
+                             restart_history_size);
   layout = needed;
   const bool history = layout.size > 0;
   // At a reneighboring, fix neigh/history keeps a pair's history only if the pair overlapped
@@ -796,63 +568,12 @@ void PairGranMN::init_style()
         "NEIGH_HISTORY_GRANMN_DUMMY" + std::to_string(instance_me), cmd, 1);
     fix_history->pair = this;
   }
-
-  update_exclusions();
-
-  // Cutoffs follow the largest radius of each type: of the atoms present and of those fix pour
-  // and fix deposit will insert during the run (they tell it through extract("radius"), as
-  // LAMMPS's granular pair styles ask them; every such fix here, not the first one only).
-  std::vector<double> local_max(atom->ntypes + 1, 0.0);
-  for (int i = 0; i < atom->nlocal; i++)
-    local_max[atom->type[i]] = MAX(local_max[atom->type[i]], atom->radius[i]);
-  std::vector<Fix *> inserting = granmn::fixes_by_style(modify, "^pour");
-  for (Fix *fix : granmn::fixes_by_style(modify, "^deposit")) inserting.push_back(fix);
-  for (Fix *fix : inserting)
-    for (int type = 1; type <= atom->ntypes; type++) {
-      int asked = type;    // extract() overwrites it with the dimension of what it returns
-      const auto *inserted = static_cast<const double *>(fix->extract("radius", asked));
-      if (inserted) local_max[type] = MAX(local_max[type], *inserted);
-    }
-  MPI_Allreduce(&local_max[1], &max_radius[1], atom->ntypes, MPI_DOUBLE, MPI_MAX, world);
-}
-
-// Two immobile boundary elements never interact: keep such type pairs out of the neighbor list,
-// and follow wall_types when pair_style is given again with others.
-void PairGranMN::update_exclusions()
-{
-  std::vector<std::pair<int, int>> wanted;
-  for (size_t a = 0; a < wall_types.size(); a++)
-    for (size_t b = a; b < wall_types.size(); b++) wanted.emplace_back(wall_types[a], wall_types[b]);
-  if (wanted == excluded_types) return;
-  remove_exclusions();
-  for (const auto &types : wanted) {
-    std::string ti = std::to_string(types.first), tj = std::to_string(types.second);
-    char *words[4] = {(char *) "exclude", (char *) "type", &ti[0], &tj[0]};
-    neighbor->modify_params(4, words);
-  }
-  excluded_types = wanted;
-}
-
-// Takes out of the neighbor's type exclusions the ones this style added, and no others.
-void PairGranMN::remove_exclusions()
-{
-  for (const auto &types : excluded_types)
-    for (int k = 0; k < neighbor->nex_type; k++)
-      if (neighbor->ex1_type[k] == types.first && neighbor->ex2_type[k] == types.second) {
-        for (int m = k + 1; m < neighbor->nex_type; m++) {
-          neighbor->ex1_type[m - 1] = neighbor->ex1_type[m];
-          neighbor->ex2_type[m - 1] = neighbor->ex2_type[m];
-        }
-        neighbor->nex_type--;
-        break;
-      }
-  excluded_types.clear();
 }
 
 double PairGranMN::init_one(int i, int j)
 {
   if (!allocated) allocate();
-  if (is_wall_type[i] && is_wall_type[j]) return 0.0;
+  if (bumps.is_bump(i) && bumps.is_bump(j)) return 0.0;
   return max_radius[i] + max_radius[j];
 }
 
@@ -860,35 +581,16 @@ double PairGranMN::init_one(int i, int j)
 
 void PairGranMN::write_restart_settings(FILE *fp)
 {
-  const mn::Material &m = law.material;
-  const double values[4] = {m.kn, m.e, m.beta, m.mu};
-  fwrite(values, sizeof(double), 4, fp);
-  const int flags[4] = {law.options.limit_damping, law.options.coulomb_cutback, (int) wall_types.size(),
-                        layout.size};
-  fwrite(flags, sizeof(int), 4, fp);
-  if (!wall_types.empty()) fwrite(wall_types.data(), sizeof(int), wall_types.size(), fp);
+  granmn::write_pair_settings(fp, {law.material, law.options, bumps.types, layout.size});
 }
 
 void PairGranMN::read_restart_settings(FILE *fp)
 {
-  double values[4];
-  int flags[4];
-  if (comm->me == 0) {
-    utils::sfread(FLERR, values, sizeof(double), 4, fp, nullptr, error);
-    utils::sfread(FLERR, flags, sizeof(int), 4, fp, nullptr, error);
-  }
-  MPI_Bcast(values, 4, MPI_DOUBLE, 0, world);
-  MPI_Bcast(flags, 4, MPI_INT, 0, world);
-  restart_history_size = flags[3];
-  wall_types.resize(flags[2]);
-  if (comm->me == 0 && flags[2] > 0)
-    utils::sfread(FLERR, wall_types.data(), sizeof(int), flags[2], fp, nullptr, error);
-  if (flags[2] > 0) MPI_Bcast(wall_types.data(), flags[2], MPI_INT, 0, world);
-  mn::Options options;
-  options.limit_damping = flags[0];
-  options.coulomb_cutback = flags[1];
-  law = granmn::checked_law(lmp, "pair_style gran/mn", {values[0], values[1], values[2], values[3]},
-                            options, granmn::dimension_q(lmp));
+  const granmn::PairSettings settings = granmn::read_pair_settings(lmp, fp);
+  restart_history_size = settings.history_size;
+  bumps.types = settings.bump_types;
+  law = granmn::checked_law(lmp, "pair_style gran/mn", settings.material, settings.options,
+                            granmn::dimension_q(lmp));
   publish_law();
 }
 
@@ -903,7 +605,7 @@ void PairGranMN::read_restart(FILE *fp)
 {
   read_restart_settings(fp);
   allocate();
-  check_wall_types();
+  bumps.check_types(lmp);
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       if (comm->me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
@@ -985,8 +687,8 @@ template <int DIM> double PairGranMN::single_contact(int i, int j, double rsq, d
   }
   const double ut_reported = DIM == 3 ? reported(ut) : ut[0];
   const auto fc = mn::contact_force(law,
-                                    contact_mass_scale(is_wall_type[atom->type[i]],
-                                                       is_wall_type[atom->type[j]],
+                                    contact_mass_scale(bumps.is_bump(atom->type[i]),
+                                                       bumps.is_bump(atom->type[j]),
                                                        atom->rmass[i], atom->rmass[j]) *
                                         force_per_mass_acceleration,
                                     kin, law.material.mu > 0.0 ? ut : nullptr, 0.0);

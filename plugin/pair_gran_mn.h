@@ -1,22 +1,20 @@
 /* -*- c++ -*- ----------------------------------------------------------
    pair_style gran/mn: the Mitarai-Nakanishi 2D linear spring-dashpot law (and its 3D form for
    spheres in dimension 3).
-   The LAMMPS side of the law (neighbour history, bumps, checks, restart files); the law
-   itself is in mn_contact.h.
+   The LAMMPS side of the law: the force loop and its neighbour history; the law itself is in
+   mn_contact.h, the style's other jobs in the granmn_*.h units it names.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_PAIR_GRAN_MN_H
 #define LMP_PAIR_GRAN_MN_H
 
+#include "granmn_bump_types.h"
 #include "granmn_compat.h"
 #include "granmn_contact_storage.h"
 #include "pair.h"
 
 #include "mn_contact.h"
 #include "mn_contact_events.h"
-
-#include <utility>
-#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -50,13 +48,11 @@ class PairGranMN : public Pair {
 
  private:
   mn::Law law;
-  std::vector<int> wall_types;       // types of immobile boundary elements (bumps)
-  std::vector<char> is_wall_type;    // per type, 1..ntypes
+  granmn::BumpTypes bumps;           // the wall_types: immobile boundary elements
   granmn::ContactLayout layout;      // of a contact's neighbor history (none: size 0)
   mn::Integrator integrator = mn::Integrator::VelocityVerlet;    // the run's, found at init_style
   int restart_history_size;          // per-pair history size in the restart read, -1 if none
   granmn::ContactObserver *observer;    // nullptr unless fix contacts/mn is defined
-  std::vector<std::pair<int, int>> excluded_types;    // type pairs this style excluded
   bool law_reported;
   // comm_modify vel no in 2D: this style sends the ghosts' vx, vy and omega_z itself at each
   // compute (comm_forward values an atom)
@@ -69,13 +65,9 @@ class PairGranMN : public Pair {
 
   void allocate();
   void publish_law();
-  void check_wall_types();
-  void check_bumps();
-  void check_in_plane();
-  void update_exclusions();
-  void remove_exclusions();
-  void report_passed_through(int, int, double);
-  void warn_deep_overlaps();
+  void follow_dimension();
+  void set_ghost_velocity();
+  void set_up_history();
   template <int DIM> void report_end(int, int, const double *, double, const double *,
                                      const tagint *, const mn::ContactEnergy *);
   template <int DIM> void compute_for(bool friction, bool observed, bool energy);
