@@ -231,10 +231,8 @@ void FixContactsMN::absorb_energies(bool setup)
 
 void FixContactsMN::atom_energies(const double *s, double *sums)
 {
-  sums[DISSIPATED_NORMAL] = s[TAKEN_NORMAL] - s[STORED_NORMAL];
-  sums[DISSIPATED_SLIDING] = s[SLID];
-  sums[DISSIPATED_STICKING] = s[TAKEN_TANGENTIAL] - s[STORED_TANGENTIAL] - s[SLID];
-  sums[STORED] = s[STORED_NORMAL] + s[STORED_TANGENTIAL];
+  granmn::atom_energy_sums(s[TAKEN_NORMAL], s[TAKEN_TANGENTIAL], s[SLID], s[STORED_NORMAL],
+                           s[STORED_TANGENTIAL], sums);
 }
 
 // No time passes between runs: the step a run starts at is the clock's, also after

@@ -33,6 +33,7 @@
 #define GRANMN_CONTACT_EVENTS_H
 
 #include "mn_energy.h"
+#include "mn_output_schema.h"
 
 namespace granmn {
 
@@ -76,6 +77,20 @@ struct EnergyTallies {
     v[STEP_POWER] += share * booked.power;
   }
 };
+
+// An atom's energies (granmn::output::EnergySum, the per-atom columns and global sums of fix
+// contacts/mn energy yes) from its share of what its contacts took from the motion (normal,
+// tangential) and lost while sliding since booking began, and of what their springs store now:
+// what a contact's force took and its spring does not hold is dissipated (mn::contact_energy).
+inline void atom_energy_sums(double taken_normal, double taken_tangential, double slid,
+                             double stored_normal, double stored_tangential, double *sums)
+{
+  using namespace output;
+  sums[DISSIPATED_NORMAL] = taken_normal - stored_normal;
+  sums[DISSIPATED_SLIDING] = slid;
+  sums[DISSIPATED_STICKING] = taken_tangential - stored_tangential - slid;
+  sums[STORED] = stored_normal + stored_tangential;
+}
 
 class ContactObserver {
  public:
@@ -136,14 +151,21 @@ class ContactObserver {
 // An observer that counts every evaluation's contacts anew and keeps no per-contact record
 // (LIGGGHTS's fix contacts/mn, plugin/liggghts/): a publisher adds each touching contact to
 // tallies() (ContactTallies::add, inline), marking those begun at this evaluation, which it
-// tells from a flag it keeps with the contact; it makes no other call.
+// tells from a flag it keeps with the contact, and, where energies are booked, each contact's
+// booking to energy_tallies(), an ended contact's at the first evaluation after it ended; it
+// makes no other call.
 class ContactCounter {
  public:
   const ContactTallies &tallies() const { return step; }
+  // Where the observer books the contacts' energies (energy yes), the tallies a publisher adds
+  // each contact's booking to (EnergyTallies::add); else nullptr.
+  const EnergyTallies *energy_tallies() const { return books_energy ? &energy_step : nullptr; }
 
  protected:
   ~ContactCounter() = default;
-  ContactTallies step;    // this evaluation's contacts, owned and ghost atoms
+  ContactTallies step;          // this evaluation's contacts, owned and ghost atoms
+  EnergyTallies energy_step;    // this evaluation's energies, owned and ghost atoms
+  bool books_energy = false;    // energy_tallies()
 };
 
 // A publisher that remembers its contacts between force evaluations.

@@ -2,7 +2,9 @@
 // each force evaluation to this fix's tallies (granmn::ContactCounter); at the end of the step
 // the fix turns them into the per-atom counters, so that a contact counts at every step whose
 // force evaluation found it (the run's setup excluded: the tallies are cleared before each
-// step's evaluation).
+// step's evaluation). With energy yes it adds each contact's energies as booked at the
+// evaluation (mn_energy.h) to the atoms' sums, the setup's too (it books no work: its springs'
+// energy is the account's start).
 #include "fix_contacts_mn.h"
 
 #include <cstring>
@@ -25,17 +27,25 @@ using namespace FixConst;
 using namespace granmn::output;
 
 FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg)
-    : Fix(lmp, narg, arg), accumulated(NULL), window(0.0)
+    : Fix(lmp, narg, arg), energy(false), columns(COUNTERS), accumulated(NULL), window(0.0)
 {
-  if (narg != 3) error->all(FLERR, "Illegal fix contacts/mn command: it takes no arguments");
+  if (narg != 3 && !(narg == 5 && strcmp(arg[3], "energy") == 0))
+    error->all(FLERR, "Illegal fix contacts/mn command: it takes no arguments but energy yes|no");
+  if (narg == 5) {
+    if (strcmp(arg[4], "yes") != 0 && strcmp(arg[4], "no") != 0)
+      error->all(FLERR, "Illegal fix contacts/mn command: energy needs yes or no");
+    energy = strcmp(arg[4], "yes") == 0;
+  }
   if (modify->find_fix_style("contacts/mn", 0))
     error->all(FLERR, "Only one fix contacts/mn may be defined");
+  books_energy = energy;
   vector_flag = 1;
-  size_vector = WINDOW + 1;
+  size_vector = energy ? VECTOR_SIZE_WITH_ENERGY : VECTOR_SIZE;
   global_freq = 1;
   extvector = 0;
   peratom_flag = 1;
-  size_peratom_cols = COUNTERS;
+  size_peratom_cols = energy ? COUNTERS + ENERGY_SUMS : COUNTERS;
+  if (energy) columns = COLUMNS_WITH_ENERGY;
   peratom_freq = 1;
 }
 
@@ -45,10 +55,10 @@ FixContactsMN::FixContactsMN(LAMMPS *lmp, int narg, char **arg)
 void FixContactsMN::post_create()
 {
   const std::string name = std::string("contacts_mn_") + id;
-  const char *fixarg[9 + COUNTERS] = {name.c_str(), group->names[igroup], "property/atom",
+  std::vector<const char *> fixarg = {name.c_str(), group->names[igroup], "property/atom",
                                       name.c_str(), "vector", "no", "no", "no"};
-  for (int c = 0; c < COUNTERS; c++) fixarg[8 + c] = "0.0";
-  accumulated = modify->add_fix_property_atom(8 + COUNTERS, const_cast<char **>(fixarg),
+  fixarg.resize(8 + columns, "0.0");
+  accumulated = modify->add_fix_property_atom(8 + columns, const_cast<char **>(fixarg.data()),
                                               style);
 }
 
@@ -82,6 +92,38 @@ void FixContactsMN::clear_tallies()
   step.boundary = boundary.data();
   step.begun_particle = begun_particle.data();
   step.begun_boundary = begun_boundary.data();
+  if (!energy) return;
+  energies.assign(n * granmn::STEP_ENERGIES, 0.0);
+  energy_step.values = energies.data();
+}
+
+// The setup's evaluation: no work booked (no time passed), the springs' energy now.
+void FixContactsMN::setup(int)
+{
+  absorb_energies();
+}
+
+// This evaluation's energies into the atoms' sums (newton off, which LIGGGHTS's granular pair
+// styles require: a ghost's share is booked by its owner's process, which computes the pair
+// too) and their energies as written.
+void FixContactsMN::absorb_energies()
+{
+  if (!energy) return;
+  using namespace granmn;
+  double **s = accumulated->array_atom;
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double *v = energies.data() + STEP_ENERGIES * i;
+    double *a = s[i];
+    a[TAKEN_NORMAL] += v[STEP_TAKEN_NORMAL];
+    a[TAKEN_TANGENTIAL] += v[STEP_TAKEN_TANGENTIAL];
+    a[SLID] += v[STEP_DISSIPATED_SLIDING];
+    a[STORED_NORMAL] = v[STEP_STORED_NORMAL];
+    a[STORED_TANGENTIAL] = v[STEP_STORED_TANGENTIAL];
+    atom_energy_sums(a[TAKEN_NORMAL], a[TAKEN_TANGENTIAL], a[SLID], a[STORED_NORMAL],
+                     a[STORED_TANGENTIAL], a + COUNTERS);
+  }
 }
 
 void FixContactsMN::end_of_step()
@@ -99,13 +141,19 @@ void FixContactsMN::end_of_step()
     if (particle[i] + boundary[i] >= 2.0) c[TIME_MULTIPLE] += dt;
     c[NOW] = particle[i] + boundary[i];
   }
+  absorb_energies();
   window += dt;
 }
 
-// the sums over the group and the window's length
+// the sums over the group, the window's length, the group's size; with energy yes the
+// energies' sums and the work in flight (none: velocity Verlet's step has applied the first
+// half of each force it booked, mn::work_in_flight)
 double FixContactsMN::compute_vector(int n)
 {
   if (n == WINDOW) return window;
+  if (n == GROUP_SIZE) return group->count(igroup);
+  if (n == VECTOR_SIZE + ENERGY_SUMS) return 0.0;
+  if (n >= VECTOR_SIZE) n = COUNTERS + (n - VECTOR_SIZE);
   double **counters = accumulated->array_atom;
   const int *mask = atom->mask;
   double local = 0.0;

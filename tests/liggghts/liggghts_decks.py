@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from granmn_run import HEADER, PLUGIN, run_lammps
+from postprocess.io import SCHEMA
 
 LIGGGHTS = os.environ.get("GRANMN_LIGGGHTS", "")
 
@@ -43,6 +44,7 @@ class Scene:
     extra: str = ""                 # LIGGGHTS commands after the law's properties
     sample_every: int = 0           # print the first particle's velocity every so many steps
     counters: bool = False          # fix contacts/mn on the mobile particles: RESULT counters
+    energy: bool = False            # the same with energy yes: RESULT energies too
 
     def types(self):
         return 2 if any(p.fixed for p in self.particles) else 1
@@ -76,15 +78,30 @@ def _masses(scene):
         "group mobile type 1\ngroup base type 2\n"
 
 
+# fix contacts/mn's global vector with energy yes, by the schema's names (1-based, as f_c[k]):
+# both engines' layout
+VECTOR = {name: k + 1 for k, name in enumerate(
+    (*SCHEMA["counters"], *SCHEMA["vector_extras"], *SCHEMA["energy_sums"]))}
+ENERGIES = SCHEMA["energy_sums"]
+
+
 def _counters(scene):
-    if not scene.counters:
+    if not (scene.counters or scene.energy):
         return ""
-    text = "fix c mobile contacts/mn\n"
+    text = "fix c mobile contacts/mn" + (" energy yes\n" if scene.energy else "\n")
     names = []
     for k in range(1, 8):
         text += f"variable c{k} equal f_c[{k}]\n"
         names.append(f"${{c{k}}}")
-    return text + f'fix result_c all print {scene.steps} "RESULT counters {" ".join(names)}" screen yes\n'
+    text += f'fix result_c all print {scene.steps} "RESULT counters {" ".join(names)}" screen yes\n'
+    if scene.energy:
+        names = []
+        for name in ENERGIES:
+            text += f"variable {name} equal f_c[{VECTOR[name]}]\n"
+            names.append(f"${{{name}}}")
+        text += (f'fix result_e all print {scene.steps} "RESULT energies {" ".join(names)}" '
+                 "screen yes\n")
+    return text
 
 
 def _results(scene):
@@ -127,6 +144,8 @@ def liggghts_deck(scene, wall=None):
     table = lambda value: f"{n} " + " ".join([repr(value)] * (n * n))
     if scene.coulomb_cutback:
         pair += " coulomb_cutback on"
+    if scene.energy:
+        pair += " energy on"
     deck = f"""atom_style granular
 atom_modify map array
 dimension {scene.dimension}
@@ -177,6 +196,7 @@ pair_coeff * *
 class Outcome:
     states: list                    # per particle: x y z vx vy vz wx wy wz
     counters: list = None           # fix contacts/mn's seven sums, where asked for
+    energies: dict = None           # its energies' sums by name, where asked for
     samples: list = field(default_factory=list)    # (t, vx, omega) of particle 1
     output: str = ""
 
@@ -184,10 +204,12 @@ class Outcome:
 def outcome(text, count):
     results = {}
     samples = []
-    counters = None
+    counters = energies = None
     for line in text.splitlines():
         if line.startswith("RESULT counters "):
             counters = [float(v) for v in line.split()[2:]]
+        if line.startswith("RESULT energies "):
+            energies = dict(zip(ENERGIES, (float(v) for v in line.split()[2:])))
         m = re.match(r"^RESULT state(\d+) (.*)$", line)
         if m:
             results[int(m.group(1))] = [float(v) for v in m.group(2).split()]
@@ -197,7 +219,7 @@ def outcome(text, count):
     missing = [n for n in range(1, count + 1) if n not in results]
     if missing:
         raise AssertionError(f"no RESULT state for particles {missing}; output tail:\n{text[-3000:]}")
-    return Outcome([results[n] for n in range(1, count + 1)], counters, samples, text)
+    return Outcome([results[n] for n in range(1, count + 1)], counters, energies, samples, text)
 
 
 def run_liggghts(deck, workdir, data="", check=True):

@@ -1,7 +1,8 @@
 """LIGGGHTS's `model mn tangential mn` refuses what it cannot do with an ERROR that names the
 input (docs/bad_input.md lists each case): missing or asymmetric property/global values, e or
-beta out of range, and the models combined with others (cohesion, rolling friction, LIGGGHTS's
-own tangential or normal models), for the pair style and for walls alike."""
+beta out of range, the models combined with others (cohesion, rolling friction, LIGGGHTS's
+own tangential or normal models), for the pair style and for walls alike, and energies asked
+for where they cannot be booked."""
 import pytest
 
 from liggghts_decks import LIGGGHTS, Particle, Scene, data_file, liggghts_deck, run_liggghts
@@ -57,6 +58,19 @@ BAD = {
     "LIGGGHTS: model mn with rolling friction": (
         deck([("model mn tangential mn", "model mn tangential mn rolling_friction cdt")]),
         "pair_style gran: model mn takes no rolling_friction model"),
+    "LIGGGHTS: fix contacts/mn energy yes without energy on": (
+        deck([("fix integrate mobile nve/sphere\n",
+               "fix integrate mobile nve/sphere\nfix c mobile contacts/mn energy yes\n")]),
+        "fix contacts/mn energy yes: pair_style gran keeps no energy history per contact: add "
+        "energy on after its models"),
+    "LIGGGHTS: fix contacts/mn energy yes with a wall (fix wall/gran)": (
+        deck(wall=True, energy=True),
+        "fix contacts/mn energy yes: fix wall/gran with model mn cannot book its contacts' "
+        "energies"),
+    "LIGGGHTS: fix contacts/mn energy neither yes nor no": (
+        deck([("fix integrate mobile nve/sphere\n",
+               "fix integrate mobile nve/sphere\nfix c mobile contacts/mn energy on\n")]),
+        "Illegal fix contacts/mn command: energy needs yes or no"),
     "LIGGGHTS: wall with model mn and tangential history": (
         deck([("wall/gran model mn tangential mn", "wall/gran model mn tangential history")],
              wall=True),
