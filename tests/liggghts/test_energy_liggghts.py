@@ -191,8 +191,9 @@ def test_a_heap_on_two_ranks(tmp_path):
     assert sum(energies[1][name] for name in DISSIPATED) > 0.5 * fall
 
 
-def test_contacts_across_neighbour_list_builds(tmp_path):
-    """A sphere set on a frozen sphere off its top, under gravity, rolling and bouncing off it
+@pytest.mark.parametrize("dimension", [3, 2])
+def test_contacts_across_neighbour_list_builds(tmp_path, dimension):
+    """A sphere (a disc in 2D) set on a frozen one off its top, under gravity, rolling and bouncing off it
     (13 contacts, touching 0.7 of 1.5 time units), while LIGGGHTS builds its neighbour lists at
     every step and sorts the atoms every 10 steps. A build drops the history of a pair found
     apart: a contact that ended at that step is booked from fix contact/history's copies, each
@@ -201,11 +202,13 @@ def test_contacts_across_neighbour_list_builds(tmp_path):
     energies do not). Measured: without the copies (every end at a build missing its last half
     step) the energies differ from the plugin's by 5e-5, with the signs not changed by 1e-4;
     they agree to the last printed digit."""
-    c = law(KN, E, BETA, shape="sphere")
+    c = law(KN, E, BETA, shape="sphere" if dimension == 3 else "disc")
     dt = c["tau_c"] / 50
-    spheres = [Particle((0.1, 0.05, 1.0 - 1.0 / KN)), Particle((0.0, 0.0, 0.0), fixed=True)]
+    top = (0.1, 0.05, 1.0 - 1.0 / KN) if dimension == 3 else (0.1, 1.0 - 1.0 / KN, 0.0)
+    down = (1.0, 0.0, 0.0, -1.0) if dimension == 3 else (1.0, 0.0, -1.0, 0.0)
+    spheres = [Particle(top), Particle((0.0, 0.0, 0.0), fixed=True)]
     scene = Scene(spheres, dt=dt, steps=int(1.5 / dt), kn=KN, e=E, beta=BETA, mu=0.5,
-                  gravity=(1.0, 0.0, 0.0, -1.0), energy=True, counters=True,
+                  dimension=dimension, gravity=down, energy=True, counters=True,
                   extra="neigh_modify every 1 delay 0 check no\natom_modify sort 10 0.5\n")
     theirs, _ = check_agreement(scene, tmp_path, scale=1.0)
     assert theirs.counters[1] >= 10                     # contacts begun with the frozen sphere
