@@ -20,8 +20,7 @@ constexpr const char *COUNTER_NAMES[COUNTERS] = {"begun_disk", "begun_boundary",
                                                  "time_boundary", "time_multiple",
                                                  "contacts_now"};
 
-// The global vector's entries after the sums: the window's length (both hosts), the group's
-// size (LAMMPS's fix only).
+// The global vector's entries after the sums: the window's length and the group's size.
 enum VectorExtra { WINDOW = COUNTERS, GROUP_SIZE, VECTOR_SIZE };
 constexpr const char *EXTRA_NAMES[VECTOR_SIZE - COUNTERS] = {"window", "group_size"};
 

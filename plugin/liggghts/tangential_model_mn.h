@@ -19,9 +19,12 @@ TANGENTIAL_MODEL(TANGENTIAL_MN,mn,20)
 
 #include "atom.h"
 #include "contact_models.h"
+#include "domain.h"
+#include "fix_contact_history.h"
 #include "granmn_liggghts_law.h"
 #include "mn_energy.h"
 #include "neigh_list.h"
+#include "neighbor.h"
 #include "tangential_model_base.h"
 #include "update.h"
 
@@ -77,6 +80,10 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
                         "evaluation that finds the particle apart, before the contact's last "
                         "force could be booked): use energy no, or the LAMMPS plugin's fix "
                         "wall/gran/mn");
+    if (energies && !wall && !atom->map_style)
+      error->all(FLERR, "fix contacts/mn energy yes needs an atom map (atom_modify map array): "
+                        "a contact that ends where the neighbour lists are built is found by "
+                        "its partner's ID");
     if (energies && energy_offset < 0)
       error->all(FLERR, "fix contacts/mn energy yes: pair_style gran keeps no energy history "
                         "per contact: add energy on after its models (pair_style gran model mn "
@@ -234,65 +241,102 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
     return mn::book_contact_energy(law, scale, k, lever, f, before, after, dt, energy);
   }
 
+  // The share of a contact's energies that goes to i: half of a contact of two particles, all
+  // of one with a frozen particle to the mobile one.
+  static double share_of_i(bool i_frozen, bool j_frozen)
+  {
+    return i_frozen ? 0.0 : j_frozen ? 1.0 : 0.5;
+  }
+
   // i's share, and j's where j is owned here (newton off: a pair with a ghost is booked by both
   // processes)
   void share(int i, int j, bool i_frozen, bool j_frozen, const mn::EnergyStep &booked,
              const mn::StoredEnergy &stored) const
   {
-    const double share_i = i_frozen ? 0.0 : j_frozen ? 1.0 : 0.5;
+    const double share_i = share_of_i(i_frozen, j_frozen);
     energies->add(i, share_i, booked, stored);
     if (j < atom->nlocal) energies->add(j, 1.0 - share_i, booked, stored);
   }
 
   // After a pass: the contacts the previous pass found touching and this one did not have
   // ended. The model is not called for them (LIGGGHTS calls surfacesClose only within the
-  // contact distance factor), so the pass's neighbour list is walked for them: each one's last
-  // force's second half and its tangential spring's release booked
-  // (mn::book_ended_contact_energy) from the particles' state now, as the plugin's pair style
-  // books them at its first evaluation after the end.
+  // contact distance factor), so they are looked up: each one's last force's second half and
+  // its tangential spring's release booked (mn::book_ended_contact_energy) from the particles'
+  // state now, as the plugin's pair style books them at its first evaluation after the end.
+  // Where the pass's neighbour list was built at this step, LIGGGHTS dropped the history of
+  // every pair it found apart; fix contact/history still holds each atom's copy, seen from it
+  // (taken at the build, before the particles were exchanged), for its partners of the last
+  // list: each ended contact is booked from each of its atoms' copies, to that atom only. Else
+  // they are in the pass's list, booked to both atoms from the pair's history.
   GRANMN_CALLED void book_ended(double dt_history)
   {
     if (passes < 2 || !pair->listgranhistory) return;
+    if (neighbor->ago == 0) {
+      LAMMPS_NS::FixContactHistory *copies = pair->get_fix_history();
+      double **x = atom->x;
+      const double *radius = atom->radius;
+      for (int i = 0; i < atom->nlocal; i++)
+        for (int m = 0; m < copies->n_partner(i); m++) {
+          double *contact = copies->contacthistory(i, m);
+          if (contact[seen_offset] != passes - 1) continue;
+          const int j = domain->closest_image(i, atom->map(copies->partner(i, m)));
+          if (j < 0) continue;
+          const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+          const double radsum = radius[i] + radius[j];
+          if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) continue;
+          book_ended_contact(i, j, contact, dt_history, false);
+        }
+      return;
+    }
     const NeighList *list = pair->list;
     double **history = pair->listgranhistory->firstdouble;
     const int stride = pair->dnum();
-    double **x = atom->x, **v = atom->v, **omega = atom->omega;
-    const double *radius = atom->radius, *rmass = atom->rmass, *mass = atom->mass;
-    const int *type = atom->type, *mask = atom->mask;
     for (int ii = 0; ii < list->inum; ii++) {
       const int i = list->ilist[ii];
       const int *jlist = list->firstneigh[i];
       for (int jj = 0; jj < list->numneigh[i]; jj++) {
         double *contact = &history[i][stride * jj];
-        if (contact[seen_offset] != passes - 1) continue;
-        const int j = jlist[jj] & NEIGHMASK;
-        const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-        const double dv[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
-        const double lever[3] = {radius[i] * omega[i][0] + radius[j] * omega[j][0],
-                                 radius[i] * omega[i][1] + radius[j] * omega[j][1],
-                                 radius[i] * omega[i][2] + radius[j] * omega[j][2]};
-        const double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        const double radsum = radius[i] + radius[j];
-        const double mi = rmass ? rmass[i] : mass[type[i]], mj = rmass ? rmass[j] : mass[type[j]];
-        const bool i_frozen = mask[i] & frozen_bit, j_frozen = mask[j] & frozen_bit;
-        // the mass scale as granmn_liggghts::mass_scale takes it from LIGGGHTS's meff
-        const double meff = i_frozen ? mj : j_frozen ? mi : mi * mj / (mi + mj);
-        const double scale = (i_frozen || j_frozen ? mn::boundary_mass_scale(meff) : 2.0 * meff) *
-            law.laws.force_per_mass_acceleration;
-        const mn::Law &pair_law = law.laws(type[i], type[j]);
-        const double *ut = contact + ut_offset;
-        const double ut_squared = ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2];
-        double *energy = contact + energy_offset;
-        const mn::EnergyStep booked =
-            law.two_d ? mn::book_ended_contact_energy(
-                            pair_law, scale, mn::kinematics(mn::Dim<2>(), d, r, radsum, dv, lever),
-                            lever[2], ut_squared, dt_history, mn::Integrator::VelocityVerlet,
-                            energy)
-                      : mn::book_ended_contact_energy(
-                            pair_law, scale, mn::kinematics(mn::Dim<3>(), d, r, radsum, dv, lever),
-                            lever, ut_squared, dt_history, energy);
-        share(i, j, i_frozen, j_frozen, booked, {0.0, 0.0});
+        if (contact[seen_offset] == passes - 1)
+          book_ended_contact(i, jlist[jj] & NEIGHMASK, contact, dt_history, true);
       }
+    }
+  }
+
+  // One ended contact of i and j, its history seen from i: booked to i, and to j if `both`
+  // (and j is owned here).
+  void book_ended_contact(int i, int j, double *contact, double dt_history, bool both)
+  {
+    double **x = atom->x, **v = atom->v, **omega = atom->omega;
+    const double *radius = atom->radius, *rmass = atom->rmass, *mass = atom->mass;
+    const int *type = atom->type, *mask = atom->mask;
+    const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+    const double dv[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
+    const double lever[3] = {radius[i] * omega[i][0] + radius[j] * omega[j][0],
+                             radius[i] * omega[i][1] + radius[j] * omega[j][1],
+                             radius[i] * omega[i][2] + radius[j] * omega[j][2]};
+    const double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double radsum = radius[i] + radius[j];
+    const double mi = rmass ? rmass[i] : mass[type[i]], mj = rmass ? rmass[j] : mass[type[j]];
+    const bool i_frozen = mask[i] & frozen_bit, j_frozen = mask[j] & frozen_bit;
+    // the mass scale as granmn_liggghts::mass_scale takes it from LIGGGHTS's meff
+    const double meff = i_frozen ? mj : j_frozen ? mi : mi * mj / (mi + mj);
+    const double scale = (i_frozen || j_frozen ? mn::boundary_mass_scale(meff) : 2.0 * meff) *
+        law.laws.force_per_mass_acceleration;
+    const mn::Law &pair_law = law.laws(type[i], type[j]);
+    const double *ut = contact + ut_offset;
+    const double ut_squared = ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2];
+    double *energy = contact + energy_offset;
+    const mn::EnergyStep booked =
+        law.two_d ? mn::book_ended_contact_energy(
+                        pair_law, scale, mn::kinematics(mn::Dim<2>(), d, r, radsum, dv, lever),
+                        lever[2], ut_squared, dt_history, mn::Integrator::VelocityVerlet, energy)
+                  : mn::book_ended_contact_energy(
+                        pair_law, scale, mn::kinematics(mn::Dim<3>(), d, r, radsum, dv, lever),
+                        lever, ut_squared, dt_history, energy);
+    if (both) {
+      share(i, j, i_frozen, j_frozen, booked, {0.0, 0.0});
+    } else {
+      energies->add(i, share_of_i(i_frozen, j_frozen), booked, {0.0, 0.0});
     }
   }
 

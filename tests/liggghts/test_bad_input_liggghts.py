@@ -67,6 +67,9 @@ BAD = {
         deck(wall=True, energy=True),
         "fix contacts/mn energy yes: fix wall/gran with model mn cannot book its contacts' "
         "energies"),
+    "LIGGGHTS: fix contacts/mn energy yes without an atom map": (
+        deck([("atom_modify map array\n", "")], energy=True),
+        "fix contacts/mn energy yes needs an atom map (atom_modify map array)"),
     "LIGGGHTS: fix contacts/mn energy neither yes nor no": (
         deck([("fix integrate mobile nve/sphere\n",
                "fix integrate mobile nve/sphere\nfix c mobile contacts/mn energy on\n")]),
