@@ -59,8 +59,11 @@ struct ContactTallies {
 // (fix contacts/mn energy yes): the energy the contacts took (normal, tangential) and lost while
 // sliding at this evaluation, what their springs store now, and the power of their forces
 // (mn::EnergyStep). A contact's share of each goes to each of its atoms (share_i + share_j = 1).
+// And the work a moving wall did on the atom at this evaluation (mn::WallWork), whose power is
+// part of the atom's.
 enum StepEnergy { STEP_TAKEN_NORMAL, STEP_TAKEN_TANGENTIAL, STEP_DISSIPATED_SLIDING,
-                  STEP_STORED_NORMAL, STEP_STORED_TANGENTIAL, STEP_POWER, STEP_ENERGIES };
+                  STEP_STORED_NORMAL, STEP_STORED_TANGENTIAL, STEP_POWER, STEP_WALL_WORK,
+                  STEP_ENERGIES };
 
 struct EnergyTallies {
   double *values = nullptr;    // STEP_ENERGIES per atom
@@ -74,6 +77,13 @@ struct EnergyTallies {
     v[STEP_STORED_NORMAL] += share * stored.normal;
     v[STEP_STORED_TANGENTIAL] += share * stored.tangential;
     v[STEP_POWER] += share * booked.power;
+  }
+  // A moving wall's work on local atom i (all of it the atom's).
+  void add_wall_work(int i, const mn::WallWork &wall) const
+  {
+    double *v = values + STEP_ENERGIES * i;
+    v[STEP_WALL_WORK] += wall.work;
+    v[STEP_POWER] += wall.power;
   }
 };
 
@@ -152,8 +162,6 @@ class HeldContacts {
   // The contacts local atom i has with this publisher's boundary elements, as of its last
   // evaluation (0 without an observer: none are kept).
   virtual int contacts_held(int i) const = 0;
-  // Whether this publisher books its contacts' energies for the observer (energy yes).
-  virtual bool books_energies() const { return false; }
 
  protected:
   ~HeldContacts() = default;
