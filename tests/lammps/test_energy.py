@@ -712,6 +712,65 @@ def test_a_moving_regions_work_closes_the_budget(tmp_path, motion, integrator):
         assert np.abs(table[:, 2]).max() > 1e3 * worst[-1]
 
 
+
+def test_a_moving_regions_work_in_3d(tmp_path):
+    """Five spheres in a box region that wiggles along x and z (3D: the wall's work on a sphere
+    is its last force, normal and tangential vector, on the wall's velocity; velocity Verlet):
+    at every step the budget's residual is its closed form (dt^2/8)(sum |F|^2/m + |T|^2/I now
+    - at the start) to rounding (1e-10 of the energies; measured 8e-13), at two dt, while the
+    walls do work of order 0.5: a tangential force left out of the wall's work, or the previous
+    evaluation's normal taken for this one's, would leave an error of order dt/tau of it."""
+    kn, e, beta = 2e5, 0.7, 0.7
+    spheres = "\n".join(f"create_atoms 1 single {x!r} {y!r} {z!r}" for x, y, z in (
+        (-1.2, -0.5, 0.9), (1.1, 0.6, 1.4), (0.1, -0.2, 2.0), (-0.6, 1.2, 2.6),
+        (0.9, -1.1, 3.1)))
+    work, scale_dt = [], []
+    for dt_over_tau in (1 / 25, 1 / 50):
+        dt = law(kn, e, beta, "sphere")["tau_c"] * dt_over_tau
+        deck = HEADER.format(plugin=PLUGIN).replace("dimension 2", "dimension 3") + f"""
+boundary f f f
+region box block -3 3 -3 3 -0.5 6
+create_box 1 box
+{spheres}
+set type 1 diameter 1.0
+set type 1 density 1.0
+velocity all set 0 0 0
+set type 1 vx 0.6 vy -0.4 omega 0.5 -1.0 1.5
+pair_style gran/mn kn {kn} e {e} beta {beta} mu 0.5
+pair_coeff * *
+timestep {dt!r}
+fix integrate all nve/sphere
+fix gravity all gravity 1.0 vector 0 0 -1
+variable wx equal 0.1*sin(2*PI*time)
+variable wz equal 0.02*sin(2*PI*time)
+region cup block -2.5 2.5 -2.5 2.5 0 5.5 move v_wx NULL v_wz units box
+fix walls all wall/gran/region/mn cup
+fix c all contacts/mn energy yes
+compute erot all erotate/sphere
+compute etrans all ke
+variable height atom mass*z
+compute gravitational all reduce sum v_height
+compute spin all property/atom radius tqx tqy tqz
+variable kicks atom (fx^2+fy^2+fz^2)/mass+(c_spin[2]^2+c_spin[3]^2+c_spin[4]^2)/(0.4*mass*c_spin[1]^2)
+compute kicks all reduce sum v_kicks
+variable budget equal c_etrans+c_erot+c_gravitational+f_c[{VECTOR['dissipated_normal']}]+f_c[{VECTOR['dissipated_sticking']}]+f_c[{VECTOR['dissipated_sliding']}]+f_c[{VECTOR['stored']}]-f_c[{VECTOR['work_of_walls']}]
+thermo_modify norm no
+thermo 0
+fix budget all print 1 "$(step) $(v_budget:%.17g) $(f_c[{VECTOR['work_of_walls']}]:%.17g) $(c_kicks:%.17g) $(f_c[{VECTOR['begun_boundary']}])" file budget.txt screen no
+run {round(3.0 / dt)}
+"""
+        table = run_lammps(deck, tmp_path / f"dt{dt_over_tau}", header=False).table("budget.txt")
+        residual = table[:, 1] - table[0, 1]
+        closed_form = dt ** 2 / 8 * (table[:, 3] - table[0, 3])
+        scale = abs(table[0, 1]) + np.abs(table[:, 2]).max()
+        print(f"3D wiggle dt=tau/{1 / dt_over_tau:.0f}: largest residual "
+              f"{np.abs(residual).max():.3e}, off the closed form by "
+              f"{np.abs(residual - closed_form).max():.3e}; walls' work {table[-1, 2]:+.4e}, "
+              f"boundary contacts begun {table[-1, 4]:.0f}")
+        assert residual == pytest.approx(closed_form, rel=0, abs=1e-10 * scale)
+        assert np.abs(table[:, 2]).max() > 0.1
+        assert table[-1, 4] > 5
+
 def test_the_frictional_scenes_budget(tmp_path):
     """The frictional flow (its floor a plane wall fix, fix wall/gran/mn; energies = yes),
     velocity Verlet: at each line where no contact is going on the exact residual
