@@ -578,12 +578,17 @@ def test_the_budget_across_a_restart_file(tmp_path):
 
 
 # The region of region_box and how it moves: a V at rest (y > |x|, the intersection of two
-# planes at 45 degrees: a disk at its bottom touches both faces); a box that wiggles (along x
+# planes at 45 degrees: a disk at its bottom touches both faces); the V rising at 0.1 (a lift:
+# the disks come to rest in it and ride up); a box that wiggles (along x
 # and y, the floor's peak acceleration 0.8 g: the disks are dragged and pushed); a drum that turns (a
 # circle of radius 2.5 about (0, 2.5) at 1 radian a unit time: the disks are carried up).
 REGION_MOTIONS = {
     "still": "region left plane 0 0 0 1 1 0 units box\nregion right plane 0 0 0 -1 1 0 units box\n"
              "region cup intersect 2 left right",
+    "lift": "variable lift equal 0.1*step*dt\n"
+            "region left plane 0 0 0 1 1 0 move NULL v_lift NULL units box\n"
+            "region right plane 0 0 0 -1 1 0 move NULL v_lift NULL units box\n"
+            "region cup intersect 2 left right",
     "wiggle": "variable wx equal 0.1*sin(2*PI*time)\nvariable wy equal 0.02*sin(2*PI*time)\n"
               "region cup block -2.5 2.5 0 5.5 -1 1 move v_wx v_wy NULL units box",
     "drum": "variable angle equal 1.0*time\n"
@@ -591,13 +596,16 @@ REGION_MOTIONS = {
 }
 
 
-def region_box(tmp_path, dt_over_tau, integrator="verlet", motion="still", time=8.0):
+def region_box(tmp_path, dt_over_tau, integrator="verlet", motion="still", time=8.0,
+               restart_at=None):
     """Four unit disks in a region (fix wall/gran/region/mn; REGION_MOTIONS) under unit gravity,
     thrown sideways and spinning, mu = 0.5: disks slide along the floor into the corners, touch
     two faces at once, leave one face for the other (their contacts change slots), collide and
     come to rest. Step, the budget kinetic + gravitational + stored + dissipated - work in
     flight - work of the walls, the walls' work, the stored energy, the contacts, the
-    boundary contacts begun and sum |F|^2/m + |T|^2/I, every step; and the disks at the end."""
+    boundary contacts begun and sum |F|^2/m + |T|^2/I, every step; and the disks at the end.
+    restart_at: the run written to a restart file at that time and continued from it by
+    another lmp (the lines of both, the step of the restart twice)."""
     kn, e, beta = 2e5, 0.7, 0.7
     dt = law(kn, e, beta)["tau_c"] * dt_over_tau
     throws = ((-1.2, 2.2, 1.0, 2.0), (1.2, 2.3, -0.5, -1.0), (0.2, 1.4, 0.3, 0.5),
@@ -607,7 +615,7 @@ def region_box(tmp_path, dt_over_tau, integrator="verlet", motion="still", time=
                            for k, (_, _, vx, w) in enumerate(throws))
     integrate = {"verlet": "nve/sphere disc", "ab2": "nve/ab2"}[integrator]
     f = {name: f"f_c[{k}]" for name, k in VECTOR.items()}
-    deck = f"""
+    setup = f"""
 boundary f f p
 region box block -3 3 -0.5 6 -0.5 0.5
 create_box 1 box
@@ -618,7 +626,8 @@ velocity all set 0 0 0
 {velocities}
 pair_style gran/mn kn {kn} e {e} beta {beta} mu 0.5
 pair_coeff * *
-timestep {dt!r}
+"""
+    dynamics = f"""timestep {dt!r}
 fix integrate all {integrate}
 fix gravity all gravity 1.0 vector 0 -1 0
 fix flat all enforce2d
@@ -638,11 +647,25 @@ variable budget equal c_etrans+c_erot+c_gravitational+{f['dissipated_normal']}+{
 thermo_modify norm no
 thermo 0
 fix budget all print 1 "$(step) $(v_budget:%.17g) $({f['work_of_walls']}:%.17g) $({f['stored']}:%.17g) $({f['contacts_now']}) $({f['begun_boundary']}) $(c_kicks:%.17g)" file budget.txt screen no
-run {round(time / dt)}
-write_dump all custom final.txt id x y vx vy f_c[{VECTOR['contacts_now']}] modify sort id format float %.17g
 """
-    run = run_lammps(deck, tmp_path)
-    return run.table("budget.txt"), run.atoms()
+    final = (f"write_dump all custom final.txt id x y vx vy f_c[{VECTOR['contacts_now']}] "
+             "modify sort id format float %.17g\n")
+    steps = round(time / dt)
+    if restart_at is None:
+        run = run_lammps(setup + dynamics + f"run {steps}\n" + final, tmp_path)
+        return run.table("budget.txt"), run.atoms()
+    first = round(restart_at / dt)
+    run_lammps(setup + dynamics + f"run {first}\nwrite_restart state.restart\n", tmp_path)
+    (tmp_path / "budget.txt").rename(tmp_path / "before.txt")
+    run = run_lammps(f"""
+plugin load {PLUGIN}
+read_restart state.restart
+comm_modify vel yes
+neighbor 0.1 bin
+{dynamics}run {steps - first}
+{final}""", tmp_path, header=False)
+    return np.vstack([np.loadtxt(tmp_path / "before.txt", ndmin=2),
+                      run.table("budget.txt")]), run.atoms()
 
 
 def largest_residuals(tmp_path, integrator, motion):
@@ -712,6 +735,32 @@ def test_a_moving_regions_work_closes_the_budget(tmp_path, motion, integrator):
         assert np.abs(table[:, 2]).max() > 1e3 * worst[-1]
 
 
+
+def test_a_region_walls_energies_across_a_restart_file(tmp_path):
+    """Disks in the rising V of region_box written to a restart file at t = 8, while they
+    rest in it, and continued from it (its displacement a function of the step, which the
+    restart file keeps: LAMMPS's time starts anew from it): each face contact's energy history (its last force,
+    in the fix's per-atom rows) and fix contacts/mn's sums, the walls' work among them, come
+    back. The budget at the restart's step is the same before and after to rounding (1e-12 of
+    it; the sums or the walls' work lost would change it by what was dissipated or done, of
+    order 1), and after it the residual is velocity Verlet's closed form from there
+    (the run's setup evaluates the forces anew; a contact's tail booked with no force kept, its
+    history lost, would miss it by a contact's work over half a step). The disks then ride the
+    lift at rest: its work is their gain of gravitational energy, 4 m g v_lift a unit time."""
+    dt = law(2e5, 0.7, 0.7)["tau_c"] / 50
+    table, _ = region_box(tmp_path, 1 / 50, motion="lift", time=9.0, restart_at=8.0)
+    at = np.flatnonzero(table[1:, 0] == table[:-1, 0])
+    assert len(at) == 1    # the restart's step, twice
+    before, after = table[:at[0] + 1], table[at[0] + 1:]
+    assert after[0, 4] > 0 and after[-1, 4] > 0    # contacts going on across the restart
+    # at rest in the lift, the disks (mass 1 each) gain m g v_lift a unit time: the lift's work
+    assert after[-1, 2] - after[0, 2] == pytest.approx(4 * 1.0 * 0.1 * 1.0, rel=1e-3)
+    assert abs(after[0, 2]) > 0.1    # the walls had done work
+    scale = abs(table[0, 1]) + np.abs(table[:, 2]).max()
+    assert after[0, 1] == pytest.approx(before[-1, 1], rel=0, abs=1e-12 * scale)
+    for part in (before, after):
+        closed_form = dt ** 2 / 8 * (part[:, 6] - part[0, 6])
+        assert part[:, 1] - part[0, 1] == pytest.approx(closed_form, rel=0, abs=1e-10 * scale)
 
 def test_a_moving_regions_work_in_3d(tmp_path):
     """Five spheres in a box region that wiggles along x and z (3D: the wall's work on a sphere
