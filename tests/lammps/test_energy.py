@@ -597,7 +597,7 @@ REGION_MOTIONS = {
 
 
 def region_box(tmp_path, dt_over_tau, integrator="verlet", motion="still", time=8.0,
-               restart_at=None):
+               restart_at=None, nprocs=1):
     """Four unit disks in a region (fix wall/gran/region/mn; REGION_MOTIONS) under unit gravity,
     thrown sideways and spinning, mu = 0.5: disks slide along the floor into the corners, touch
     two faces at once, leave one face for the other (their contacts change slots), collide and
@@ -605,7 +605,7 @@ def region_box(tmp_path, dt_over_tau, integrator="verlet", motion="still", time=
     flight - work of the walls, the walls' work, the stored energy, the contacts, the
     boundary contacts begun and sum |F|^2/m + |T|^2/I, every step; and the disks at the end.
     restart_at: the run written to a restart file at that time and continued from it by
-    another lmp (the lines of both, the step of the restart twice)."""
+    another lmp (the lines of both, the step of the restart twice); nprocs: MPI ranks."""
     kn, e, beta = 2e5, 0.7, 0.7
     dt = law(kn, e, beta)["tau_c"] * dt_over_tau
     throws = ((-1.2, 2.2, 1.0, 2.0), (1.2, 2.3, -0.5, -1.0), (0.2, 1.4, 0.3, 0.5),
@@ -652,7 +652,7 @@ fix budget all print 1 "$(step) $(v_budget:%.17g) $({f['work_of_walls']}:%.17g) 
              "modify sort id format float %.17g\n")
     steps = round(time / dt)
     if restart_at is None:
-        run = run_lammps(setup + dynamics + f"run {steps}\n" + final, tmp_path)
+        run = run_lammps(setup + dynamics + f"run {steps}\n" + final, tmp_path, nprocs=nprocs)
         return run.table("budget.txt"), run.atoms()
     first = round(restart_at / dt)
     run_lammps(setup + dynamics + f"run {first}\nwrite_restart state.restart\n", tmp_path)
@@ -761,6 +761,58 @@ def test_a_region_walls_energies_across_a_restart_file(tmp_path):
     for part in (before, after):
         closed_form = dt ** 2 / 8 * (part[:, 6] - part[0, 6])
         assert part[:, 1] - part[0, 1] == pytest.approx(closed_form, rel=0, abs=1e-10 * scale)
+
+def test_a_region_walls_energies_are_the_same_on_two_ranks(tmp_path):
+    """The turning drum of region_box on two ranks (disks and their face contacts' histories
+    moving between them, the walls' work summed over both) gives the budget, the walls' work
+    and the stored energy of one rank to rounding amplified over the run (1e-9): a history
+    lost on the way or a share counted on both ranks changes them by a contact's energy."""
+    one, _ = region_box(tmp_path / "one", 1 / 50, motion="drum", time=2.0)
+    two, _ = region_box(tmp_path / "two", 1 / 50, motion="drum", time=2.0, nprocs=2)
+    assert two.shape == one.shape
+    assert abs(one[-1, 2]) > 1.0    # the drum has worked on the disks
+    assert two[:, 1:4] == pytest.approx(one[:, 1:4], rel=1e-9, abs=1e-12)
+
+
+def test_a_region_walls_energies_off_change_nothing(tmp_path):
+    """fix wall/gran/region/mn under fix contacts/mn without energies, with energy no and with
+    energy yes (the turning drum, velocity Verlet and AB2): the same trajectory and counters to
+    the bit (the booking reads the forces, never changes them), and without energies the same
+    restart file to the byte (the fix's rows keep no energy history)."""
+    def run(integrator, keyword):
+        dt = law(2e5, 0.7, 0.7)["tau_c"] / 50
+        deck = f"""
+boundary f f p
+region box block -3 3 -0.5 6 -0.5 0.5
+create_box 1 box
+create_atoms 1 single -1.2 2.2 0
+create_atoms 1 single 0.2 1.4 0
+set type 1 diameter 1.0
+set type 1 density/disc 1.2732395447351628
+set atom 1 vx 1.0 omega 0 0 2.0
+pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+timestep {dt!r}
+fix integrate all {integrator}
+fix gravity all gravity 1.0 vector 0 -1 0
+fix flat all enforce2d
+{REGION_MOTIONS["drum"]}
+fix walls all wall/gran/region/mn cup
+fix c all contacts/mn local 1 {keyword}
+thermo 0
+run {round(2.0 / dt)}
+write_restart state.restart
+write_dump all custom final.txt id x y vx vy omegaz f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6] modify sort id format float %.17g
+"""
+        name = f"{integrator.split()[0].replace('/', '_')}{keyword.replace(' ', '_')}"
+        run_lammps(deck, tmp_path / name)
+        return lambda f: (tmp_path / name / f).read_bytes()
+    for integrator in ("nve/sphere disc", "nve/ab2"):
+        plain, off, on = (run(integrator, keyword) for keyword in ("", "energy no", "energy yes"))
+        assert off("state.restart") == plain("state.restart")
+        assert len(on("state.restart")) > len(plain("state.restart"))
+        for energies in (off, on):
+            assert energies("final.txt") == plain("final.txt")
 
 def test_a_moving_regions_work_in_3d(tmp_path):
     """Five spheres in a box region that wiggles along x and z (3D: the wall's work on a sphere
