@@ -1,6 +1,9 @@
 """Where a collision's energy goes, through lmp (fix contacts/mn energy yes; docs/model.md
 section 9): the global sums and the contact's row against the kinetic energy the disks lost, and
 against the law's closed forms for a sticking and a sliding collision."""
+import os
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -871,6 +874,61 @@ run {round(3.0 / dt)}
         assert residual == pytest.approx(closed_form, rel=0, abs=1e-10 * scale)
         assert np.abs(table[:, 2]).max() > 0.1
         assert table[-1, 4] > 5
+
+# Three disks resting on a plane floor and one dropped onto two of them, energy yes: the
+# floor's contacts go on across step RESTING_HALF (the dropped disk bounces on the others).
+RESTING = """
+boundary p f p
+region box block -3 3 0 6 -0.5 0.5
+create_box 1 box
+create_atoms 1 single -1.0 0.5 0
+create_atoms 1 single 0.0 0.5 0
+create_atoms 1 single 1.0 0.5 0
+create_atoms 1 single -0.5 1.4 0
+set type 1 diameter 1.0
+set type 1 density/disc 1.2732395447351628
+set atom 4 vx 0.3 omega 0 0 1.0
+pair_style gran/mn kn 2e5 e 0.7 beta 0.7 mu 0.5
+pair_coeff * *
+"""
+RESTING_STYLES = """timestep 1e-4
+fix integrate all nve/sphere disc
+fix gravity all gravity 1.0 vector 0 -1 0
+fix flat all enforce2d
+fix floor all wall/gran/mn yplane 0.0 NULL
+fix c all contacts/mn energy yes
+thermo 0
+"""
+RESTING_HALF = 6000
+RESTING_SECOND_HALF = (f"run {RESTING_HALF}\n"
+                       f'print "RESULT energies {" ".join(f"$(f_c[{VECTOR[name]}]:%.17g)" for name in (*ENERGIES, "work_of_walls"))}"\n'
+                       "write_dump all custom final.txt id x y vx vy omegaz modify sort id "
+                       "format float %.17g\n")
+# RESTING at step RESTING_HALF, written (`run`, then `write_restart`) by the plugin before fix
+# contacts/mn kept the walls' work: its per-atom energies are one column shorter.
+ENERGY_WITHOUT_WALL_WORK = (Path(__file__).resolve().parent / "restart_files"
+                            / "resting_energy_without_wall_work.restart")
+
+
+@pytest.mark.skipif(os.environ.get("GRANMN_LAMMPS_GENERATION", "debian12") != "debian12",
+                    reason="the file is of LAMMPS 29 Sep 2021 (a restart file of another LAMMPS "
+                           "continues into another trajectory, test_cylinder_wall.py)")
+def test_an_energy_restart_file_of_the_plugin_before_the_walls_work_continues(tmp_path):
+    """A restart file with energy yes written before fix contacts/mn kept the walls' work (its
+    per-atom state one column shorter, read with that column 0: no wall moved) continues the run
+    as this plugin's own split run does: the same energy sums, walls' work 0, and final state to
+    the bit. A state read at another offset, or refused, would change or stop them."""
+    split = run_lammps(RESTING + RESTING_STYLES + f"run {RESTING_HALF}\n" + RESTING_SECOND_HALF,
+                       tmp_path / "split")
+    continued = run_lammps(f"plugin load {PLUGIN}\nread_restart {ENERGY_WITHOUT_WALL_WORK}\n"
+                           "neighbor 0.1 bin\ncomm_modify vel yes\n" + RESTING_STYLES
+                           + RESTING_SECOND_HALF, tmp_path / "continued", header=False)
+    energies = split.result("energies")
+    print(f"energies at the end: {energies}")
+    assert energies[-1] == 0.0 and sum(energies[:3]) > 0.01 and energies[3] > 0.0
+    assert continued.result("energies") == energies
+    assert ((continued.workdir / "final.txt").read_text()
+            == (split.workdir / "final.txt").read_text())
 
 def test_the_frictional_scenes_budget(tmp_path):
     """The frictional flow (its floor a plane wall fix, fix wall/gran/mn; energies = yes),
