@@ -186,6 +186,8 @@ void FixContactsMN::zero_energy_step()
   }
   const bigint n = (bigint) (atom->nlocal + atom->nghost) * granmn::STEP_ENERGIES;
   for (bigint k = 0; k < n; k++) energy_step.values[k] = 0.0;
+  energy_step.work_rows = state;
+  energy_step.wall_work_column = WALL_WORK;
 }
 
 // The evaluation's energies into each owned atom's state (a ghost's share home first: folded
@@ -215,7 +217,6 @@ void FixContactsMN::absorb_energies(bool setup)
     s[STORED_TANGENTIAL] = v[STEP_STORED_TANGENTIAL];
     s[IN_FLIGHT] = setup ? 0.0 : mn::work_in_flight(integrator, dt, s[POWER], v[STEP_POWER]);
     s[POWER] = v[STEP_POWER];
-    s[WALL_WORK] += v[STEP_WALL_WORK];
   }
 }
 

@@ -59,14 +59,16 @@ struct ContactTallies {
 // (fix contacts/mn energy yes): the energy the contacts took (normal, tangential) and lost while
 // sliding at this evaluation, what their springs store now, and the power of their forces
 // (mn::EnergyStep). A contact's share of each goes to each of its atoms (share_i + share_j = 1).
-// And the work a moving wall did on the atom at this evaluation (mn::WallWork), whose power is
-// part of the atom's.
 enum StepEnergy { STEP_TAKEN_NORMAL, STEP_TAKEN_TANGENTIAL, STEP_DISSIPATED_SLIDING,
-                  STEP_STORED_NORMAL, STEP_STORED_TANGENTIAL, STEP_POWER, STEP_WALL_WORK,
-                  STEP_ENERGIES };
+                  STEP_STORED_NORMAL, STEP_STORED_TANGENTIAL, STEP_POWER, STEP_ENERGIES };
 
 struct EnergyTallies {
   double *values = nullptr;    // STEP_ENERGIES per atom
+  // The observer's sum of the work the moving walls have done on each local atom, column
+  // wall_work_column of its rows: a wall's contacts are its local atoms' own, so that their work
+  // needs neither a tally per evaluation nor communication.
+  double **work_rows = nullptr;
+  int wall_work_column = 0;
 
   void add(int i, double share, const mn::EnergyStep &booked, const mn::StoredEnergy &stored) const
   {
@@ -78,12 +80,12 @@ struct EnergyTallies {
     v[STEP_STORED_TANGENTIAL] += share * stored.tangential;
     v[STEP_POWER] += share * booked.power;
   }
-  // A moving wall's work on local atom i (all of it the atom's).
+  // A moving wall's work on local atom i (all of it the atom's); its power is part of the
+  // atom's.
   void add_wall_work(int i, const mn::WallWork &wall) const
   {
-    double *v = values + STEP_ENERGIES * i;
-    v[STEP_WALL_WORK] += wall.work;
-    v[STEP_POWER] += wall.power;
+    work_rows[i][wall_work_column] += wall.work;
+    values[STEP_ENERGIES * i + STEP_POWER] += wall.power;
   }
 };
 
