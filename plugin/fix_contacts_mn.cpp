@@ -115,17 +115,6 @@ void FixContactsMN::init()
   if (!force->pair_match("gran/mn", 1) && holders.empty())
     error->all(FLERR, "Fix contacts/mn counts the contacts of pair_style gran/mn and fix "
                       "wall/gran/mn; neither is defined");
-  // a wall fix that does not book its contacts' energies: a budget without them would not
-  // close, and silently
-  if (energy)
-    for (const granmn::HeldContacts *holder : holders)
-      if (!holder->books_energies())
-        error->all(FLERR, "Fix contacts/mn energy yes: fix {} ({}) does not book the energies "
-                          "of its contacts yet (pair_style gran/mn's contacts, bumps included, "
-                          "and fix wall/gran/mn's do): the energies and the budget would miss "
-                          "the walls' share; use bumps (pair_style gran/mn wall_types) or "
-                          "energy no",
-                   dynamic_cast<const Fix *>(holder)->id, dynamic_cast<const Fix *>(holder)->style);
   integrator = granmn::integrator_in_use(modify);
   fold_ghosts = comm->nprocs == 1 && atom->map_style != Atom::MAP_NONE;
   set_recounting(recounting);
@@ -197,6 +186,8 @@ void FixContactsMN::zero_energy_step()
   }
   const bigint n = (bigint) (atom->nlocal + atom->nghost) * granmn::STEP_ENERGIES;
   for (bigint k = 0; k < n; k++) energy_step.values[k] = 0.0;
+  energy_step.work_rows = state;
+  energy_step.wall_work_column = WALL_WORK;
 }
 
 // The evaluation's energies into each owned atom's state (a ghost's share home first: folded
@@ -343,8 +334,7 @@ void FixContactsMN::pair_ended(int i, int j, bool j_is_boundary, bool i_is_bound
 }
 
 // A completed contact's row: IDs, kind, start, duration, v_n in and out, peak overlap; with
-// energy yes what it dissipated, in all and while sliding (init refuses the publishers that do
-// not book it).
+// energy yes what it dissipated, in all and while sliding (every publisher books it).
 void FixContactsMN::ended(const double *record, double tag_i, double tag_j, double kind,
                           double vn_end, const mn::ContactEnergy *energy)
 {
@@ -559,14 +549,15 @@ double FixContactsMN::compute_vector(int n)
     vector_sums[WINDOW] = now - window_start;
     vector_sums[GROUP_SIZE] = group->count(igroup);
     if (energy) {
-      double energies[ENERGY_SUMS + 1] = {0.0}, atom_sums[ENERGY_SUMS];
+      double energies[ENERGY_SUMS + 2] = {0.0}, atom_sums[ENERGY_SUMS];
       for (int i = 0; i < atom->nlocal; i++) {
         if (!(mask[i] & groupbit)) continue;
         atom_energies(state[i], atom_sums);
         for (int c = 0; c < ENERGY_SUMS; c++) energies[c] += atom_sums[c];
         energies[ENERGY_SUMS] += state[i][IN_FLIGHT];
+        energies[ENERGY_SUMS + 1] += state[i][WALL_WORK];
       }
-      MPI_Allreduce(energies, vector_sums + VECTOR_SIZE, ENERGY_SUMS + 1, MPI_DOUBLE, MPI_SUM,
+      MPI_Allreduce(energies, vector_sums + VECTOR_SIZE, ENERGY_SUMS + 2, MPI_DOUBLE, MPI_SUM,
                     world);
     }
     vector_step = update->ntimestep;

@@ -67,9 +67,10 @@ class FixContactsMN : public FixPerAtomState, public granmn::ContactObserver {
   // With energy yes, the state goes on with the atom's share of its contacts' energies: taken
   // (normal, tangential) and lost while sliding since the fix was defined (fix_modify reset
   // leaves them: they are the budget's), stored in its contacts' springs and the power of
-  // their forces at the last evaluation, and the budget's work in flight (mn_energy.h).
+  // their forces at the last evaluation, the budget's work in flight (mn_energy.h), and the
+  // work the moving walls have done on it since the fix was defined.
   enum { TAKEN_NORMAL = STATE_COLS, TAKEN_TANGENTIAL, SLID, STORED_NORMAL, STORED_TANGENTIAL,
-         POWER, IN_FLIGHT, STATE_COLS_WITH_ENERGY };
+         POWER, IN_FLIGHT, WALL_WORK, STATE_COLS_WITH_ENERGY };
   bool energy;                    // energy yes
   mn::Integrator integrator;      // the run's (the work in flight under Adams-Bashforth 2)
   int row_columns;                // a row's columns: ROW_COLUMNS, more with energy yes

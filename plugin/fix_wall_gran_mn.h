@@ -31,8 +31,6 @@ class FixWallGranMN : public FixWallGranMNBase {
 
   void init_geometry() override;
   bool within_reach(int i, double reach) override;
-  // the wall is at rest: it does no work on the atoms, and its contacts' energies are theirs
-  bool books_wall_energies() const override { return true; }
   template <int DIM> void post_force_for(bool cylinder, bool observed);
   template <int DIM, bool CYLINDER, bool OBSERVED> void post_force_loop();
   // called from post_force_loop only: hidden, so that the call is direct, not through the PLT

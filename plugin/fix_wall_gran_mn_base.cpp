@@ -97,8 +97,9 @@ void FixWallGranMNBase::keep_slots()
   vt_block = use_history && ncols >= slots.end() ? slots.vt_block() : -1;
   // the energy histories after the other blocks, only when booked: a run without them keeps
   // the rows as they were
-  const bool energies = observer && observer->energy_tallies() && books_wall_energies();
-  energy_size = mn::energy_history_size(integrator, domain->dimension);
+  const bool energies = observer && observer->energy_tallies();
+  energy_size = can_move() ? mn::moving_wall_energy_history_size(integrator, domain->dimension)
+                           : mn::energy_history_size(integrator, domain->dimension);
   energy_block = energies ? slots.end() : -1;
   if (energies) widen_state(slots.end() + slots.count * energy_size);
 }
@@ -113,11 +114,12 @@ template <int DIM, class K>
 void FixWallGranMNBase::add_wall_contact_with_energy(int i, double scale, const K &kin,
                                                      double *ut, double dt_history,
                                                      double *vt_previous, double *energy,
-                                                     double *on_walls)
+                                                     double *on_walls, const double *v_wall)
 {
   const double radius = atom->radius[i];
   const double *omega = atom->omega[i];
   const double lever[3] = {radius * omega[0], radius * omega[1], radius * omega[2]};
+  const double tail = v_wall ? mn::previous_wall_power(integrator, DIM, energy, v_wall) : 0.0;
   double f[3];
   const mn::EnergyStep booked =
       mn::force_and_torques_with_energy(law, scale, kin, lever, ut, dt_history, integrator,
@@ -127,9 +129,12 @@ void FixWallGranMNBase::add_wall_contact_with_energy(int i, double scale, const 
     atom->f[i][c] += f[c];
     on_walls[c] -= f[c];
   }
-  // the wall is at rest and takes no energy: the contact's energies are all the atom's
-  observer->energy_tallies()->add(i, 1.0, booked,
-                                  mn::stored_energy(law, scale, kin.delta, ut_squared(DIM, ut)));
+  // the wall takes no energy: the contact's energies are all the atom's
+  const granmn::EnergyTallies *tallies = observer->energy_tallies();
+  tallies->add(i, 1.0, booked, mn::stored_energy(law, scale, kin.delta, ut_squared(DIM, ut)));
+  if (v_wall)
+    tallies->add_wall_work(
+        i, mn::book_wall_work(integrator, DIM, dt_history, tail, f, v_wall, energy));
 }
 
 // mn::book_ended_contact_energy in the dimension of the kinematics (3D: velocity Verlet).
@@ -152,17 +157,28 @@ static inline mn::EnergyStep book_ended_energy(const mn::Law &law, double scale,
 template <int DIM>
 mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy(int i, const double n[3],
                                                             double dist, double dt_history,
-                                                            const double *ut, double *energy)
+                                                            const double *ut, double *energy,
+                                                            const double *v_wall)
 {
   const double radius = atom->radius[i];
   const double *omega = atom->omega[i];
+  const double *v = atom->v[i];
   const double d[3] = {n[0] * dist, n[1] * dist, n[2] * dist};
-  const auto kin = mn::wall_kinematics<DIM>(d, dist, radius, atom->v[i], omega);
+  const double dv[3] = {v[0] - (v_wall ? v_wall[0] : 0.0), v[1] - (v_wall ? v_wall[1] : 0.0),
+                        v[2] - (v_wall ? v_wall[2] : 0.0)};
+  const auto kin = mn::wall_kinematics<DIM>(d, dist, radius, dv, omega);
   const double lever[3] = {radius * omega[0], radius * omega[1], radius * omega[2]};
   const double scale = mn::boundary_mass_scale(atom->rmass[i]) * force_per_mass_acceleration;
+  const double tail = v_wall ? mn::previous_wall_power(integrator, DIM, energy, v_wall) : 0.0;
   const mn::EnergyStep booked = book_ended_energy(law, scale, kin, lever, ut_squared(DIM, ut),
                                                   dt_history, integrator, energy);
-  observer->energy_tallies()->add(i, 1.0, booked, {0.0, 0.0});
+  const granmn::EnergyTallies *tallies = observer->energy_tallies();
+  tallies->add(i, 1.0, booked, {0.0, 0.0});
+  if (v_wall) {
+    const double no_force[3] = {0.0, 0.0, 0.0};
+    tallies->add_wall_work(
+        i, mn::book_wall_work(integrator, DIM, dt_history, tail, no_force, v_wall, energy));
+  }
   const mn::ContactEnergy total = mn::contact_energy(law, scale, 0.0, 0.0, energy);
   // the slot's next contact starts its account afresh
   for (int s = 0; s < energy_size; s++) energy[s] = 0.0;
@@ -170,15 +186,15 @@ mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy(int i, const double 
 }
 
 template void FixWallGranMNBase::add_wall_contact_with_energy<2, mn::Kinematics>(
-    int, double, const mn::Kinematics &, double *, double, double *, double *, double *);
+    int, double, const mn::Kinematics &, double *, double, double *, double *, double *,
+    const double *);
 template void FixWallGranMNBase::add_wall_contact_with_energy<3, mn::Kinematics3>(
-    int, double, const mn::Kinematics3 &, double *, double, double *, double *, double *);
-template mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy<2>(int, const double *,
-                                                                         double, double,
-                                                                         const double *, double *);
-template mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy<3>(int, const double *,
-                                                                         double, double,
-                                                                         const double *, double *);
+    int, double, const mn::Kinematics3 &, double *, double, double *, double *, double *,
+    const double *);
+template mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy<2>(
+    int, const double *, double, double, const double *, double *, const double *);
+template mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy<3>(
+    int, const double *, double, double, const double *, double *, const double *);
 
 int FixWallGranMNBase::contacts_held(int i) const
 {

@@ -31,7 +31,6 @@ class FixWallGranMNBase : public FixPerAtomState, public granmn::HeldContacts {
   // With a contact observer (fix contacts/mn): the wall elements atom i touches (as of this
   // fix's last evaluation).
   int contacts_held(int i) const override;
-  bool books_energies() const override { return books_wall_energies(); }
 
  protected:
   // Refuses an atom style without the attributes the law needs.
@@ -50,8 +49,9 @@ class FixWallGranMNBase : public FixPerAtomState, public granmn::HeldContacts {
   virtual bool within_reach(int i, double reach) = 0;
   // A wall that moves: every atom is visited.
   virtual bool surface_moves() const { return false; }
-  // Whether this wall books its contacts' energies when asked (fix contacts/mn energy yes).
-  virtual bool books_wall_energies() const { return false; }
+  // Whether the wall can move at all (in some run): with energy yes its contacts then keep
+  // what booking its work on the atoms needs (mn::moving_wall_energy_history_size).
+  virtual bool can_move() const { return false; }
 
   // Slot `slot`'s energy history in atom i's row, nullptr unless energies are booked.
   double *slot_energy(int i, int slot) const
@@ -60,17 +60,19 @@ class FixWallGranMNBase : public FixPerAtomState, public granmn::HeldContacts {
   }
   // A touching contact of atom i (kin: mn::wall_kinematics) with its energies booked into
   // energy (slot_energy) and the observer's tallies: the force and torque on i, minus the force
-  // into on_walls, as mn::add_wall_contact.
+  // into on_walls, as mn::add_wall_contact. v_wall: the wall's velocity at the contact (the one
+  // kin subtracts) where it moves, whose work on the atom is booked too; else nullptr.
   template <int DIM, class K>
   void add_wall_contact_with_energy(int i, double scale, const K &kin, double *ut,
                                     double dt_history, double *vt_previous, double *energy,
-                                    double *on_walls);
+                                    double *on_walls, const double *v_wall = nullptr);
   // The first evaluation after atom i's contact along inward normal n ended (its centre at
-  // dist from the wall), its history not yet cleared: its last force's second half booked;
-  // what it dissipated in all.
+  // dist from the wall; v_wall as above), its history not yet cleared: its last force's second
+  // half booked; what it dissipated in all.
   template <int DIM>
   mn::ContactEnergy book_ended_wall_energy(int i, const double n[3], double dist,
-                                           double dt_history, const double *ut, double *energy);
+                                           double dt_history, const double *ut, double *energy,
+                                           const double *v_wall = nullptr);
 
   // Ends a force evaluation: the force the atoms exerted on the wall (x, y[, z]).
   void forces_evaluated(const double *on_walls)

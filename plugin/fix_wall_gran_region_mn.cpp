@@ -65,32 +65,59 @@ void FixWallGranRegionMN::init_geometry()
   faces_renumbered = surface.layout() != evaluated_layout;
 }
 
-// The normal velocity (away from the face) of local atom i against a face it has just left,
-// for the observer's row of the ended contact: the face is found again within the atom's
-// diameter (it left it by less than a step's motion). At a run's start the face may be gone
-// (the region defined again with it open, or the atom moved between runs): no normal, and the
-// row says so (nan).
-double FixWallGranRegionMN::ended_normal_velocity(int i, int face)
+// Local atom i's face `face`, which it has just left, found again within the atom's diameter (it
+// left it by less than a step's motion), with the wall's velocity there. At a run's start the
+// face may be gone (the region defined again with it open, or the atom moved between runs):
+// false.
+bool FixWallGranRegionMN::find_left_face(int i, int face, granmn::SurfaceContact &near,
+                                         double v_wall[3])
 {
   double **x = atom->x;
   const bool moving = surface.region()->dynamic_check();
   const int nc = surface.surface(x[i], 2.0 * atom->radius[i]);
   for (int ic = 0; ic < nc; ic++) {
-    const granmn::SurfaceContact near = surface.contact(ic);
+    near = surface.contact(ic);
     if (near.iwall != face || near.r <= 0.0) continue;
-    double v_wall[3] = {0.0, 0.0, 0.0};
     if (moving) wall_velocity(near, x[i], v_wall);
-    const double d[3] = {near.delx, near.dely, near.delz};
-    double vn = 0.0;
-    for (int c = 0; c < 3; c++) vn += d[c] / near.r * (atom->v[i][c] - v_wall[c]);
-    return vn;
+    return true;
   }
-  if (update->setupflag) return std::numeric_limits<double>::quiet_NaN();
+  if (update->setupflag) return false;
   error->one(FLERR, "Fix wall/gran/region/mn: atom {} left face {} of region {} by more than "
                     "its radius within one step: the atom or the face moved that far in a step "
                     "(a time step far too large, or a move or rotate variable of the region "
                     "that jumps)", atom->tag[i], face, region_id);
-  return 0.0;
+  return false;
+}
+
+// Local atom i's contact with `face` (-1: a face renumbered, gone) has ended: its record,
+// u_t and energy history (nullptr where not booked) as they were at the last evaluation. The
+// observer's row gets the normal velocity away from the face (nan where the face is gone) and,
+// with energy yes, what the contact dissipated, its last force's second half booked (where the
+// face is gone, at a run's start, the step is 0 long: only its spring's release is booked).
+template <int DIM>
+void FixWallGranRegionMN::face_left(int i, int face, const double *record, const double *ut,
+                                    double *energy, double dt_history)
+{
+  granmn::SurfaceContact near;
+  double v_wall[3] = {0.0, 0.0, 0.0};
+  const bool found = face >= 0 && find_left_face(i, face, near, v_wall);
+  double vn = std::numeric_limits<double>::quiet_NaN();
+  double n[3] = {0.0, 0.0, 0.0}, dist = 1.0;
+  if (found) {
+    const double d[3] = {near.delx, near.dely, near.delz};
+    vn = 0.0;
+    for (int c = 0; c < 3; c++) vn += d[c] / near.r * (atom->v[i][c] - v_wall[c]);
+    for (int c = 0; c < 3; c++) n[c] = d[c] / near.r;
+    dist = near.r;
+  }
+  if (!energy) {
+    observer->boundary_ended(i, record, vn, nullptr);
+    return;
+  }
+  const bool moving = surface.region()->dynamic_check();
+  const mn::ContactEnergy total = book_ended_wall_energy<DIM>(i, n, dist, dt_history, ut, energy,
+                                                              moving ? v_wall : nullptr);
+  observer->boundary_ended(i, record, vn, &total);
 }
 
 void FixWallGranRegionMN::setup(int vflag)
@@ -159,7 +186,6 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
   double on_walls[3] = {0.0, 0.0, 0.0};
   // the slots of one atom as they were, to carry each face's history to its new slot
   std::vector<double> before(ncols);
-  const double no_normal = std::numeric_limits<double>::quiet_NaN();
 
   if (moving) {
     region->prematch();
@@ -173,8 +199,9 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
     // (no normal to the face they had)
     if (faces_renumbered && touching_before > 0) {
       for (int old = 0; events && old < touching_before; old++)
-        events->boundary_ended(i, &row[record_block + old * granmn::RECORD_SIZE], no_normal,
-                               nullptr);
+        face_left<DIM>(i, -1, &row[record_block + old * granmn::RECORD_SIZE],
+                       ut_block >= 0 ? &row[ut_block + old * width] : nullptr,
+                       slot_energy(i, old), dt_history);
       for (int k = 0; k < ncols; k++) row[k] = 0.0;
       touching_before = 0;
     }
@@ -232,6 +259,10 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
       if (record && !began)
         for (int k = 0; k < granmn::RECORD_SIZE; k++)
           record[k] = before[record_block + old * granmn::RECORD_SIZE + k];
+      double *energy = slot_energy(i, slot);
+      if (energy)
+        for (int k = 0; k < energy_size; k++)
+          energy[k] = began ? 0.0 : before[energy_block + old * energy_size + k];
       double v_wall[3] = {0.0, 0.0, 0.0};
       if (moving) wall_velocity(face, x[i], v_wall);
       const double d[3] = {face.delx, face.dely, face.delz};
@@ -241,17 +272,23 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
         events->update_record(record, began, kin.delta, kin.vn);
         if (began || events->reports_every_contact()) events->boundary_touching(i, began);
       }
-      mn::add_wall_contact<DIM>(contact, mn::boundary_mass_scale(rmass[i]) * to_force, kin, ut,
-                                dt_history, scheme, vt_previous, radius[i], f[i], torque[i],
-                                on_walls);
+      const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
+      if (energy)
+        add_wall_contact_with_energy<DIM>(i, scale, kin, ut, dt_history, vt_previous, energy,
+                                          on_walls, moving ? v_wall : nullptr);
+      else
+        mn::add_wall_contact<DIM>(contact, scale, kin, ut, dt_history, scheme, vt_previous,
+                                  radius[i], f[i], torque[i], on_walls);
     }
     row[granmn::WallSlots::HELD] = kept;
     // the faces touched at the last evaluation and not at this one: their contacts ended
     for (int old = 0; events && old < touching_before; old++)
       if (before[slots.key(old)] >= 0.0)
-        events->boundary_ended(i, &before[record_block + old * granmn::RECORD_SIZE],
-                               ended_normal_velocity(i, static_cast<int>(before[slots.key(old)])),
-                               nullptr);
+        face_left<DIM>(i, static_cast<int>(before[slots.key(old)]),
+                       &before[record_block + old * granmn::RECORD_SIZE],
+                       ut_block >= 0 ? &before[ut_block + old * width] : nullptr,
+                       energy_block >= 0 ? &before[energy_block + old * energy_size] : nullptr,
+                       dt_history);
     // slots beyond the faces touched hold no history (a face touched again starts afresh)
     for (int slot = kept; slot < touching_before && slot < nslots; slot++) {
       row[slots.key(slot)] = 0.0;
@@ -259,6 +296,8 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
         if (ut_block >= 0) row[ut_block + slot * width + c] = 0.0;
         if (vt_block >= 0) row[vt_block + slot * width + c] = 0.0;
       }
+      if (energy_block >= 0)
+        for (int k = 0; k < energy_size; k++) row[energy_block + slot * energy_size + k] = 0.0;
     }
   }
   forces_evaluated(on_walls);

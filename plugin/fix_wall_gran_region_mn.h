@@ -46,10 +46,14 @@ class FixWallGranRegionMN : public FixWallGranMNBase {
   void init_geometry() override;
   bool within_reach(int i, double reach) override;
   bool surface_moves() const override;
+  bool can_move() const override { return true; }
   void track_motion();
   Motion motion_between(const Region *part, const double *at, const double *before) const;
   void wall_velocity(const granmn::SurfaceContact &face, const double *x, double *v) const;
-  double ended_normal_velocity(int i, int face);
+  bool find_left_face(int i, int face, granmn::SurfaceContact &near, double v_wall[3]);
+  template <int DIM>
+  void face_left(int i, int face, const double *record, const double *ut, double *energy,
+                 double dt_history);
   template <int DIM> void post_force_loop();
 };
 

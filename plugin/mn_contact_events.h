@@ -65,6 +65,11 @@ enum StepEnergy { STEP_TAKEN_NORMAL, STEP_TAKEN_TANGENTIAL, STEP_DISSIPATED_SLID
 
 struct EnergyTallies {
   double *values = nullptr;    // STEP_ENERGIES per atom
+  // The observer's sum of the work the moving walls have done on each local atom, column
+  // wall_work_column of its rows: a wall's contacts are its local atoms' own, so that their work
+  // needs neither a tally per evaluation nor communication.
+  double **work_rows = nullptr;
+  int wall_work_column = 0;
 
   void add(int i, double share, const mn::EnergyStep &booked, const mn::StoredEnergy &stored) const
   {
@@ -75,6 +80,13 @@ struct EnergyTallies {
     v[STEP_STORED_NORMAL] += share * stored.normal;
     v[STEP_STORED_TANGENTIAL] += share * stored.tangential;
     v[STEP_POWER] += share * booked.power;
+  }
+  // A moving wall's work on local atom i (all of it the atom's); its power is part of the
+  // atom's.
+  void add_wall_work(int i, const mn::WallWork &wall) const
+  {
+    work_rows[i][wall_work_column] += wall.work;
+    values[STEP_ENERGIES * i + STEP_POWER] += wall.power;
   }
 };
 
@@ -174,8 +186,6 @@ class HeldContacts {
   // The contacts local atom i has with this publisher's boundary elements, as of its last
   // evaluation (0 without an observer: none are kept).
   virtual int contacts_held(int i) const = 0;
-  // Whether this publisher books its contacts' energies for the observer (energy yes).
-  virtual bool books_energies() const { return false; }
 
  protected:
   ~HeldContacts() = default;

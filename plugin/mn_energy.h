@@ -303,6 +303,57 @@ inline EnergyStep force_and_torques_with_energy(
                              energy);
 }
 
+// A moving wall's work on the system (docs/model.md section 9). A wall contact's force F acts
+// on the particle's motion v = (v - v_wall) + v_wall: the contact books its work on the relative
+// motion, the energy it took, and the wall's force does F . v_wall on the particle besides,
+// booked by the same rule, so that the two add up to the integrator's own work on the particle.
+// Velocity Verlet: dt/2 (F_{m-1} + F_m) . v_wall,m at evaluation m, with the wall's velocity of
+// this evaluation, the one the contact subtracts from both halves it books now (F_{m-1}'s tail
+// sees v_{m+1/2} - v_wall,m). Adams-Bashforth 2: the trapezoidal rule on the wall's power
+// F . v_wall, whose last value the contact keeps after its history: a wall that moves keeps
+// moving_wall_energy_history_size values per contact. The wall's power is part of the power the
+// budget's work in flight is made of.
+constexpr int moving_wall_energy_history_size(Integrator integrator, int dimension)
+{
+  return energy_history_size(integrator, dimension) +
+         (integrator == Integrator::AdamsBashforth2 ? 1 : 0);
+}
+
+// The wall's work over the step an evaluation closes, and the wall's power at it (F . v_wall).
+struct WallWork {
+  double work, power;
+};
+
+// The previous evaluation's force on the wall's velocity at this one (Adams-Bashforth 2: its
+// power, kept): called before the contact's booking replaces the force it keeps.
+inline double previous_wall_power(Integrator integrator, int dimension, const double *energy,
+                                  const double v_wall[3])
+{
+  if (integrator == Integrator::AdamsBashforth2)
+    return energy[energy_history_size(integrator, dimension)];
+  const double *previous = energy + ENERGY_PREVIOUS_FORCE;
+  if (dimension == 3)
+    return previous[3] * (previous[0] * v_wall[0] + previous[1] * v_wall[1] +
+                          previous[2] * v_wall[2]) +
+           previous[4] * v_wall[0] + previous[5] * v_wall[1] + previous[6] * v_wall[2];
+  const double nx = previous[0], ny = previous[1], fn = previous[2], ft = previous[3];
+  return (fn * nx - ft * ny) * v_wall[0] + (fn * ny + ft * nx) * v_wall[1];
+}
+
+// Books the step's wall work: `tail` (previous_wall_power) and this evaluation's force on the
+// particle (force_and_torques_with_energy's; 0 for a contact that has ended) on v_wall, each
+// for dt_history/2.
+inline WallWork book_wall_work(Integrator integrator, int dimension, double dt_history,
+                               double tail, const double force[3], const double v_wall[3],
+                               double *energy)
+{
+  double head = 0.0;
+  for (int c = 0; c < dimension; c++) head += force[c] * v_wall[c];
+  if (integrator == Integrator::AdamsBashforth2)
+    energy[energy_history_size(integrator, dimension)] = head;
+  return {0.5 * dt_history * (tail + head), head};
+}
+
 }    // namespace mn
 
 #endif

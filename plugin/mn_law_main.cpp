@@ -23,6 +23,7 @@ static void print_columns()
   std::printf("\nenergy_sums");
   for (const char *name : ENERGY_NAMES) std::printf(" %s", name);
   std::printf(" %s", IN_FLIGHT_NAME);
+  std::printf("\nwall_work %s", WALL_WORK_NAME);
   std::printf("\nrows");
   for (const char *name : ROW_NAMES) std::printf(" %s", name);
   std::printf("\nrow_energy");

@@ -34,14 +34,18 @@ constexpr const char *ROW_NAMES[ROW_COLUMNS] = {"id_i", "id_j", "kind", "start",
 // docs/model.md section 9), per atom after the counters (each contact's half to each of its
 // disks, all of it to the disk against a bump) and summed in the global vector after its
 // extras: dissipated in the normal force, in the tangential force while sticking and while
-// sliding, and stored in the springs now. The global vector ends with the work in flight, which
-// an Adams-Bashforth 2 run's budget counts (mn::work_in_flight; 0 under velocity Verlet).
+// sliding, and stored in the springs now. The global vector goes on with the work in flight,
+// which an Adams-Bashforth 2 run's budget counts (mn::work_in_flight; 0 under velocity Verlet),
+// and ends with the work the moving walls have done on the group's atoms since the fix was
+// defined (mn::WallWork; 0 where no wall moves), which the budget counts as work done on the
+// system.
 enum EnergySum { DISSIPATED_NORMAL, DISSIPATED_STICKING, DISSIPATED_SLIDING, STORED,
                  ENERGY_SUMS };
 constexpr const char *ENERGY_NAMES[ENERGY_SUMS] = {"dissipated_normal", "dissipated_sticking",
                                                    "dissipated_sliding", "stored"};
-constexpr int VECTOR_SIZE_WITH_ENERGY = VECTOR_SIZE + ENERGY_SUMS + 1;
+constexpr int VECTOR_SIZE_WITH_ENERGY = VECTOR_SIZE + ENERGY_SUMS + 2;
 constexpr const char *IN_FLIGHT_NAME = "work_in_flight";
+constexpr const char *WALL_WORK_NAME = "work_of_walls";
 
 // A row's columns after ROW_COLUMNS with `energy yes`: what the contact dissipated in all, and
 // of it while sliding.
