@@ -10,7 +10,7 @@ import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from granmn_run import HEADER, PLUGIN, run_lammps
+from granmn_run import HEADER, MPIEXEC, PLUGIN, run_lammps
 from postprocess.io import SCHEMA
 
 LIGGGHTS = os.environ.get("GRANMN_LIGGGHTS", "")
@@ -251,3 +251,17 @@ def run_both(scene, workdir):
     ours = run_lammps(lammps_deck(scene), workdir / "lammps", header=False)
     return (outcome(text, len(scene.particles)),
             outcome(ours.output, len(scene.particles)))
+
+
+def run_scene_on_ranks(scene, workdir, ranks):
+    """LIGGGHTS's run of `scene` in workdir on `ranks` MPI ranks (its stdout), checked to have
+    run on that grid (1 by ranks by 1)."""
+    workdir = Path(workdir)
+    (workdir / "in.liggghts").write_text(liggghts_deck(scene))
+    (workdir / "atoms.data").write_text(data_file(scene))
+    proc = subprocess.run([MPIEXEC, "-np", str(ranks), LIGGGHTS, "-in", "in.liggghts",
+                           "-echo", "none", "-log", "none"], cwd=workdir, text=True,
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=600)
+    assert proc.returncode == 0, proc.stdout[-3000:]
+    assert f"1 by {ranks} by 1 MPI processor grid" in proc.stdout
+    return proc.stdout

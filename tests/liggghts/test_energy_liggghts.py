@@ -13,14 +13,12 @@ missing tangential dashpot or sliding term (the whole of dissipated_sticking or 
 K0), a sign error in a booked power, the last force's second half of an ended contact not
 booked (dt/2 F v, ~1e-3 K0 at dt = tau_c/100), a frozen particle's share kept (half of a
 contact's energies lost from the mobile group), LIGGGHTS's own lever arms (r - delta/2)."""
-import subprocess
 
 import numpy as np
 import pytest
 
-from granmn_run import MPIEXEC, law, restitution_error_bound
-from liggghts_decks import (LIGGGHTS, Particle, Scene, data_file, liggghts_deck, outcome,
-                            run_both)
+from granmn_run import law, restitution_error_bound
+from liggghts_decks import LIGGGHTS, Particle, Scene, outcome, run_both, run_scene_on_ranks
 
 pytestmark = pytest.mark.skipif(not LIGGGHTS, reason="LIGGGHTS was not built (GRANMN_LIGGGHTS unset)")
 
@@ -175,16 +173,8 @@ def test_a_heap_on_two_ranks(tmp_path):
     AGREEMENT of the fall's energy. A share booked on both ranks, or on neither, changes them by
     a contact's whole energy."""
     scene, fall = heap()
-    (tmp_path / "in.liggghts").write_text(liggghts_deck(scene))
-    (tmp_path / "atoms.data").write_text(data_file(scene))
-    energies = []
-    for ranks in (1, 2):
-        proc = subprocess.run([MPIEXEC, "-np", str(ranks), LIGGGHTS, "-in", "in.liggghts",
-                               "-echo", "none", "-log", "none"], cwd=tmp_path, text=True,
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=600)
-        assert proc.returncode == 0, proc.stdout[-3000:]
-        assert f"1 by {ranks} by 1 MPI processor grid" in proc.stdout
-        energies.append(outcome(proc.stdout, len(scene.particles)).energies)
+    energies = [outcome(run_scene_on_ranks(scene, tmp_path, ranks), len(scene.particles)).energies
+                for ranks in (1, 2)]
     print("one rank", energies[0], "\ntwo ranks", energies[1])
     for name in energies[0]:
         assert energies[1][name] == pytest.approx(energies[0][name], abs=AGREEMENT * fall), name

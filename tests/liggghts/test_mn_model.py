@@ -12,14 +12,13 @@ agreement rules them out; each test also checks the outcome against the law's ow
 which rules out the two engines being wrong the same way."""
 import math
 import re
-import subprocess
 
 import numpy as np
 import pytest
 
-from granmn_run import MPIEXEC, law, restitution_error_bound
+from granmn_run import law, restitution_error_bound
 from liggghts_decks import (LIGGGHTS, Particle, Scene, data_file, liggghts_deck, outcome,
-                            run_both, run_liggghts, run_scene_liggghts)
+                            run_both, run_liggghts, run_scene_liggghts, run_scene_on_ranks)
 from postprocess.io import COUNTER_COLUMNS
 
 pytestmark = pytest.mark.skipif(not LIGGGHTS, reason="LIGGGHTS was not built (GRANMN_LIGGGHTS unset)")
@@ -204,17 +203,8 @@ def test_deep_overlap_counted_once_on_two_ranks(tmp_path):
     scene = Scene([Particle((0.0, -0.45, 0.0)), Particle((0.0, 0.45, 0.0)),
                    Particle((10.0, -0.4, 0.0)), Particle((10.0, 0.2, 0.0), diameter=0.6)],
                   dt=sphere_law()["tau_c"] / 100, steps=10, kn=KN, e=E, beta=BETA)
-    (tmp_path / "in.liggghts").write_text(liggghts_deck(scene))
-    (tmp_path / "atoms.data").write_text(data_file(scene))
-    said = []
-    for ranks in (1, 2):
-        proc = subprocess.run([MPIEXEC, "-np", str(ranks), LIGGGHTS, "-in", "in.liggghts",
-                               "-echo", "none", "-log", "none"], cwd=tmp_path, text=True,
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=600)
-        assert proc.returncode == 0, proc.stdout[-3000:]
-        assert f"1 by {ranks} by 1 MPI processor grid" in proc.stdout
-        said.append([line.split(" (")[0] for line in proc.stdout.splitlines()
-                     if "overlap by more than" in line])
+    said = [[line.split(" (")[0] for line in run_scene_on_ranks(scene, tmp_path, ranks)
+             .splitlines() if "overlap by more than" in line] for ranks in (1, 2)]
     print(said)
     assert said[0] == said[1] and len(said[0]) == 1
     assert "model mn: 2 pair(s)" in said[0][0] and "atoms 3 and 4, by 0.2" in said[0][0]
