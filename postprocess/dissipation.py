@@ -8,13 +8,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import limit
-from .durations import DISSIPATION_NAMES
+from .durations import DISSIPATION_NAMES, ROWS_MARGIN
 
 # the shares a series reports per k_n (the lasting share is the one the rule judges)
 SHARES = ("lasting", "multiple", "binary", "sliding", "negative_sliding")
 JUDGED = "lasting"
-# how a run's rows window is known: its span is rows_time less run_split's margin
-MARGIN = 0.5
 
 
 @dataclass
@@ -44,7 +42,9 @@ def run_values(record):
     if values["lasting"] is None:
         return "its contacts dissipated nothing in the rows window"
     rows_time = float(record.variables.get("rows_time", 0))
-    return {"kn": float(record.params["kn"]), "span": rows_time - MARGIN,
+    return {"point": record.point.name, "kn": float(record.params["kn"]),
+            "span": rows_time - ROWS_MARGIN,
+            "budget_problem": (record.measured or {}).get("budget_problem") or "",
             **{name: values[name] for name in DISSIPATION_NAMES}}
 
 

@@ -15,9 +15,10 @@ TAIL_CUT = 2.0
 # a contact lasting more than this many binary durations is a lasting one (the split); the
 # split is also given for LASTING_ALSO
 LASTING, LASTING_ALSO = 3.0, 10.0
-# a split is made over rows windows (rows_time, time units) longer than this: run_split leaves
-# out a margin of 0.5 at the window's end
+# a split is made over rows windows (rows_time, time units) longer than this: run_split and
+# run_dissipation leave out ROWS_MARGIN at the window's end
 SPLIT_MIN_ROWS_TIME = 1.0
+ROWS_MARGIN = 0.5
 
 
 def contact_durations(rows, tau_c, tau_w, since):
@@ -107,7 +108,7 @@ SPLIT_NAMES = ("t_multiple_rows", "lasting", "bursts", "lasting_share_of_contact
                "t_multiple_counters", "unseen")
 
 
-def run_split(point, rows_time, first, lasting=LASTING, margin=0.5):
+def run_split(point, rows_time, first, lasting=LASTING, margin=ROWS_MARGIN):
     """multiple_contact_split over the rows window of a run (an io.Point), [average_start,
     average_start + rows_time - margin] (a contact overlapping it that ends after the rows
     window lasts longer than `margin`: such contacts have no row and their part, `unseen`, is
@@ -208,7 +209,7 @@ def dissipation_split(rows, tau_c, tau_w, start, stop, lasting=LASTING):
 DISSIPATED_COLUMNS = ("dissipated_normal", "dissipated_sticking", "dissipated_sliding")
 
 
-def run_dissipation(point, rows_time, margin=0.5):
+def run_dissipation(point, rows_time, margin=ROWS_MARGIN):
     """dissipation_split over the rows window of a run (an io.Point with energy columns in its
     rows), as run_split's window, with `global_dissipated`: the growth of the whole system's
     dissipated energy (energy.txt) over the same window, which the rows' D differs from by

@@ -1,10 +1,11 @@
 """The dissipation command: where the contacts' energy goes as k_n grows
-(postprocess/dissipation.py), on the terminal and as dissipation.md, dissipation.csv and
-dissipation.png in the output directory."""
+(postprocess/dissipation.py), on the terminal and as dissipation.md, dissipation.csv (per k_n),
+dissipation_runs.csv (per run: D, the shares, the window's dissipation from the global sums,
+a budget that did not close) and dissipation.png in the output directory."""
 import csv
 
 from .dissipation import SHARES, analyse_dissipation, per_kn
-from .durations import LASTING
+from .durations import DISSIPATION_NAMES, LASTING
 from .figures import dissipation_figure
 from .formatting import fmt
 
@@ -55,6 +56,13 @@ def write_dissipation(named, records, out):
                 writer.writerow([group.scene, group.law, kn, runs] +
                                 [v for s in SHARES for v in means[s]] +
                                 [negative, ratio, group.decision.verdict])
+    with open(out / "dissipation_runs.csv", "w", newline="") as handle:
+        names = ("point", "kn", "span", *DISSIPATION_NAMES, "budget_problem")
+        writer = csv.writer(handle)
+        writer.writerow(["scene", "law", *names])
+        for group in groups:
+            for run in sorted(group.runs, key=lambda r: (r["kn"], r["point"])):
+                writer.writerow([group.scene, group.law, *(run[n] for n in names)])
     dissipation_figure(groups, out / "dissipation.png")
     for group in groups:
         print(f"dissipation: {group.scene} ({group.law}): lasting share "
