@@ -14,6 +14,7 @@
 #include "utils.h"
 
 #include <cstring>
+#include <functional>
 #include <string>
 
 using namespace LAMMPS_NS;
@@ -50,11 +51,15 @@ void BumpTypes::check_atoms(LAMMPS *lmp) const
   if (types.empty()) return;
   Atom *atom = lmp->atom;
   const int *type = atom->type, *mask = atom->mask;
-  bigint points = 0;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (is_bump(type[i]) && atom->radius[i] == 0.0) points++;
-  bigint points_all = 0;
-  MPI_Allreduce(&points, &points_all, 1, MPI_LMP_BIGINT, MPI_SUM, lmp->world);
+  // how many bumps, over all ranks, satisfy `test`
+  auto count_bumps = [&](const std::function<bool(int)> &test) {
+    bigint mine = 0, all = 0;
+    for (int i = 0; i < atom->nlocal; i++)
+      if (is_bump(type[i]) && test(i)) mine++;
+    MPI_Allreduce(&mine, &all, 1, MPI_LMP_BIGINT, MPI_SUM, lmp->world);
+    return all;
+  };
+  const bigint points_all = count_bumps([&](int i) { return atom->radius[i] == 0.0; });
   if (points_all)
     lmp->error->all(FLERR, "pair_style gran/mn: {} atoms of wall_types have diameter 0: a bump "
                            "is a fixed {} with a radius (a disk would touch its centre at once); "
@@ -62,11 +67,8 @@ void BumpTypes::check_atoms(LAMMPS *lmp) const
                     points_all, lmp->domain->dimension == 3 ? "sphere" : "disk");
   for (const Fix *fix : all_fixes(lmp->modify)) {
     if (!fix->time_integrate) continue;
-    bigint integrated = 0;
-    for (int i = 0; i < atom->nlocal; i++)
-      if ((mask[i] & fix->groupbit) && is_bump(type[i])) integrated++;
-    bigint integrated_all = 0;
-    MPI_Allreduce(&integrated, &integrated_all, 1, MPI_LMP_BIGINT, MPI_SUM, lmp->world);
+    const bigint integrated_all =
+        count_bumps([&](int i) { return (mask[i] & fix->groupbit) != 0; });
     if (integrated_all)
       lmp->error->all(FLERR, "pair_style gran/mn: fix {} ({}) integrates {} atoms of "
                              "wall_types, which are immobile bumps with the boundary rule: "

@@ -42,7 +42,7 @@ def run_values(record):
     if values["lasting"] is None:
         return "its contacts dissipated nothing in the rows window"
     rows_time = float(record.variables.get("rows_time", 0))
-    return {"point": record.point.name, "kn": float(record.params["kn"]),
+    return {"point": record.point.name.removesuffix(".json"), "kn": float(record.params["kn"]),
             "span": rows_time - ROWS_MARGIN,
             "budget_problem": (record.measured or {}).get("budget_problem") or "",
             **{name: values[name] for name in DISSIPATION_NAMES}}
