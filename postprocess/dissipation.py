@@ -45,6 +45,7 @@ def run_values(record):
     return {"point": record.point.name.removesuffix(".json"), "kn": float(record.params["kn"]),
             "span": rows_time - ROWS_MARGIN,
             "budget_problem": (record.measured or {}).get("budget_problem") or "",
+            "cpu_seconds": record.cpu_seconds,
             **{name: values[name] for name in DISSIPATION_NAMES}}
 
 

@@ -43,6 +43,8 @@ def write_dissipation(named, records, out):
              "rest (binary), while sliding, and the negative sliding work's share (the literal "
              "law's), each the span-weighted mean over the runs with its standard error; the "
              "rule is docs/hard_sphere_limit.md, \"Where the energy goes\".", ""]
+    cpu = sum(r["cpu_seconds"] or 0.0 for g in groups for r in g.runs)
+    lines += [f"The runs judged here cost {cpu / 3600:.2f} CPU-hours (their timing.json).", ""]
     for group in groups:
         lines += group_lines(group)
     (out / "dissipation.md").write_text("\n".join(lines))
@@ -57,7 +59,7 @@ def write_dissipation(named, records, out):
                                 [v for s in SHARES for v in means[s]] +
                                 [negative, ratio, group.decision.verdict])
     with open(out / "dissipation_runs.csv", "w", newline="") as handle:
-        names = ("point", "kn", "span", *DISSIPATION_NAMES, "budget_problem")
+        names = ("point", "kn", "span", *DISSIPATION_NAMES, "budget_problem", "cpu_seconds")
         writer = csv.writer(handle)
         writer.writerow(["scene", "law", *names])
         for group in groups:

@@ -71,6 +71,7 @@ def record(scene, law, kn, seed, lasting, ended="flowing"):
                        binary=0.9 - lasting, contacts=1000, negative_sliding_contacts=3,
                        global_dissipated=101.0)
     return SimpleNamespace(scene=scene, point=Path(f"{scene}/kn{kn:g}_s{seed}"), ended=ended,
+                           cpu_seconds=None,
                            stopped_at=None, params={"kn": kn, "tangential": law},
                            variables={"rows_time": 50}, measured={"contacts": {
                                "dissipation": dissipation}})
