@@ -8,6 +8,8 @@ standard error of the mean over the runs (s/sqrt(n), n >= 2 runs in each engine)
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 # The observables compared (postprocess/quantities.py names them); against the event-driven
 # engine, whose collisions are instantaneous (no contact times), the energy and the collision
 # rates with disks and with the boundary.
@@ -95,3 +97,54 @@ def compare_engines(runs):
                                       else "differ")
             comparisons.append(comparison)
     return comparisons
+
+
+# The profiles' rule (docs/hard_spheres.md): a profile agrees where at most this share of its
+# compared bins differ and no PAIR_DIFFERING neighbours do; it differs where more than
+# PROFILE_DIFFER_SHARE do or RUN_DIFFERING neighbours do.
+PROFILE_AGREE_SHARE = 0.05
+PROFILE_DIFFER_SHARE = 0.10
+PAIR_DIFFERING = 2
+RUN_DIFFERING = 3
+
+
+@dataclass
+class ProfileComparison:
+    compared: int            # bins with disks on both sides
+    differing: int           # of them, bins whose means differ by more than AGREEMENT_SIGMAS
+    longest_run: int         # the most neighbouring differing bins
+    largest: float           # the largest |difference| / combined error over the compared bins
+    verdict: str
+
+
+def longest_run(flags):
+    best = run = 0
+    for flag in flags:
+        run = run + 1 if flag else 0
+        best = max(best, run)
+    return best
+
+
+def compare_profiles(a, b, occupied_a, occupied_b):
+    """The rule's verdict on one profile of two engines. a, b: per-run values, arrays of shape
+    (runs, bins); occupied_a, occupied_b: per bin, whether that side's mean density is above 0.
+    A bin is compared where both sides have disks, two runs or more and a combined error above 0."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    if len(a) < 2 or len(b) < 2:
+        return ProfileComparison(0, 0, 0, math.nan, "undecided")
+    combined = np.hypot(a.std(axis=0, ddof=1) / math.sqrt(len(a)),
+                        b.std(axis=0, ddof=1) / math.sqrt(len(b)))
+    compared = np.asarray(occupied_a) & np.asarray(occupied_b) & (combined > 0)
+    z = np.zeros(a.shape[1])
+    z[compared] = np.abs(a.mean(axis=0) - b.mean(axis=0))[compared] / combined[compared]
+    differing = z > AGREEMENT_SIGMAS
+    n, bad, run = int(compared.sum()), int(differing.sum()), longest_run(differing)
+    if n == 0:
+        return ProfileComparison(0, 0, 0, math.nan, "undecided")
+    if bad > PROFILE_DIFFER_SHARE * n or run >= RUN_DIFFERING:
+        verdict = "differ"
+    elif bad <= PROFILE_AGREE_SHARE * n and run < PAIR_DIFFERING:
+        verdict = "agree"
+    else:
+        verdict = "undecided"
+    return ProfileComparison(n, bad, run, float(z[compared].max()), verdict)

@@ -70,3 +70,51 @@ def test_against_the_hard_engine_the_rates_are_compared_and_runs_without_average
     unread = SimpleNamespace(scene="collisional_flow", variables=None, observables=None,
                              point="q", reason="its steady parts were found with ...")
     assert list(left_out([unread])) == [("collisional_flow", "unknown: not read")]
+
+
+def flow_profiles(runs_count, rng, height=10.0, slip=1.0, layer=None, bins=100):
+    """Per-run density and v_x profiles of a synthetic flow on bins of width 0.2: a density
+    plateau up to `height`, v_x rising linearly from `slip`, noise of a few per cent a run; a
+    `layer` (first bin, last bin, extra density) adds a layer of its own."""
+    y = 0.2 * (np.arange(bins) + 0.5)
+    density = np.where(y < height, 0.8, 0.8 * np.exp(-(y - height)))
+    vx = slip + 0.5 * y
+    if layer:
+        density = density.copy()
+        density[layer[0]:layer[1]] += layer[2]
+    noise = lambda base: base * (1 + 0.03 * rng.standard_normal((runs_count, bins)))
+    return noise(density), noise(vx)
+
+
+def test_the_profiles_of_one_flow_agree_and_a_taller_flow_a_slip_or_a_layer_differ():
+    from postprocess.engines import compare_profiles
+    rng = np.random.default_rng(7)
+    soft_density, soft_vx = flow_profiles(4, rng)
+    hard_density, hard_vx = flow_profiles(6, rng)
+    occupied = np.ones(100, bool)
+    assert compare_profiles(soft_density, hard_density, occupied, occupied).verdict == "agree"
+    assert compare_profiles(soft_vx, hard_vx, occupied, occupied).verdict == "agree"
+    # a flow 5 % taller: the density's edge moves by 2.5 bins, and the tail above it differs
+    taller, _ = flow_profiles(6, rng, height=10.5)
+    assert compare_profiles(soft_density, taller, occupied, occupied).verdict == "differ"
+    # a slip at the floor of 0.3 against v_x's 3 % noise: every bin near the floor differs
+    _, slipping = flow_profiles(6, rng, slip=1.3)
+    assert compare_profiles(soft_vx, slipping, occupied, occupied).verdict == "differ"
+    # a chattering layer of three bins at the floor, 30 % denser: differs by the neighbours alone
+    layered, _ = flow_profiles(6, rng, layer=(0, 3, 0.25))
+    result = compare_profiles(soft_density, layered, occupied, occupied)
+    assert result.verdict == "differ" and result.longest_run >= 3 and result.differing <= 10
+
+
+def test_the_profiles_compare_only_bins_both_sides_fill_and_need_two_runs_a_side():
+    from postprocess.engines import compare_profiles
+    rng = np.random.default_rng(3)
+    soft_density, _ = flow_profiles(4, rng)
+    hard_density, _ = flow_profiles(6, rng)
+    # the hard side's top half empty: a tail there would differ, but is not compared
+    hard_density[:, 50:] = 0.0
+    occupied_hard = np.arange(100) < 50
+    result = compare_profiles(soft_density, hard_density, np.ones(100, bool), occupied_hard)
+    assert result.compared == 50 and result.verdict == "agree"
+    assert compare_profiles(soft_density[:1], hard_density, np.ones(100, bool),
+                            occupied_hard).verdict == "undecided"
