@@ -7,8 +7,9 @@ summaries in data/ keep no profiles, so the runs' own directories are read).
 
 SOFT_RESULTS, HARD_RESULTS: results directories of scripts/sweep.py (<scene>/<point>/); the
 collisional_flow points at k_n = K (default 1.28e7) of each are averaged over their seeds, bin
-by bin (mean and standard error). Prints the largest difference of each profile over the bins
-in units of their combined error.
+by bin (mean and standard error). Prints each profile's verdict by the profiles' rule
+(docs/hard_spheres.md; postprocess/engines.py compare_profiles) and its largest difference over
+the bins in units of their combined error.
 """
 import argparse
 from pathlib import Path
@@ -18,14 +19,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from postprocess.engines import compare_profiles  # noqa: E402
 from postprocess.io import Point  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def profiles(results, kn):
-    """(bin centres, {column: (mean over the points, standard error)}, points) of the
-    collisional_flow points at k_n = kn."""
+    """(bin centres, {column: per-point values, shape (points, bins)}) of the collisional_flow
+    points at k_n = kn."""
     found = []
     for directory in sorted((Path(results) / "collisional_flow").iterdir()):
         point = Point(directory)
@@ -33,13 +35,13 @@ def profiles(results, kn):
             found.append(point.profile)
     if not found:
         raise SystemExit(f"{results}: no collisional_flow point at k_n = {kn:g} with profile.txt")
-    y = found[0]["y"]
-    stats = {}
-    for column in ("density", "vx"):
-        values = np.array([p[column] for p in found])
-        stats[column] = (values.mean(axis=0), values.std(axis=0, ddof=1) / np.sqrt(len(found))
-                         if len(found) > 1 else np.zeros_like(y))
-    return y, stats, len(found)
+    return found[0]["y"], {column: np.array([p[column] for p in found])
+                           for column in ("density", "vx")}
+
+
+def mean_and_error(values):
+    return values.mean(axis=0), (values.std(axis=0, ddof=1) / np.sqrt(len(values))
+                                 if len(values) > 1 else np.zeros(values.shape[1]))
 
 
 def main():
@@ -50,24 +52,25 @@ def main():
     parser.add_argument("--output", type=Path,
                         default=ROOT / "docs" / "figures" / "hard_spheres_profiles.png")
     args = parser.parse_args()
-    y, soft, n_soft = profiles(args.soft, args.kn)
-    y_hard, hard, n_hard = profiles(args.hard, args.kn)
+    y, soft = profiles(args.soft, args.kn)
+    y_hard, hard = profiles(args.hard, args.kn)
+    n_soft, n_hard = len(soft["density"]), len(hard["density"])
     if not np.allclose(y, y_hard):
         raise SystemExit("the soft and the hard profiles have different bins")
     fig, axes = plt.subplots(1, 2, figsize=(9, 4.5), sharey=True)
     for ax, column, label in ((axes[0], "density", "number density"), (axes[1], "vx", "mean v_x")):
-        for (mean, error), name, style in ((soft[column], f"soft ({n_soft} runs)", "C0-"),
-                                           (hard[column], f"hard, rule (b), t_c = tau_c "
-                                                          f"({n_hard} runs)", "C3--")):
+        for (mean, error), name, style in ((mean_and_error(soft[column]), f"soft ({n_soft} runs)",
+                                            "C0-"),
+                                           (mean_and_error(hard[column]), f"hard, rule (b), "
+                                            f"t_c = tau_c ({n_hard} runs)", "C3--")):
             ax.plot(mean, y, style, label=name)
             ax.fill_betweenx(y, mean - 2 * error, mean + 2 * error, color=style[:2], alpha=0.2)
         ax.set_xlabel(label)
-        combined = np.hypot(soft[column][1], hard[column][1])
-        inside = (soft[column][0] > 0) | (hard[column][0] > 0)
-        z = np.abs(soft[column][0] - hard[column][0])[inside] / np.where(
-            combined[inside] > 0, combined[inside], np.inf)
-        print(f"{column}: largest |soft - hard| / combined error over {inside.sum()} bins "
-              f"{z.max():.2f}, at y = {y[inside][np.argmax(z)]:.3g}")
+        result = compare_profiles(soft[column], hard[column], soft["density"].mean(axis=0) > 0,
+                                  hard["density"].mean(axis=0) > 0)
+        print(f"{column}: {result.verdict}: {result.differing} of {result.compared} bins differ "
+              f"(at most {result.longest_run} neighbouring), the largest by {result.largest:.2f} "
+              f"combined errors")
     axes[0].set_ylabel("height y")
     axes[0].set_ylim(-1, 12)
     axes[0].legend(fontsize=8)
