@@ -6,7 +6,7 @@ import json
 
 import numpy as np
 
-import newton_check
+from scripts.studies import newton_check
 
 SCATTER = 0.1      # per-run scatter of every observable about 1
 

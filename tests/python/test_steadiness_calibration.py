@@ -6,7 +6,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-import steadiness_calibration
+from scripts.studies import steadiness_calibration
 
 
 def summary_record(energy_of_t):
