@@ -1,4 +1,4 @@
-"""scripts/newton_check.py's rule on made-up run summaries: newton off drawn from newton on's
+"""scripts/studies/newton_check.py's rule on made-up run summaries: newton off drawn from newton on's
 distribution passes; one shifted by 5 of its standard errors fails, as does a variant with a
 single run (its error undefined) or with many more piles that stop; a mutant that passes
 makes the verdict fail."""
