@@ -571,8 +571,7 @@ def test_done_txt_of_another_run_is_not_taken(tmp_path):
 def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
     """A grid of 2000 points made of 10 materials (k_n, e, beta) asks build/plugin/mn-law 10
     times: it started mn-law once per point (44 s for the --dry-run of such a grid)."""
-    import sweep
-    from scripts.granmn_sweep import cost
+    from scripts.granmn_sweep import cli, cost
     cost.law.cache_clear()     # no material known yet
     asked = []
     law = cost.derived
@@ -582,12 +581,10 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
     config.write_text('[[grid]]\nscene = "collisional_flow"\n'
                       f'kn = [{", ".join(str(5e4 * 2 ** k) for k in range(10))}]\n'
                       f'seed = [{", ".join(str(seed) for seed in range(1, 201))}]\n')
-    assert sweep.main([str(config), "--output", str(tmp_path / "out"), "--build", str(BUILD),
+    assert cli.main([str(config), "--output", str(tmp_path / "out"), "--build", str(BUILD),
                        "--dry-run"]) == 0
     assert "2000 points" in capsys.readouterr().out
     assert sorted(asked) == sorted(set(asked)) and len(asked) == 10
-
-
 
 
 # scripts/granmn_sweep's modules in the order of docs/index.md (mn_law, mpirun_slots and
