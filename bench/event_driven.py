@@ -1,8 +1,7 @@
-#!/usr/bin/python3
 """The event-driven engine's cost (after ./scripts/build.sh; docs/hard_spheres.md "What it
 costs"):
 
-    bench/event_driven.py [--widths 5 50 500 5000 10000] [--events-per-disk 20]
+    python3 -m bench.event_driven [--widths 5 50 500 5000 10000] [--events-per-disk 20]
                           [--kn 1.28e7 3.2768e9] [--soft-span 20] [--workdir DIR]
 
 1. Cost per event against the number of disks: the frictional flow's deck at width W (10 W
@@ -33,7 +32,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from granmn_sweep.event_driven import START, START_DUMP, START_FLOOR, write_start
+from scripts.granmn_sweep.event_driven import START, START_DUMP, START_FLOOR, write_start
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -81,7 +80,7 @@ def main():
     parser.add_argument("--workdir", type=Path)
     args = parser.parse_args()
     work = args.workdir or Path(tempfile.mkdtemp(prefix="bench_event_driven_"))
-    print(f"# bench/event_driven.py {' '.join(sys.argv[1:])} (work in {work})")
+    print(f"# python3 -m bench.event_driven {' '.join(sys.argv[1:])} (work in {work})")
     print("# 1. frictional flow, rule (b), TC at t_c = tau_c(1.28e7), "
           f"{args.events_per_disk} events a disk (at least 2e5)\n"
           "# disks events end time cpu_seconds us_per_event")

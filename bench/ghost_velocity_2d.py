@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """The ghosts' velocities in 2D on one rank (docs/performance.md): the frictional
 scene (inputs/frictional_flow.lmp, 100 disks) as committed, where pair gran/mn sends the ghosts'
 vx, vy and omega_z itself (no comm_modify vel yes), against the same deck from a copy of inputs/
@@ -7,7 +6,7 @@ values each). Interleaved, every other round in the reverse order; each run's CP
 loop times their CPU share), the paired ratio own / LAMMPS's with its median and range
 (bench/paired.py), whether the two energy.txt are the same to the byte, and the load average.
 
-    bench/ghost_velocity_2d.py [--build build] [--rounds 7] [--run-time 60]"""
+    python3 -m bench.ghost_velocity_2d [--build build] [--rounds 7] [--run-time 60]"""
 import argparse
 import os
 import re
@@ -17,7 +16,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from paired import median_and_range, paired_ratios
+from bench.paired import median_and_range, paired_ratios
 
 ROOT = Path(__file__).resolve().parent.parent
 OWN, LAMMPS = "pair's own (vel no)", "LAMMPS's own (vel yes)"

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Instructions per step of the two flowing 2D scenes, as the study runs them (counters and
 outputs on), and in the hand-written reference loop (bench/reference_loop.cpp), counted by
 callgrind (Debian's valgrind): the steady side of bench/run_benchmarks.py's timed comparison.
@@ -14,7 +13,7 @@ more than about 2 kB (LAMMPS's force clear of f and torque) is `rep stosb`, coun
 byte, though the processor clears such a block in a few dozen cycles. The ratios are printed
 with it and without it.
 
-    bench/instructions.py [--warmup 30] [--spans 1 2.5] [--top 8]
+    python3 -m bench.instructions [--warmup 30] [--spans 1 2.5] [--top 8]
                           [--scenes frictional_flow collisional_flow]
 
 About 4.5 minutes of CPU a scene (both scenes: 282 s of wall on two cores)."""
@@ -27,7 +26,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_benchmarks import KN, ROOT, SCENES, Build, law
+from bench.run_benchmarks import KN, ROOT, SCENES, Build, law
 
 DT_FRACTION = 0.01    # the decks' default
 MEMSET = "memset"     # in the name of glibc's memset variants

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """LIGGGHTS 3.8's `model mn tangential mn` against LIGGGHTS's own linear model, `model
 hooke/stiffness tangential history` at the law's stiffness and damping, on the project's 3D
 chute, both in the project's LIGGGHTS build (plugin/liggghts: both combinations compiled in,
@@ -26,7 +25,7 @@ the kinetic energy at the end. Then mn's ratios to hooke/stiffness of the same r
 range, and the goal of docs/performance.md (mn's CPU at most 1.1x hooke/stiffness's) judged on those by the
 sign test of bench/paired.py (15 rounds of 21 decide).
 
-    bench/liggghts_chute.py [--steps 40000] [--dt-fraction 0.05] [--rounds 21] [--build build]
+    python3 -m bench.liggghts_chute [--steps 40000] [--dt-fraction 0.05] [--rounds 21] [--build build]
                             [--baseline LIGGGHTS]"""
 import argparse
 import os
@@ -38,9 +37,9 @@ import tempfile
 import time
 from pathlib import Path
 
-from equivalent_laws import liggghts_contacts
-from granmn_sweep.mn_law import derived
-from paired import against_goal, median_and_range, paired_ratios
+from bench.equivalent_laws import liggghts_contacts
+from bench.paired import against_goal, median_and_range, paired_ratios
+from scripts.granmn_sweep.mn_law import derived
 
 ROOT = Path(__file__).resolve().parent.parent
 KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5

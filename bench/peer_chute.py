@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """LAMMPS's own granular benchmark, bench/in.chute (32000 spheres, a 3D chute on a frozen base),
 from the LAMMPS tree the build uses, in four variants side by side
 (docs/performance.md):
@@ -33,7 +32,7 @@ granular's) judged on those paired ratios: met, not met or undecided by a one-si
 the ghosts' velocities sent or not by the deck); --replicate NX NY NZ replicates the
 read chute (2 2 1: 128000 spheres) before the run.
 
-    bench/peer_chute.py [--steps 400] [--repeat 3] [--build build] [--decks DIR]
+    python3 -m bench.peer_chute [--steps 400] [--repeat 3] [--build build] [--decks DIR]
                         [--baseline-plugin PLUGIN] [--variants NAME ...] [--replicate NX NY NZ]"""
 import argparse
 import math
@@ -45,8 +44,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-from granmn_sweep.mn_law import derived
-from paired import against_goal, median_and_range, paired_ratios
+from bench.paired import against_goal, median_and_range, paired_ratios
+from scripts.granmn_sweep.mn_law import derived
 
 ROOT = Path(__file__).resolve().parent.parent
 SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")

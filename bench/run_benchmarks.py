@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """The benchmarks of the contact law, side by side in one run (after ./scripts/build.sh):
 
 - the per-step cost of the paper's flowing scenes (inputs/frictional_flow.lmp and
@@ -14,7 +13,7 @@
 - 1 against 2 MPI ranks on that scene, and a 2-partition sweep against two serial runs;
 - memory per particle (LAMMPS's own accounting).
 
-    bench/run_benchmarks.py [--steps 4000] [--repeat 3] [--side 40] [--scenes-only]
+    python3 -m bench.run_benchmarks [--steps 4000] [--repeat 3] [--side 40] [--scenes-only]
                             [--warmup 10] [--span 10] [--baseline SOURCE_TREE]
                             [--build build|build-2025|build-2026]
 
@@ -34,9 +33,9 @@ import time
 from collections import namedtuple
 from pathlib import Path
 
-from equivalent_laws import LIGGGHTS_FLOOR, hooke_history_contacts, liggghts_contacts
-from granmn_sweep.mn_law import derived
-from paired import against_goal, median_and_range, paired_ratios
+from bench.equivalent_laws import LIGGGHTS_FLOOR, hooke_history_contacts, liggghts_contacts
+from bench.paired import against_goal, median_and_range, paired_ratios
+from scripts.granmn_sweep.mn_law import derived
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENES = {"frictional_flow": "frictional", "collisional_flow": "collisional"}
@@ -288,9 +287,9 @@ def sweep_comparison(build, work):
     for mode, extra in (("serial", ["--jobs", "1"]), ("partitions", ["--partitions", "2"])):
         out = work / mode
         start = time.time()
-        subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"), str(config),
-                        "--output", str(out), "--build", str(build.directory), *extra],
-                       check=True, capture_output=True, env=ENV)
+        subprocess.run([sys.executable, "-m", "scripts.sweep", str(config.resolve()),
+                        "--output", str(out.resolve()), "--build", str(build.directory.resolve()),
+                        *extra], check=True, capture_output=True, env=ENV, cwd=ROOT)
         times[mode] = time.time() - start
     return times
 

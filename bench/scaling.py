@@ -1,8 +1,7 @@
-#!/usr/bin/python3
 """Strong scaling of the 3D chute (inputs/chute_3d.lmp) over MPI ranks (after ./scripts/build.sh):
 one settled flowing state, then the same span of the flow on each rank count.
 
-    bench/scaling.py [--ranks 1 2 4 8] [--span 20] [--repeat 3] [--settle 100]
+    python3 -m bench.scaling [--ranks 1 2 4 8] [--span 20] [--repeat 3] [--settle 100]
                      [--oversubscribe] [--mpirun-args "--hostfile H"] [--figure PATH]
                      [--workdir DIR] [--kn 2e5] [--dt-fraction 0.05] [--spheres 500] ...
 
@@ -47,12 +46,11 @@ import tempfile
 import time
 from pathlib import Path
 
-from granmn_sweep import checkpoints
-from granmn_sweep.mpirun_slots import slots_problem
+from postprocess.io import read_params
+from scripts.granmn_sweep import checkpoints
+from scripts.granmn_sweep.mpirun_slots import slots_problem
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-from postprocess.io import read_params  # noqa: E402
 
 DECK = ROOT / "inputs" / "chute_3d.lmp"
 TIMER_SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")

@@ -21,8 +21,8 @@ while [ $# -gt 0 ]; do
     --serial) serial_option=(--serial); shift ;;
     --full) configs=("$root"/inputs/sweeps/paper_*.toml); shift ;;
     --transition) configs=("$root/inputs/sweeps/transition.toml"); shift ;;
-    --config) configs=("$2"); shift 2 ;;
-    --output) output="$2"; shift 2 ;;
+    --config) configs=("$(realpath -m -- "$2")"); shift 2 ;;
+    --output) output=$(realpath -m -- "$2"); shift 2 ;;
     -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
     *) echo "main.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
@@ -43,7 +43,8 @@ for config in "${configs[@]}"; do
   name=$(basename "$config" .toml)
   out=${output:-$root/results/$name}
   echo "== sweep $name"
-  /usr/bin/python3 "$root/scripts/sweep.py" "$config" --output "$out" --build "$build" || status=1
+  # the Python programs run from the repository root, where their packages are
+  (cd "$root" && /usr/bin/python3 -m scripts.sweep "$config" --output "$out" --build "$build") || status=1
   echo "== post-processing $name"
   case "$name" in
     transition*) (cd "$root" && /usr/bin/python3 -m postprocess transition "$out") || status=1 ;;

@@ -1,5 +1,5 @@
 // mn-collision-rules: rules (a) and (b) of mn_collision.h over the impact angle, for the figure
-// of docs/hard_spheres.md (scripts/collision_rules_figure.py draws it).
+// of docs/hard_spheres.md (scripts/studies/collision_rules_figure.py draws it).
 //   mn-collision-rules [E BETA MU] [ANGLES]
 // Prints, for equal disks and for a disk against the boundary (rule (a) with the boundary's
 // default e_w and beta_w, settings.h's boundary_defaults), at ANGLES impact angles

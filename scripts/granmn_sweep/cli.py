@@ -1,7 +1,8 @@
 """Runs a grid of scene points described in a TOML config, resumably, with progress and ETA.
 
-    scripts/sweep.py CONFIG [--output DIR] [--jobs N | --partitions P] [--ranks R]
-                     [--checkpoint-interval T] [--set NAME=VALUE ...] [--dry-run]
+    python3 -m scripts.sweep CONFIG [--output DIR] [--jobs N | --partitions P] [--ranks R]
+                             [--checkpoint-interval T] [--set NAME=VALUE ...] [--dry-run]
+    (from the repository root; installed, `granmn sweep CONFIG ...`)
 
 Config (TOML):
 
@@ -85,15 +86,15 @@ import sys
 import traceback
 from pathlib import Path
 
-from granmn_sweep import SweepError
-from granmn_sweep import processes
-from granmn_sweep.config import expand, load_config, point_name, with_settings
-from granmn_sweep.cost import CostModel, format_seconds, predicted_steps
-from granmn_sweep.decks import ROOT, engine
-from granmn_sweep.points import check_names, check_output, check_path, foreign, lock_output, \
+from . import SweepError
+from . import processes
+from .config import expand, load_config, point_name, with_settings
+from .cost import CostModel, format_seconds, predicted_steps
+from .decks import ROOT, engine
+from .points import check_names, check_output, check_path, foreign, lock_output, \
     unlock_output
-from granmn_sweep.schedule import check_slots, run_points
-from postprocess.rundir import completed     # scripts/postprocess links the package
+from .schedule import check_slots, run_points
+from postprocess.rundir import completed
 from postprocess.summary import read_summary
 from postprocess.io import DataError
 
@@ -179,7 +180,8 @@ def main(argv=None):
         if not (ROOT / "inputs").is_dir():
             raise SweepError(f"{ROOT} is not the project's checkout (no inputs/ with the decks): "
                              "the runner runs from one; install it there with `pip install "
-                             "--no-deps --no-build-isolation -e .`, or run scripts/sweep.py")
+                             "--no-deps --no-build-isolation -e .`, or run `python3 -m scripts.sweep` "
+                             "there")
         config = with_settings(load_config(args.config), args.set, args.config)
         points = expand(config, args.config)
         output = args.output or ROOT / "results" / config.get("name", Path(args.config).stem)

@@ -1,15 +1,15 @@
-"""The `granmn` command: the runner (`granmn sweep`, as scripts/sweep.py) and the
+"""The `granmn` command: the runner (`granmn sweep`, as `python3 -m scripts.sweep`) and the
 post-processing commands (`granmn summarize ...`, as `python3 -m postprocess summarize ...`),
 one subcommand each, each with its own options and --help."""
 import sys
 
-from granmn_sweep import cli
+from . import cli
 from postprocess import __main__ as analysis
 
 USAGE = f"""usage: granmn COMMAND [options]   (granmn COMMAND --help: its options)
 
 commands:
-  sweep        run a grid of scene points from a TOML config (scripts/sweep.py)
+  sweep        run a grid of scene points from a TOML config (python3 -m scripts.sweep)
   {", ".join(analysis.COMMANDS)}
                the post-processing (python3 -m postprocess)"""
 

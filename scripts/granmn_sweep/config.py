@@ -6,8 +6,8 @@ import tomllib
 from itertools import product
 from pathlib import Path
 
-from granmn_sweep import SweepError, event_driven
-from granmn_sweep.decks import ENGINES, RESERVED, deck_defaults, deck_uses, engine, point_deck, \
+from . import SweepError, event_driven
+from .decks import ENGINES, RESERVED, deck_defaults, deck_uses, engine, point_deck, \
     scenes, where
 
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")

@@ -4,10 +4,10 @@ finish."""
 import functools
 import math
 
-from granmn_sweep import SweepError
-from granmn_sweep.decks import deck_defaults, engine, formula_value, point_deck, scene_atoms, \
+from . import SweepError
+from .decks import deck_defaults, engine, formula_value, point_deck, scene_atoms, \
     scene_dimension, time_step_formula, where
-from granmn_sweep.mn_law import LawError, derived
+from .mn_law import LawError, derived
 
 # Seconds per step by the scene's dimension: a fixed part and a part per atom; refined as points
 # finish. 3D: the dense chute's CPU seconds per atom-step, measured (docs/scenes.md): 9.9e-8 at

@@ -7,7 +7,7 @@ import operator
 import re
 from pathlib import Path
 
-from granmn_sweep import SweepError
+from . import SweepError
 
 ROOT = Path(__file__).resolve().parents[2]
 LIB = ROOT / "inputs" / "lib"

@@ -21,7 +21,7 @@ import argparse
 import subprocess
 from pathlib import Path
 
-from granmn_sweep.decks import deck_defaults
+from .decks import deck_defaults
 
 # mn-event-driven's parameters a point may set (their defaults are the engine's: main.cpp)
 VARIABLES = ("rule", "collapse", "tc_time", "tc_beta", "e_w", "beta_w", "collapse_count",

@@ -10,10 +10,10 @@ import re
 import shutil
 import signal
 
-from granmn_sweep import checkpoints
-from granmn_sweep import SweepError
-from granmn_sweep import processes
-from postprocess.rundir import SUMMARY_SUFFIX     # scripts/postprocess links the package
+from . import checkpoints
+from . import SweepError
+from . import processes
+from postprocess.rundir import SUMMARY_SUFFIX
 
 # What LAMMPS's input syntax does not carry in a file name: a word ends at whitespace;
 # quotes, $ (a variable) and # (a comment) are syntax.

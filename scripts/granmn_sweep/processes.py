@@ -9,7 +9,7 @@ import threading
 import time
 from pathlib import Path
 
-from postprocess.rundir import RUNNING     # scripts/postprocess links the package
+from postprocess.rundir import RUNNING
 
 # The runs under way, {pid: Popen}. Each run (lmp, or mpirun and the ranks it starts, each of
 # those in a process group of its own) is a session of its own: a signal reaches all of it.
@@ -37,7 +37,7 @@ def die_with(runner):
 def keep_niceness():
     """A run has a session of its own (start_new_session: a signal reaches all it starts).
     Where the kernel schedules each session as a group of its own (Linux's autogroup), the
-    niceness it inherits from the runner (`nice -n 19 scripts/sweep.py`) would weigh only
+    niceness it inherits from the runner (`nice -n 19 python3 -m scripts.sweep`) would weigh only
     within that group, and the run would take a full share of a core: the group is given the
     same niceness."""
     niceness = os.nice(0)

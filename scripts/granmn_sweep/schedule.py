@@ -7,14 +7,14 @@ import shlex
 import signal
 import sys
 
-from granmn_sweep import SweepError
-from granmn_sweep import processes
-from granmn_sweep.config import RUNNER_KEYS, format_value
-from granmn_sweep.cost import format_seconds
-from granmn_sweep.decks import LIB, ROOT, engine, point_deck
-from granmn_sweep.points import cpu_seconds, error_lines, failed_to_start, finish, \
+from . import SweepError
+from . import processes
+from .config import RUNNER_KEYS, format_value
+from .cost import format_seconds
+from .decks import LIB, ROOT, engine, point_deck
+from .points import cpu_seconds, error_lines, failed_to_start, finish, \
     resume_or_prepare, set_aside_failed_resume, wrote_done
-from granmn_sweep.mpirun_slots import slots_problem
+from .mpirun_slots import slots_problem
 
 
 def point_variables(point, directory, paths, token):

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from granmn_sweep.mn_law import derived
+from scripts.granmn_sweep.mn_law import derived
 
 LMP = os.environ.get("GRANMN_LMP", "lmp")
 PLUGIN = os.environ.get("GRANMN_PLUGIN", "granmnplugin.so")

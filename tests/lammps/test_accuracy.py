@@ -1,4 +1,4 @@
-"""scripts/accuracy.py runs from one command and writes its table and figure (shortened)."""
+"""The accuracy study (scripts/studies/accuracy.py) runs from one command and writes its table and figure (shortened)."""
 import re
 import subprocess
 import sys
@@ -11,9 +11,9 @@ BUILD = Path(PLUGIN).resolve().parents[1]
 
 
 def test_accuracy_study_writes_its_tables_and_figure(tmp_path):
-    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "accuracy.py"), "--quick",
+    proc = subprocess.run([sys.executable, "-m", "scripts.studies.accuracy", "--quick",
                            "--output", str(tmp_path), "--build", str(BUILD)],
-                          capture_output=True, text=True)
+                          cwd=ROOT, capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     report = (tmp_path / "accuracy.md").read_text()
     for section in ("## Binary collision and bouncing ball", "## single_disk", "## collisional_flow",

@@ -1,5 +1,5 @@
 """Checkpoints (inputs/lib/checkpoint.lmp, fix checkpoint/mn): a point killed with kill -9
-mid-chunk and resumed by scripts/sweep.py from its last checkpoint ends with the same outputs
+mid-chunk and resumed by the runner (python3 -m scripts.sweep) from its last checkpoint ends with the same outputs
 as the uninterrupted checkpointed run; what the killed run left half-written is never taken;
 a checkpoint of another point, another restart layout or a damaged file is refused."""
 import glob
@@ -17,7 +17,7 @@ import pytest
 from test_sweep import (BUILD, ROOT, SWEEP, kill_processes_mentioning, kill_session,
                         processes_mentioning, signal_all, sweep, wait_for)
 
-from granmn_sweep import checkpoints
+from scripts.granmn_sweep import checkpoints
 from granmn_run import PLUGIN, SERIAL, SERIAL_REASON, run_lammps
 
 # A contact-rich stretch: the frictional pile falls and flows (friction, multiple contacts,
@@ -61,7 +61,7 @@ def kill_mid_chunk(config, output, *options, after=2):
     (Killed alone, the runner takes its runs with it by SIGTERM, but mpirun gives its ranks a
     second to end, which is enough for a fast machine to finish this run.)"""
     runner = subprocess.Popen(SWEEP + [str(config), "--output", str(output), "--build",
-                                       str(BUILD), "--jobs", "1", *options],
+                                       str(BUILD), "--jobs", "1", *options], cwd=ROOT,
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                               start_new_session=True)
     deadline = time.time() + 300
@@ -259,8 +259,8 @@ def test_a_point_whose_fresh_start_fails_too_keeps_its_run(tmp_path):
     (broken / "plugin" / "mn-law").symlink_to(BUILD / "plugin" / "mn-law")
     (broken / "plugin" / "granmnplugin.so").write_text("not a library\n")
     proc = subprocess.run(SWEEP + [str(config), "--output", str(tmp_path / "killed"), "--build",
-                                   str(broken), "--jobs", "1"], capture_output=True, text=True,
-                          timeout=120)
+                                   str(broken), "--jobs", "1"], cwd=ROOT, capture_output=True,
+                          text=True, timeout=120)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     aside = tmp_path / "killed" / "unresumed" / "single_disk" / directory.name
     failed = (directory / "failed.txt").read_text()

@@ -112,10 +112,10 @@ def test_the_chute_preset_is_known_to_the_runner_and_within_budget(tmp_path):
     predicted cost (its cost model: spheres + base atoms, the 3D per-atom cost) stays under
     the preset's budget of ~3 CPU-hours."""
     build = Path(PLUGIN).resolve().parents[1]    # as tests/lammps/test_sweep.py
-    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"),
+    proc = subprocess.run([sys.executable, "-m", "scripts.sweep",
                            str(ROOT / "inputs" / "sweeps" / "chute_3d.toml"), "--output",
                            str(tmp_path / "out"), "--build", str(build), "--dry-run"],
-                          capture_output=True, text=True, timeout=120)
+                          cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     hours = float(re.search(r"\(([\d.]+) CPU-hours\)", proc.stdout).group(1))
     points = proc.stdout.count(" todo chute_3d/")
@@ -125,7 +125,7 @@ def test_the_chute_preset_is_known_to_the_runner_and_within_budget(tmp_path):
 
 def preset_points(name):
     """The points of inputs/sweeps/<name>.toml as the runner expands them."""
-    from granmn_sweep.config import expand, load_config
+    from scripts.granmn_sweep.config import expand, load_config
     path = ROOT / "inputs" / "sweeps" / f"{name}.toml"
     return expand(load_config(path), path)
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from granmn_run import PLUGIN
-from granmn_sweep.mn_law import derived
+from scripts.granmn_sweep.mn_law import derived
 from postprocess.io import read_counts, read_energy, read_params, read_profile
 from postprocess.runs import read_run
 
@@ -36,9 +36,9 @@ def test_an_event_driven_point_runs_from_the_decks_start_and_postprocess_reads_i
     config = tmp_path / "ed.toml"
     config.write_text(CONFIG)
     out = tmp_path / "out"
-    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"), str(config),
+    proc = subprocess.run([sys.executable, "-m", "scripts.sweep", str(config),
                            "--output", str(out), "--build", str(BUILD), "--jobs", "1"],
-                          capture_output=True, text=True, timeout=300)
+                          cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     tau_c = derived(BUILD / "plugin" / "mn-law", 1.28e7, 0.7, 0.7)["tau_c"]
     for seed in (1, 2):

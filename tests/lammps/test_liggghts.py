@@ -9,7 +9,7 @@ import subprocess
 
 import pytest
 
-from equivalent_laws import LIGGGHTS_FLOOR, liggghts_contacts
+from bench.equivalent_laws import LIGGGHTS_FLOOR, liggghts_contacts
 from granmn_run import HEADER, PLUGIN, law, run_lammps
 
 KN, E, BETA, MU = 2e5, 0.7, 0.7, 0.5

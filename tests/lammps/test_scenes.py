@@ -121,7 +121,7 @@ def test_collisional_flow_reaches_a_steady_energy(tmp_path):
     energy as it did from rest (mean rate over the start-up), gives 650/350 = 1.86; one that
     comes to rest gives ~0. The bound is 3.1 times the scatter of the log of that ratio in
     16 runs of the same physics (inputs/sweeps/collisional_steadiness.toml: seeds 1-7 and 2003,
-    newton on and off, 0.063 CPU-hours; scripts/steadiness_calibration.py
+    newton on and off, 0.063 CPU-hours; python3 -m scripts.studies.steadiness_calibration
     data/collisional_steadiness: sd 0.153, ratios 0.78-1.26): the energy wanders by ~15 % over
     hundreds of time units, so a slope judged by the scatter of 30-unit block means (which
     failed at 3 standard errors in 4 of those runs over [200, 800)) is not the test. With

@@ -1,4 +1,4 @@
-"""scripts/sweep.py: resuming a killed sweep, the multi-partition mode, bad configs, the
+"""The runner (python3 -m scripts.sweep): resuming a killed sweep, the multi-partition mode, bad configs, the
 runner's ownership of its lmp processes and of its output directory."""
 import json
 import math
@@ -15,9 +15,8 @@ import pytest
 from granmn_run import MPIEXEC, PLUGIN, needs_mpi
 
 ROOT = Path(__file__).resolve().parents[2]
-SWEEP = [sys.executable, str(ROOT / "scripts" / "sweep.py")]
-# a child python running the runner's modules finds them as scripts/sweep.py does
-RUNNER_PATH = dict(os.environ, PYTHONPATH=str(ROOT / "scripts"))
+# the runner's command, run from ROOT (as is a child python that imports its modules)
+SWEEP = [sys.executable, "-m", "scripts.sweep"]
 BUILD = Path(PLUGIN).resolve().parents[1]
 
 CONFIG = """
@@ -34,7 +33,7 @@ kn = [5e4, 1e5, 2e5]
 def start_sweep(config_path, output, *args):
     """The runner in a session of its own: kill_session() then reaches whatever it left."""
     return subprocess.Popen(SWEEP + [str(config_path), "--output", str(output), "--build",
-                                     str(BUILD), *args], stdout=subprocess.PIPE,
+                                     str(BUILD), *args], cwd=ROOT, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True, start_new_session=True)
 
 
@@ -114,7 +113,7 @@ def test_killed_sweep_resumes_without_redoing_finished_points(tmp_path):
     config.write_text(CONFIG.format(run_time=15))
     output = tmp_path / "out"
     runner = subprocess.Popen(SWEEP + [str(config), "--output", str(output), "--build",
-                                       str(BUILD), "--jobs", "1"],
+                                       str(BUILD), "--jobs", "1"], cwd=ROOT,
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                               start_new_session=True)
     deadline = time.time() + 120
@@ -250,8 +249,8 @@ def test_mpirun_is_refused_with_a_serial_lammps(tmp_path, options):
     (serial / "CMakeCache.txt").write_text("GRANMN_MPI:BOOL=OFF\n")
     config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\n")
     proc = subprocess.run(SWEEP + [str(config), "--output", str(tmp_path / "out"), "--build",
-                                   str(serial), *options], capture_output=True, text=True,
-                          timeout=120)
+                                   str(serial), *options], cwd=ROOT, capture_output=True,
+                          text=True, timeout=120)
     assert proc.returncode == 2, proc.stdout + proc.stderr
     assert f"{options[0]} runs lmp under mpirun, and {serial} is a serial LAMMPS" in proc.stderr
     assert not (tmp_path / "out").exists()
@@ -348,11 +347,11 @@ def test_a_nice_runners_runs_stay_nice_in_their_own_sessions(tmp_path):
         pytest.skip("this kernel schedules no autogroups")
     # the runner's niceness is 7 above the suite's own (which may itself run under nice)
     code = ("import os, sys; print(os.nice(7));"
-            "from granmn_sweep import processes;"
+            "from scripts.granmn_sweep import processes;"
             "p = processes.start(['sleep', '1'], sys.argv[1], dict(os.environ), []);"
             "print(open(f'/proc/{p.pid}/autogroup').read()); processes.wait(p, [])")
     proc = subprocess.run([sys.executable, "-c", code, str(tmp_path / "run.out")],
-                          env=RUNNER_PATH, capture_output=True, text=True, timeout=60)
+                          cwd=ROOT, capture_output=True, text=True, timeout=60)
     assert proc.returncode == 0, proc.stderr
     runner_niceness = proc.stdout.split()[0]
     assert runner_niceness != "0" and proc.stdout.split()[-1] == runner_niceness, proc.stdout
@@ -572,8 +571,7 @@ def test_done_txt_of_another_run_is_not_taken(tmp_path):
 def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
     """A grid of 2000 points made of 10 materials (k_n, e, beta) asks build/plugin/mn-law 10
     times: it started mn-law once per point (44 s for the --dry-run of such a grid)."""
-    import sweep
-    from granmn_sweep import cost
+    from scripts.granmn_sweep import cli, cost
     cost.law.cache_clear()     # no material known yet
     asked = []
     law = cost.derived
@@ -583,12 +581,10 @@ def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
     config.write_text('[[grid]]\nscene = "collisional_flow"\n'
                       f'kn = [{", ".join(str(5e4 * 2 ** k) for k in range(10))}]\n'
                       f'seed = [{", ".join(str(seed) for seed in range(1, 201))}]\n')
-    assert sweep.main([str(config), "--output", str(tmp_path / "out"), "--build", str(BUILD),
+    assert cli.main([str(config), "--output", str(tmp_path / "out"), "--build", str(BUILD),
                        "--dry-run"]) == 0
     assert "2000 points" in capsys.readouterr().out
     assert sorted(asked) == sorted(set(asked)) and len(asked) == 10
-
-
 
 
 # scripts/granmn_sweep's modules in the order of docs/index.md (mn_law, mpirun_slots and
@@ -603,14 +599,14 @@ def test_a_runner_module_imports_alone_and_only_those_before_it(module):
     after it (docs/index.md's order): an import back, a cycle, would work only when another
     module happened to be imported first."""
     import ast
-    proc = subprocess.run([sys.executable, "-c", f"import granmn_sweep.{module}"],
-                          cwd=ROOT / "scripts", capture_output=True, text=True)
+    proc = subprocess.run([sys.executable, "-c", f"import scripts.granmn_sweep.{module}"],
+                          cwd=ROOT, capture_output=True, text=True)
     assert proc.returncode == 0, proc.stderr
     tree = ast.parse((ROOT / "scripts" / "granmn_sweep" / f"{module}.py").read_text())
     froms = [node for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)]
-    imported = {node.module.split(".")[1] for node in froms
-                if (node.module or "").startswith("granmn_sweep.")}
-    imported |= {alias.name for node in froms if node.module == "granmn_sweep"
+    # the runner's modules import one another relatively (`from .decks import`, `from . import`)
+    imported = {node.module.split(".")[0] for node in froms if node.level == 1 and node.module}
+    imported |= {alias.name for node in froms if node.level == 1 and not node.module
                  for alias in node.names} - {"SweepError"}
     assert imported <= set(RUNNER_MODULES[:RUNNER_MODULES.index(module)]), imported
 
@@ -628,8 +624,8 @@ def test_the_runner_takes_the_time_step_and_atoms_lmp_takes(tmp_path, name):
     """The cost model's time step of a point is the one lmp runs the deck with (params.txt's
     dt, %.10g: 1e-9 apart at most), whichever of dt_fraction x tau_c and dt_cap is the step; its
     atoms are those of the run (its log's `with N atoms`), bumps and base included."""
-    from granmn_sweep.cost import time_step
-    from granmn_sweep.decks import scene_atoms
+    from scripts.granmn_sweep.cost import time_step
+    from scripts.granmn_sweep.decks import scene_atoms
     from granmn_run import run_scene
     point = TIME_STEP_POINTS[name]
     run_scene(point["scene"], tmp_path, run_time=0.2, average_start=0.1,
@@ -664,9 +660,9 @@ def test_the_runner_follows_the_decks_time_step_rule(tmp_path, monkeypatch):
     timestep): decks whose rule is dt = tau_c/50 give run_time/(tau_c/50) steps. A copy of the
     rule in Python (min(dt_fraction x tau_c, dt_cap)) predicted the old rule's steps."""
     import shutil
-    from granmn_sweep import decks
-    from granmn_sweep.cost import predicted_steps
-    from granmn_sweep.mn_law import derived
+    from scripts.granmn_sweep import decks
+    from scripts.granmn_sweep.cost import predicted_steps
+    from scripts.granmn_sweep.mn_law import derived
     shutil.copytree(ROOT / "inputs", tmp_path / "inputs")
     dynamics = tmp_path / "inputs" / "lib" / "time_step.lmp"
     text = dynamics.read_text()
@@ -687,8 +683,8 @@ def test_a_deck_formula_the_runner_cannot_read_is_refused_by_name():
     """The formulas the runner reads from the decks (the time step, the atoms) take LAMMPS's
     meaning, a comparison 1 or 0, or are refused naming the part it does not read: Python would
     read ^ as xor, a < b < c as a chain, and dt (a thermo keyword) is no deck variable."""
-    from granmn_sweep import SweepError
-    from granmn_sweep.decks import formula_value
+    from scripts.granmn_sweep import SweepError
+    from scripts.granmn_sweep.decks import formula_value
     values = {"a": 2.0, "b": 3.0}.__getitem__
     assert formula_value("(v_a < v_b)*v_a + (v_a >= v_b)*v_b", values, "x") == 2.0
     assert formula_value("(v_b < v_a)*v_a + (v_b >= v_a)*v_b/2", values, "x") == 1.5
@@ -701,14 +697,14 @@ def test_a_deck_formula_the_runner_cannot_read_is_refused_by_name():
 # --output that names a file, or a path through one: {case: (script and options, message)};
 # it gave a traceback (FileExistsError, NotADirectoryError), and --dry-run listed every point
 # as to do and exited 0.
-ACCURACY = [sys.executable, str(ROOT / "scripts" / "accuracy.py")]
+ACCURACY = [sys.executable, "-m", "scripts.studies.accuracy"]
 BAD_OUTPUTS = {
     "`--output` naming a file": ((SWEEP, "{file}"), "is a file, not a directory; choose another --output"),
     "`--output` naming a file, with --dry-run": ((SWEEP, "{file}", "--dry-run"),
                                                   "is a file, not a directory; choose another --output"),
     "`--output` inside a file (a file on the path)": ((SWEEP, "{file}/results"),
                                                         "is a file, not a directory; choose another --output"),
-    "`scripts/accuracy.py --output` naming a file": ((ACCURACY, "{file}"),
+    "`python3 -m scripts.studies.accuracy --output` naming a file": ((ACCURACY, "{file}"),
                                                      "is a file, not a directory; choose another --output"),
 }
 
@@ -722,7 +718,7 @@ def test_output_that_is_a_file_is_refused_with_a_message(tmp_path, case):
     arguments = [] if script is ACCURACY else [str(config)]
     proc = subprocess.run(script + arguments + ["--output", output.format(file=file), "--build",
                                                 str(BUILD), *options],
-                          capture_output=True, text=True, timeout=120)
+                          cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert proc.returncode == 2 and message in proc.stderr, proc.stdout + proc.stderr
     assert "Traceback" not in proc.stderr and file.read_text() == "mine\n"
 
@@ -805,14 +801,14 @@ def test_an_unexpected_error_in_the_runner_stops_its_runs_and_lets_go_of_the_loc
                                           "kn = [5e4, 1e5, 2e5]\n")
     output = tmp_path / "out"
     code = ("import sys\n"
-            "from granmn_sweep import schedule\n"
+            "from scripts.granmn_sweep import schedule\n"
             "def fault(*args, **kwargs):\n    raise RuntimeError('a fault of the runner')\n"
             "schedule.finish = fault\n"
-            "from granmn_sweep.cli import main\n"
+            "from scripts.granmn_sweep.cli import main\n"
             "sys.exit(main(sys.argv[1:]))\n")
     proc = subprocess.run([sys.executable, "-c", code, str(config),
                            "--output", str(output), "--build", str(BUILD), "--jobs", "1"],
-                          env=RUNNER_PATH, capture_output=True, text=True, timeout=300)
+                          cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert proc.returncode == 3, proc.stdout + proc.stderr
     assert "sweep: the runner failed: RuntimeError: a fault of the runner; the runs under way " \
         "were stopped" in proc.stderr and "Traceback" in proc.stderr, proc.stderr

@@ -78,8 +78,8 @@ def test_a_tiny_transition_sweep_and_its_report(tmp_path):
     config.write_text(TINY)
     build = Path(PLUGIN).resolve().parents[1]
     out = tmp_path / "sweep"
-    subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"), str(config),
-                    "--output", str(out), "--build", str(build)], check=True,
+    subprocess.run([sys.executable, "-m", "scripts.sweep", str(config),
+                    "--output", str(out), "--build", str(build)], check=True, cwd=ROOT,
                    capture_output=True)
     proc = subprocess.run([sys.executable, "-m", "postprocess", "transition", str(out)],
                           cwd=ROOT, capture_output=True, text=True)

@@ -257,9 +257,9 @@ def impacts(styles_pair_equal, styles_pair_unequal, styles_plane, workdir, tc, d
 
 if __name__ == "__main__":
     # The dt dependence quoted in docs/cross_checks_3d.md: gran/mn's errors against this law's
-    # predictions at several steps per tc, in units of dt/tc. Run from tests/lammps with
-    # GRANMN_LMP and GRANMN_PLUGIN set and PYTHONPATH=.:../../scripts:
-    #     python3 yade_lammps_scenes.py WORKDIR [STEPS_PER_TC ...]
+    # predictions at several steps per tc, in units of dt/tc. Run from the repository root with
+    # GRANMN_LMP and GRANMN_PLUGIN set and the test suite's path (pytest.ini's pythonpath):
+    #     PYTHONPATH=.:tests/lammps python3 -m yade_lammps_scenes WORKDIR [STEPS_PER_TC ...]
     import json
     import sys
     from pathlib import Path

@@ -142,9 +142,9 @@ def test_through_the_runner_and_the_post_processing(tmp_path):
     config.write_text('name = "e"\n[defaults]\nscene = "chute_3d"\nkn = 2e5\n'
                       'dt_fraction = 0.05\nrun_time = 2\naverage_start = 1\nspheres = 50\n'
                       '[[grid]]\nengine = "liggghts"\nseed = 1\n')
-    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"), str(config),
+    proc = subprocess.run([sys.executable, "-m", "scripts.sweep", str(config),
                            "--output", str(tmp_path / "out"), "--build", str(BUILD)],
-                          capture_output=True, text=True, timeout=600)
+                          cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     point = tmp_path / "out" / "chute_3d" / \
         "average_start1_dt_fraction0.05_engineliggghts_kn200000_run_time2_seed1_spheres50"

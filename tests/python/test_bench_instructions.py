@@ -1,7 +1,7 @@
 """bench/instructions.py's arithmetic: per-step counts are the difference of two runs over the
 steps between them (set-up and warm-up drop out), and names are shortened without merging."""
 
-import instructions
+from bench import instructions
 
 
 def test_per_step_differences_out_what_both_runs_share():

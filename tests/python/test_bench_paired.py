@@ -1,7 +1,7 @@
 """bench/paired.py's goal verdict: a one-sided sign test on paired ratios, three ways."""
 import math
 
-import paired
+from bench import paired
 
 
 def test_binomial_tail_against_its_definition():

@@ -5,7 +5,7 @@ import re
 
 import pytest
 
-import peer_chute
+from bench import peer_chute
 
 # the commands of LAMMPS's bench/in.chute that the variants edit, in its order
 SHIPPED = """units\t\tlj

@@ -37,7 +37,7 @@ def slow_floor(k):
 
 
 def test_pure_power_law_vanishes():
-    # 5 % scatter: the rule's power is ~97 % here (scripts/limit_rule_power.py)
+    # 5 % scatter: the rule's power is ~97 % here (scripts/studies/limit_rule_power.py)
     d = limit.decide(synthetic_runs(power, 0.05), "mc_c", samples=400)
     assert d.verdict == "vanishing", d.why
     # the fit recovers the exponent it was made with

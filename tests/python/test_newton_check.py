@@ -1,4 +1,4 @@
-"""scripts/newton_check.py's rule on made-up run summaries: newton off drawn from newton on's
+"""scripts/studies/newton_check.py's rule on made-up run summaries: newton off drawn from newton on's
 distribution passes; one shifted by 5 of its standard errors fails, as does a variant with a
 single run (its error undefined) or with many more piles that stop; a mutant that passes
 makes the verdict fail."""
@@ -6,7 +6,7 @@ import json
 
 import numpy as np
 
-import newton_check
+from scripts.studies import newton_check
 
 SCATTER = 0.1      # per-run scatter of every observable about 1
 

@@ -1,4 +1,4 @@
-"""scripts/steadiness_calibration.py's ratio, on made-up energy curves as a run summary keeps
+"""scripts/studies/steadiness_calibration.py's ratio, on made-up energy curves as a run summary keeps
 them (1-unit window means from t = 0): a steady energy gives 1, an energy growing linearly from
 rest 650/350 (the figure the collisional steadiness test's docstring gives such a flow)."""
 from types import SimpleNamespace
@@ -6,7 +6,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-import steadiness_calibration
+from scripts.studies import steadiness_calibration
 
 
 def summary_record(energy_of_t):

@@ -11,12 +11,12 @@ from pathlib import Path
 
 import pytest
 
-from granmn_sweep import SweepError, processes
-from granmn_sweep import points as runner_points
+from scripts.granmn_sweep import SweepError, processes
+from scripts.granmn_sweep import points as runner_points
 from postprocess.rundir import completed
 
 ROOT = Path(__file__).resolve().parents[2]
-SWEEP = [sys.executable, str(ROOT / "scripts" / "sweep.py")]
+SWEEP = [sys.executable, "-m", "scripts.sweep"]    # run from ROOT
 
 TWO_POINTS = '[[grid]]\nscene = "single_disk"\nkn = [5e4, 1e5]\n'
 # a point of many variables, each with every digit: its name, its variables, is 312 bytes
@@ -73,7 +73,7 @@ def test_a_setting_that_cannot_be_a_run_is_refused_by_its_source(tmp_path, case)
     config.write_text(text)
     proc = subprocess.run(SWEEP + [str(config), "--output", str(tmp_path / "out"), "--build",
                                    str(tmp_path / "no_build"), *options],
-                          capture_output=True, text=True, timeout=60)
+                          cwd=ROOT, capture_output=True, text=True, timeout=60)
     assert proc.returncode == 2 and message in proc.stderr, proc.stdout + proc.stderr
     assert "Traceback" not in proc.stderr
     assert not (tmp_path / "out").exists()      # no point made, no sweep.lock
@@ -84,7 +84,7 @@ def test_the_long_name_refusal_says_the_limit_and_the_remedy(tmp_path):
     config.write_text(LONG_NAME)
     proc = subprocess.run(SWEEP + [str(config), "--output", str(tmp_path / "out"), "--build",
                                    str(tmp_path / "no_build"), "--dry-run"],
-                          capture_output=True, text=True, timeout=60)
+                          cwd=ROOT, capture_output=True, text=True, timeout=60)
     limit = os.pathconf(tmp_path, "PC_NAME_MAX")
     assert f"which takes names of at most {limit} bytes: collisional_flow/average_start200." \
         in proc.stderr and "is 312 bytes" in proc.stderr, proc.stderr
@@ -232,7 +232,7 @@ def test_a_point_whose_files_cannot_be_written_fails_and_the_sweep_goes_on(tmp_p
     sweep ended in a traceback. The point fails with the cause; nothing runs for it; a
     point.json cut short is not left behind (it would make the directory not the runner's to
     remove, and the point refused when the sweep is run again)."""
-    from granmn_sweep.schedule import run_serial
+    from scripts.granmn_sweep.schedule import run_serial
     point = {"scene": "single_disk", "kn": 50000}
     directory = tmp_path / "out" / "single_disk" / "kn50000"
     for name in ("point.json", "command.txt"):
@@ -301,7 +301,7 @@ def test_a_point_whose_summary_says_it_ended_is_not_run_again(tmp_path):
     """--done-in: a flowing run's summary makes its point done, an incomplete run's does not
     (its run is lost with the machine it ran on), a point with no summary is run; a summary
     that is not one is refused, not taken as "not done"."""
-    from granmn_sweep.cli import summarized_points
+    from scripts.granmn_sweep.cli import summarized_points
     flowing = sorted(WIDE.glob("*.json"))[0]
     summaries = tmp_path / "summaries" / "frictional_flow"
     summaries.mkdir(parents=True)

@@ -1,9 +1,8 @@
-#!/usr/bin/python3
 """Judges inputs/sweeps/newton_check.toml's runs by the rule its header fixes: does newton off
 give the observables of newton on within their errors, and would the rule see a change of the
 physics (its mutant points, which must fail it)?
 
-    scripts/newton_check.py SUMMARIES_DIR     # e.g. data/newton_check (postprocess summarize)
+    python3 -m scripts.studies.newton_check SUMMARIES_DIR     # e.g. data/newton_check (postprocess summarize)
 
 Per run the observables of its steady window (the mean of its blocks), for the runs that end
 flowing; per scene and variant their mean over the runs and its standard error; a variant
@@ -16,7 +15,7 @@ import math
 import sys
 from pathlib import Path
 
-from postprocess.engines import mean_and_error    # scripts/postprocess links the package
+from postprocess.engines import mean_and_error
 
 OBSERVABLES = ["E_total", "N_c", "N_w", "t_c", "t_w"]
 Z_MAX = 3.5

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """The poured pile of examples/pour/in.pour.mn (its `-var dump_poured 1` file) and of LAMMPS's
 in.pour run with the same dump: the solid fraction of the pile's bulk, and the kinetic
 energy's decay while it settles, from the runs' log.lammps (thermo's `ke`) if given.
@@ -9,14 +8,14 @@ solid fraction counts the centres in it (an unbiased estimate for a homogeneous 
 sphere's volume pi d^3/6 where its centre lies), with the spread over the slab's three equal
 layers as the error.
 
-    scripts/pour_packing.py DUMP [DUMP ...] [--logs LOG ...] [--figure pour.png]
+    python3 -m scripts.studies.pour_packing DUMP [DUMP ...] [--logs LOG ...] [--figure pour.png]
 """
 import argparse
 import sys
 
 import numpy as np
 
-import example_runs
+from scripts.studies import example_runs
 from postprocess.io import read_dump_atoms
 
 AREA = 20.0 * 20.0

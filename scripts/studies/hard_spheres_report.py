@@ -1,12 +1,11 @@
-#!/usr/bin/python3
 """The tables of docs/hard_spheres.md's rules 1 and 3 from committed event-driven runs: their
 postprocess summaries (data/<sweep>/<scene>/<point>.json) and the engine's own summary.txt and
 collapse.txt, kept beside them (data/<sweep>/event_driven/<scene>/<point>.summary.txt,
 .collapse.txt; --keep copies them there from a results directory).
 
-    scripts/hard_spheres_report.py collapse DATA_DIR
-    scripts/hard_spheres_report.py tc DATA_DIR SOFT_DATA_DIR
-    scripts/hard_spheres_report.py keep RESULTS_DIR DATA_DIR
+    python3 -m scripts.studies.hard_spheres_report collapse DATA_DIR
+    python3 -m scripts.studies.hard_spheres_report tc DATA_DIR SOFT_DATA_DIR
+    python3 -m scripts.studies.hard_spheres_report keep RESULTS_DIR DATA_DIR
 
 collapse  rule 1: per scene and e_w, the runs, how many collapsed before run_time, the times to
           collapse (min, median, max) and what the collapsing disk hit (the floor or bumps only,
@@ -23,7 +22,7 @@ from pathlib import Path
 
 from postprocess.runs import load_runs
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def engine_files(data, record, suffix):

@@ -1,16 +1,15 @@
-#!/usr/bin/python3
 """The scatter behind tests/lammps/test_scenes.py::test_collisional_flow_reaches_a_steady_energy:
 per run of inputs/sweeps/collisional_steadiness.toml, the ratio of the mean energy per disk over
 [500, 800) to that over [200, 500); over the runs of the scene's own restitution, the standard
 deviation of the log of that ratio (what the test's bound is measured against); and the ratio of
 the runs with another restitution (flows that should fail the test).
 
-    scripts/steadiness_calibration.py SUMMARIES_DIR    # e.g. data/collisional_steadiness"""
+    python3 -m scripts.studies.steadiness_calibration SUMMARIES_DIR    # e.g. data/collisional_steadiness"""
 import sys
 
 import numpy as np
 
-from postprocess.record import energy_curve      # scripts/postprocess links the package
+from postprocess.record import energy_curve
 from postprocess.summary import read_summaries
 
 EARLY, LATE = (200, 500), (500, 800)

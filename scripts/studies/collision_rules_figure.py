@@ -1,11 +1,10 @@
-#!/usr/bin/python3
 """docs/figures/collision_rules.png: how far the paper's collision rule (a) is from the hard limit
 of its own soft law, rule (b) (plugin/mn_collision.h; docs/hard_spheres.md), over the impact
 angle phi = atan(|v_t| / |v_n|), for equal disks and a disk against the boundary, at the paper's
 e = beta = 0.7, mu = 0.5 (after ./scripts/build.sh: build/plugin/event_driven/mn-collision-rules
 computes the outcomes).
 
-    scripts/collision_rules_figure.py [--output PATH]
+    python3 -m scripts.studies.collision_rules_figure [--output PATH]
 
 Top: the outgoing tangential contact velocity over the impact speed, v_t'/|v|, under rule (a)
 and rule (b) with the literal and the cut-back u_t (the normal outcome, -e v_n or -e_w v_n, is
@@ -20,7 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "build" / "plugin" / "event_driven" / "mn-collision-rules"
 
 
@@ -67,7 +66,7 @@ def main():
                   f"of the impact speed at phi = {phi[worst]:.1f} degrees")
     axes[0, 0].legend(fontsize=8)
     axes[1, 0].legend(fontsize=8)
-    fig.suptitle("Rule (a) against rule (b): e = beta = 0.7, mu = 0.5 (scripts/collision_rules_figure.py)")
+    fig.suptitle("Rule (a) against rule (b): e = beta = 0.7, mu = 0.5 (scripts/studies/collision_rules_figure.py)")
     fig.tight_layout()
     args.output.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(args.output, dpi=110)

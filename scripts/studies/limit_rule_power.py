@@ -1,9 +1,8 @@
-#!/usr/bin/python3
 """How often the hard-sphere-limit rule (postprocess/limit.py, docs/hard_sphere_limit.md)
 reaches each verdict on synthetic runs of known physics: its power and its false verdicts, for
 a seed-to-seed scatter of a given size, a number of selected runs per k_n and a k_n range.
 
-    scripts/limit_rule_power.py [--rule 1|2] [--trials N] [--runs 3 4 6] [--noise 0.05 0.15 0.25]
+    python3 -m scripts.studies.limit_rule_power [--rule 1|2] [--trials N] [--runs 3 4 6] [--noise 0.05 0.15 0.25]
                                 [--kn-powers 4 6 8 10 12 14 16]
 
 k_n = 2^p x 10^5 for the given p (default: the stiff preset's 4 ... 14).
@@ -13,7 +12,7 @@ from collections import Counter
 
 import numpy as np
 
-from postprocess import limit    # scripts/postprocess links the package
+from postprocess import limit
 
 # m_c-like series near the paper preset's values (0.09 at 1.6e6, falling as k_n^-0.2 there);
 # the flat and slowly falling ones like t_w - N_w tau_w (0.2 per bottom-layer disk)

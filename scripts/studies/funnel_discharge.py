@@ -1,17 +1,16 @@
-#!/usr/bin/env python3
 """How many spheres have run out of examples/granregion's funnel, from the log.lammps files of
 in.granregion.funnel.mn and of LAMMPS's in.granregion.funnel with the same count added (thermo
 `v_below`, the spheres below the funnel's bottom z = 0): out = those below plus those gone
 from the box (`lost warn`), against the time since the bottom opened; a figure if asked.
 
-    scripts/funnel_discharge.py LOG [LOG ...] [--opened STEP] [--dt DT] [--figure funnel.png]
+    python3 -m scripts.studies.funnel_discharge LOG [LOG ...] [--opened STEP] [--dt DT] [--figure funnel.png]
 """
 import argparse
 import sys
 
 import numpy as np
 
-import example_runs
+from scripts.studies import example_runs
 
 
 def discharge(path, opened, dt):

@@ -1,9 +1,8 @@
-#!/usr/bin/python3
 """docs/figures/hard_spheres_profiles.png: the collisional flow's density and velocity profiles,
 soft against hard, from the profile.txt of point directories (postprocess's reader; the
 summaries in data/ keep no profiles, so the runs' own directories are read).
 
-    scripts/hard_spheres_profiles.py SOFT_RESULTS HARD_RESULTS [--kn K] [--output PATH]
+    python3 -m scripts.studies.hard_spheres_profiles SOFT_RESULTS HARD_RESULTS [--kn K] [--output PATH]
 
 SOFT_RESULTS, HARD_RESULTS: results directories of scripts/sweep.py (<scene>/<point>/); the
 collisional_flow points at k_n = K (default 1.28e7) of each are averaged over their seeds, bin
@@ -22,7 +21,7 @@ import numpy as np  # noqa: E402
 from postprocess.engines import compare_profiles  # noqa: E402
 from postprocess.io import Point  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def profiles(results, kn):

@@ -1,8 +1,7 @@
-#!/usr/bin/python3
 """What accuracy costs: dt/tau_c x integrator against the error of each observable and the
 wall time per unit of simulated time.
 
-    scripts/accuracy.py [--output results/accuracy] [--quick] [--build build]
+    python3 -m scripts.studies.accuracy [--output results/accuracy] [--quick] [--build build]
 
 For dt/tau_c in {1/10, 1/20, 1/50, 1/100, 1/200} and both integrators it measures: the
 restitution e of a binary collision (against the requested e), the bouncing ball's bounce count,
@@ -10,7 +9,8 @@ the single disk's E and N_w, the collisional flow's E and N_c (against the fines
 same integrator, with the statistical errors of both); and the cost of each point. It writes
 accuracy.md (tables, the cheapest dt and integrator per observable whose error stays inside the
 statistical error, the speed-up over the paper's tau_c/100, the cost's exponent in kn) and
-accuracy.png (error against cost). Resumable: the scene runs go through scripts/sweep.py."""
+accuracy.png (error against cost). Resumable: the scene runs go through the sweep runner
+(python3 -m scripts.sweep)."""
 import argparse
 import json
 import os
@@ -21,11 +21,11 @@ from pathlib import Path
 
 import numpy as np
 
-from postprocess.study import analyse, fit_power    # scripts/postprocess links the package
-from granmn_sweep import SweepError
-from granmn_sweep.points import check_output
+from postprocess.study import analyse, fit_power
+from scripts.granmn_sweep import SweepError
+from scripts.granmn_sweep.points import check_output
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 FRACTIONS = [0.1, 0.05, 0.02, 0.01, 0.005]
 INTEGRATORS = ["verlet", "ab2"]
@@ -79,8 +79,9 @@ def scene_sweep(build, output, quick):
               f"run_time = {50 if quick else 150}", f"average_start = {15 if quick else 50}",
               "dt_fraction = 0.01", 'integrator = "verlet"']
     config.write_text("\n".join(lines) + "\n")
-    subprocess.run([sys.executable, str(ROOT / "scripts" / "sweep.py"), str(config),
-                    "--output", str(output / "runs"), "--build", str(build)], check=True, env=ENV)
+    subprocess.run([sys.executable, "-m", "scripts.sweep", str(config.resolve()),
+                    "--output", str((output / "runs").resolve()), "--build", str(build.resolve())],
+                   check=True, env=ENV, cwd=ROOT)
     scenes, left_out, _, _ = analyse(output / "runs")
     for point, reason in left_out:
         print(f"left out {point}: {reason}")
@@ -116,7 +117,7 @@ def main():
     scenes = scene_sweep(args.build, args.output, args.quick)
 
     md = ["# What accuracy costs", "",
-          "Written by `scripts/accuracy.py`. Errors: e against the requested 0.7; bounces, E, N_w, "
+          "Written by `python3 -m scripts.studies.accuracy`. Errors: e against the requested 0.7; bounces, E, N_w, "
           "N_c against the finest run (dt = tau_c/200) of the same integrator; ± is the "
           "statistical error of the difference (block errors of both runs).", "",
           "## Binary collision and bouncing ball (kn = 2e5)", "",

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """The dynamic angle of repose of examples/drum's turning drums, from their log.lammps files:
 the tilt of the pile's centre of mass from below the axis, atan(-x_cm / -z_cm), which for a
 half-filled drum with a flat surface is the surface's angle. Averaged from a quarter turn
@@ -6,14 +5,14 @@ after the drum starts (the pile has reached its steady tilt) to the end, with th
 error over four consecutive blocks (the angle swings with the avalanches, so single samples
 are not independent); a figure of the angle against time if asked.
 
-    scripts/drum_repose.py LOG [LOG ...] [--omega 0.1] [--start 20] [--figure drum.png]
+    python3 -m scripts.studies.drum_repose LOG [LOG ...] [--omega 0.1] [--start 20] [--figure drum.png]
 """
 import argparse
 import sys
 
 import numpy as np
 
-import example_runs
+from scripts.studies import example_runs
 
 BLOCKS = 4
 
