@@ -1,5 +1,6 @@
 """Figures of a study (matplotlib, Agg): the paper's panels as PNG files."""
 import textwrap
+from pathlib import Path
 
 import matplotlib
 
@@ -13,6 +14,15 @@ from .quantities import TABLE  # noqa: E402
 from .scenes import scene as scene_of  # noqa: E402
 from .selection import Selection, select_steady, window_means  # noqa: E402
 from .study import series  # noqa: E402
+
+
+def save_figure(fig, path, dpi=100):
+    """Lays out, writes (making its folder) and closes a figure; the path written."""
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    return path
 
 
 def _errorbar(ax, quantity, rows, label, x=None, **style):

@@ -19,6 +19,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from postprocess.figures import save_figure  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "build" / "plugin" / "event_driven" / "mn-collision-rules"
 
@@ -67,10 +69,7 @@ def main():
     axes[0, 0].legend(fontsize=8)
     axes[1, 0].legend(fontsize=8)
     fig.suptitle("Rule (a) against rule (b): e = beta = 0.7, mu = 0.5 (scripts/studies/collision_rules_figure.py)")
-    fig.tight_layout()
-    args.output.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(args.output, dpi=110)
-    print(f"figure: {args.output}")
+    print(f"figure: {save_figure(fig, args.output, dpi=110)}")
 
 
 if __name__ == "__main__":

@@ -42,13 +42,10 @@ def axes(size=(6, 3.5)):
 
 def save(fig, ax, path):
     """Legend, grid and layout, then the file; says where it went."""
-    import matplotlib.pyplot as plt
+    from postprocess.figures import save_figure
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3, which="both")
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    print(f"figure: {path}")
+    print(f"figure: {save_figure(fig, path)}")
 
 
 def curves_figure(path, curves, xlabel, ylabel, title, log_y=False):

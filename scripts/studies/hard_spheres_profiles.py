@@ -19,6 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from postprocess.engines import compare_profiles  # noqa: E402
+from postprocess.figures import save_figure  # noqa: E402
 from postprocess.io import Point  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -75,10 +76,7 @@ def main():
     axes[0].legend(fontsize=8)
     fig.suptitle(f"Collisional flow at k_n = {args.kn:g}: profiles over t = 200-700, "
                  "mean over seeds with 2 standard errors")
-    fig.tight_layout()
-    args.output.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(args.output, dpi=110)
-    print(f"figure: {args.output}")
+    print(f"figure: {save_figure(fig, args.output, dpi=110)}")
 
 
 if __name__ == "__main__":
