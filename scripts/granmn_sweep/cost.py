@@ -32,17 +32,22 @@ class Size(NamedTuple):
     atoms: int
 
 
-def ask_deck(point, paths):
-    """What a point's deck answers to -var dry_run yes (decks.dry_run: dt, atoms, tau_c,
-    run_time), run by the point's engine; an event-driven point's start is made by its LAMMPS
-    deck, which takes the point's variables but the engine's own."""
+def deck_question(point, paths):
+    """(executable, deck, variables) of a point's dry run: its engine's, of its scene; an
+    event-driven point's start is made by its LAMMPS deck, which takes the point's variables but
+    the engine's own."""
     variables = deck_variables(point, paths["plugin"])
     if engine(point) == "event_driven":
         variables = {name: value for name, value in variables.items()
                      if name not in event_driven.VARIABLES}
     executable = paths["lammps" if engine(point) == "event_driven" else engine(point)]
-    return dry_run(executable, point_deck(point), variables,
-                   f"{point['scene']}/{point_name(point)}")
+    return executable, point_deck(point), variables
+
+
+def ask_deck(point, paths):
+    """What a point's deck answers to -var dry_run yes (decks.dry_run: dt, atoms, tau_c,
+    run_time)."""
+    return dry_run(*deck_question(point, paths), f"{point['scene']}/{point_name(point)}")
 
 
 def predicted_steps(point, answer):
@@ -65,9 +70,9 @@ def point_sizes(points, paths, jobs):
     """[Size] of the points, each from its deck's dry run (ask_deck): one dry run for the points
     that differ in START_DRAW alone, `jobs` at a time."""
     def key(point):
-        return engine(point), tuple(sorted((name, value) for name, value in
-                                           deck_variables(point, paths["plugin"]).items()
-                                           if name != START_DRAW))
+        executable, deck, variables = deck_question(point, paths)
+        return executable, deck, tuple(sorted((name, value) for name, value in
+                                              variables.items() if name != START_DRAW))
     asked = {}
     for point in points:
         asked.setdefault(key(point), point)

@@ -276,7 +276,7 @@ BAD_CONFIGS = {
     "stiffness not a number": ('[[grid]]\nscene = "single_disk"\nkn = "soft"\n',
                                "kn = 'soft' is not a number"),
     "zero time step": ('[[grid]]\nscene = "single_disk"\ndt_fraction = 0\n',
-                       "dt_fraction = 0 must be > 0"),
+                       "ERROR: deck variable dt_fraction = 0 must lie in (0,0.5]"),
     "negative run time": ('[[grid]]\nscene = "single_disk"\nrun_time = -5\n',
                           "run_time = -5 must be > 0"),
     "table value": ('[[grid]]\nscene = "single_disk"\n[grid.kn]\na = 1\n',
@@ -290,7 +290,11 @@ BAD_CONFIGS = {
     "name not a word": ('name = 5\n[[grid]]\nscene = "single_disk"\n', "name = 5 must be a word"),
     "grid not tables": ('grid = [1, 2]\n', "grid must be a list of tables"),
     "stiffness without a finite step": ('[[grid]]\nscene = "single_disk"\nkn = 1e308\n',
-                                        "give no finite number of steps"),
+                                        "kn is too large: the derived coefficients (tau_c, "
+                                        "eta_n, kt) overflow"),
+    "a step too short for a finite number of steps": (
+        '[[grid]]\nscene = "single_disk"\ndt_cap = 1e-300\n',
+        "run_time = 200 give no finite number of steps"),
     "a word for a number": ('[[grid]]\nscene = "frictional_flow"\nrow_spacing = "wide"\n',
                             "row_spacing = 'wide' is not a number"),
     # single_disk has no random start: three seeds would be three copies of one run, averaged
@@ -410,16 +414,24 @@ def single_disk_config(tmp_path, text):
     return config
 
 
+# a point whose deck quits past its dry run (inputs/lib/outputs.lmp: more snapshot steps than
+# LAMMPS counts), its sibling, and the deck's ERROR line
+QUITS = "run_time = 1\naverage_start = 0.5\nsnapshot_interval = [10, 1e12]\n"
+QUIT_POINT = "average_start0.5_run_time1_snapshot_interval1e+12"
+QUIT_SIBLING = "average_start0.5_run_time1_snapshot_interval10"
+QUIT_ERROR = "ERROR: deck variable snapshot_interval = 1e+12 is more than 2^31 - 1 steps of dt"
+
+
 def test_failed_point_records_its_error_and_the_sweep_goes_on(tmp_path):
     """The deck's checks print their ERROR into log.lammps (lmp runs with -screen none):
     failed.txt must carry it, not an empty output."""
-    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = [0.5, 5]\n")
+    config = single_disk_config(tmp_path, QUITS)
     proc = sweep(config, tmp_path / "out", check=False)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     points = tmp_path / "out" / "single_disk"
-    failed = (points / "average_start5_run_time1" / "failed.txt").read_text()
-    assert "ERROR: deck variable average_start = 5 must lie in [0, run_time = 1)" in failed
-    assert (points / "average_start0.5_run_time1" / "done.txt").exists()
+    failed = (points / QUIT_POINT / "failed.txt").read_text()
+    assert QUIT_ERROR in failed
+    assert (points / QUIT_SIBLING / "done.txt").exists()
 
 
 @needs_mpi
@@ -427,31 +439,35 @@ def test_partition_that_quits_is_a_failed_point_and_its_sibling_is_done(tmp_path
     """A deck check's `quit 1` in one partition leaves mpirun waiting for ever (that partition
     is in MPI_Finalize, its sibling in MPI_Barrier): the runner must end the batch, record the
     failure, keep the sibling's result and leave no process behind."""
-    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = [0.5, 5]\n")
+    config = single_disk_config(tmp_path, QUITS)
     output = tmp_path / "out"
     proc = sweep(config, output, "--partitions", "2", check=False, timeout=120)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     points = output / "single_disk"
-    failed = (points / "average_start5_run_time1" / "failed.txt").read_text()
-    assert "ERROR: deck variable average_start = 5 must lie in [0, run_time = 1)" in failed
-    assert (points / "average_start0.5_run_time1" / "done.txt").exists()
+    failed = (points / QUIT_POINT / "failed.txt").read_text()
+    assert QUIT_ERROR in failed
+    assert (points / QUIT_SIBLING / "done.txt").exists()
     assert not processes_mentioning(output)
 
 
 @needs_mpi
 def test_partition_error_reruns_its_healthy_sibling(tmp_path):
     """A LAMMPS ERROR in one partition aborts the whole mpirun (MPI_Abort): the sibling it took
-    down did not fail, and is run again, with a word."""
-    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\nmu = [0.5, -1]\n")
+    down did not fail, and is run again, with a word. The ERROR: a stiffness too soft to hold
+    the disk, which passes through a bump during the run (its dry run is sound)."""
+    # the sibling runs ten times as long: the ERROR, a tenth of the way, takes it down
+    config = single_disk_config(tmp_path, 'run_time = 2\naverage_start = 0.5\nkn = 0.001\n'
+                                          '[[grid]]\nscene = "single_disk"\nrun_time = 20\n'
+                                          'average_start = 0.5\n')
     output = tmp_path / "out"
     proc = sweep(config, output, "--partitions", "2", check=False, timeout=120)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     points = output / "single_disk"
-    failed = (points / "average_start0.5_mu-1_run_time1" / "failed.txt").read_text()
-    assert "mu must be a finite number >= 0" in failed
-    healthy = points / "average_start0.5_mu0.5_run_time1"
+    failed = (points / "average_start0.5_kn0.001_run_time2" / "failed.txt").read_text()
+    assert "have passed through each other" in failed
+    healthy = points / "average_start0.5_run_time20"
     assert (healthy / "done.txt").exists() and not (healthy / "failed.txt").exists()
-    assert re.search(r"rerun single_disk/average_start0.5_mu0.5_run_time1: .*mu-1", proc.stdout)
+    assert re.search(r"rerun single_disk/average_start0.5_run_time20: .*kn0.001", proc.stdout)
     assert not processes_mentioning(output)
 
 
