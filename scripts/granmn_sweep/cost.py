@@ -60,9 +60,9 @@ def predicted_steps(point, answer):
     dt = answer["dt"]
     steps = answer["run_time"] / dt if dt > 0 else math.inf
     if not (math.isfinite(steps) and steps < 2 ** 62):
-        raise SweepError(f"{point['scene']} point: kn = {point.get('kn')!r}, run_time = "
-                         f"{answer['run_time']:g} give no finite number of steps "
-                         f"(tau_c = {answer['tau_c']:g})")
+        raise SweepError(f"{point['scene']}/{point_name(point)}: run_time = "
+                         f"{answer['run_time']:g} over its time step dt = {dt:g} (tau_c = "
+                         f"{answer['tau_c']:g}) gives no finite number of steps")
     return math.ceil(steps)
 
 

@@ -294,7 +294,7 @@ BAD_CONFIGS = {
                                         "eta_n, kt) overflow"),
     "a step too short for a finite number of steps": (
         '[[grid]]\nscene = "single_disk"\ndt_cap = 1e-300\n',
-        "run_time = 200 give no finite number of steps"),
+        "run_time = 200 over its time step dt = 1e-300"),
     "a word for a number": ('[[grid]]\nscene = "frictional_flow"\nrow_spacing = "wide"\n',
                             "row_spacing = 'wide' is not a number"),
     # single_disk has no random start: three seeds would be three copies of one run, averaged
