@@ -89,7 +89,7 @@ from pathlib import Path
 from . import SweepError
 from . import processes
 from .config import expand, load_config, point_name, with_settings
-from .cost import CostModel, format_seconds, predicted_steps
+from .cost import CostModel, format_seconds, point_sizes
 from .decks import ROOT, engine
 from .points import check_names, check_output, check_path, foreign, lock_output, \
     unlock_output
@@ -152,7 +152,8 @@ def main(argv=None):
                              "[defaults] (replacing its value there; a grid may not set it); "
                              "repeatable")
     parser.add_argument("--dry-run", action="store_true",
-                        help="list the points and the predicted cost, run nothing")
+                        help="list the points and the predicted cost (each deck asked for its "
+                             "time step and atoms: -var dry_run yes), run no point")
     parser.add_argument("--build", type=Path, default=ROOT / "build")
     parser.add_argument("--done-in", type=Path, action="append", default=[], metavar="DIR",
                         help="run summaries (`python3 -m postprocess summarize --to DIR`): a "
@@ -174,7 +175,6 @@ def main(argv=None):
              "liggghts": args.build / "plugin" / "liggghts" / "build" / "liggghts",
              "event_driven": args.build / "plugin" / "event_driven" / "mn-event-driven",
              "plugin": args.build / "plugin" / "granmnplugin.so",
-             "mn_law": args.build / "plugin" / "mn-law",
              "mpiexec": shutil.which("mpirun") or "mpirun"}
     try:
         if not (ROOT / "inputs").is_dir():
@@ -200,7 +200,7 @@ def main(argv=None):
                              "its points")
         # an event-driven point's start is made by its LAMMPS deck
         needs_lammps = {"lammps", "plugin"} if engines & {"lammps", "event_driven"} else set()
-        for key in sorted(engines | {"mn_law"} | needs_lammps):
+        for key in sorted(engines | needs_lammps):
             if not paths[key].exists():
                 raise SweepError(f"{paths[key]} is missing: run ./scripts/build.sh first")
         if (args.partitions or args.ranks > 1) and serial_build(args.build):
@@ -209,13 +209,14 @@ def main(argv=None):
                              "GRANMN_MPI=OFF, LAMMPS's STUBS MPI): each rank would run the whole "
                              "point on its own; run the points as processes (--jobs), or build "
                              "with MPI (scripts/build.sh without --serial)")
-        steps = [predicted_steps(p, paths["mn_law"]) for p in points]
+        # each point's steps and atoms, as its deck says them (cost.point_sizes)
+        sizes = point_sizes(points, paths, args.jobs)
     except SweepError as error:
         print(f"sweep: {error}", file=sys.stderr)
         return 2
 
     model = CostModel()
-    plan = [(p, output / p["scene"] / point_name(p), s) for p, s in zip(points, steps)]
+    plan = [(p, output / p["scene"] / point_name(p), s) for p, s in zip(points, sizes)]
     try:
         summarized = summarized_points(args.done_in, plan)
     except SweepError as error:
@@ -249,7 +250,7 @@ def main(argv=None):
         for p, d, s in plan:
             state = "done" if completed(d) else "summarized" if d in summarized else "todo"
             print(f"  {state} {d.relative_to(output)} "
-                  f"{s} steps ~{format_seconds(model.predict(p, s))}")
+                  f"{s.steps} steps ~{format_seconds(model.predict(p, s))}")
         return 0
 
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")

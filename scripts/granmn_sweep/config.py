@@ -7,13 +7,22 @@ from itertools import product
 from pathlib import Path
 
 from . import SweepError, event_driven
-from .decks import ENGINES, RESERVED, deck_defaults, deck_uses, engine, point_deck, \
+from .decks import ENGINES, LIB, RESERVED, deck_defaults, deck_uses, engine, point_deck, \
     scenes, where
 
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 # The keys of a point that the runner reads itself, not a deck: which deck (the scene, of the
 # engine) runs it. Both are part of the point's name.
 RUNNER_KEYS = {"scene", "engine"}
+
+
+def deck_variables(point, plugin):
+    """The variables a point's deck gets, each as format_value spells it: the point's own (its
+    scene and engine apart), and from the runner the plugin and the decks' library; a run adds
+    its own (out, run_token, a resume's)."""
+    variables = {name: value for name, value in point.items() if name not in RUNNER_KEYS}
+    variables.update(plugin=plugin, lib=LIB)
+    return {name: format_value(value) for name, value in variables.items()}
 
 
 def load_config(path):

@@ -1,13 +1,13 @@
-"""The cost model: a point's steps (the law's tau_c through build/plugin/mn-law; of an
-event-driven point, its events) and its predicted CPU seconds on one core, rescaled as points
+"""The cost model: a point's size as its deck says it (its steps and atoms; of an event-driven
+point, its guessed events) and its predicted CPU seconds on one core, rescaled as points
 finish."""
-import functools
+import concurrent.futures
 import math
+from typing import NamedTuple
 
-from . import SweepError
-from .decks import deck_defaults, engine, formula_value, point_deck, scene_atoms, \
-    scene_dimension, time_step_formula, where
-from .mn_law import LawError, derived
+from . import SweepError, event_driven
+from .config import deck_variables, point_name
+from .decks import dry_run, engine, point_deck, scene_dimension
 
 # Seconds per step by the scene's dimension: a fixed part and a part per atom; refined as points
 # finish. 3D: the dense chute's CPU seconds per atom-step, measured (docs/scenes.md): 9.9e-8 at
@@ -20,85 +20,83 @@ STEP_COST = {2: (4e-7, 4e-8), 3: (4e-7, 6e-8)}
 # disks (bench/event_driven.py, docs/hard_spheres.md).
 EVENTS_PER_ATOM_TIME = 1e2
 EVENT_COST = 2e-6
+# The variable that draws a start's sizes and heights in the decks: it changes neither how many
+# atoms a deck makes nor its law, so the points that differ in it alone take one dry run
+# (tests/lammps/test_sweep.py holds each scene to it)
+START_DRAW = "seed"
 
 
-@functools.lru_cache(maxsize=None)
-def law(mn_law, kn, e, beta, shape):
-    """The law's derived numbers, once per material and shape: a grid of many points has few,
-    and each evaluation starts mn-law."""
-    try:
-        return derived(mn_law, kn, e, beta, shape)
-    except LawError as error:
-        raise SweepError(str(error))
+class Size(NamedTuple):
+    """A point's size: its steps (of an event-driven point, its events) and its atoms."""
+    steps: int
+    atoms: int
 
 
-def positive(point, name):
-    """A variable of a point (the deck's default where the point sets none) that must be a
-    number > 0 (expand() made sure it is a number; the deck checks the rest)."""
-    value = point.get(name, deck_defaults(point_deck(point)).get(name))
-    number = float(value)
-    if not (number > 0 and math.isfinite(number)):
-        raise SweepError(f"{point['scene']} point: {name} = {value!r} must be > 0")
-    return number
-
-
-def law_numbers(point, mn_law):
-    """mn-law's numbers of a point's material, as pair_style gran/mn derives them in its scene:
-    of discs in 2D, of spheres in 3D."""
-    return law(mn_law, positive(point, "kn"), positive(point, "e"), positive(point, "beta"),
-               "sphere" if scene_dimension(point_deck(point)) == 3 else "disc")
-
-
-def time_step(point, mn_law):
-    """A point's time step as its deck computes it (decks.time_step_formula): a formula of the
-    point's variables and of the numbers pair_style gran/mn publishes (v_mn_tau_c: mn-law's
-    tau_c)."""
-    deck = point_deck(point)
-    numbers = law_numbers(point, mn_law)
-
-    def value(name):
-        if not name.startswith("mn_") and name in {**deck_defaults(deck), **point}:
-            return positive(point, name)
-        if not name.startswith("mn_"):
-            raise SweepError(f"{where(deck)}: its time step reads v_{name}, which is no "
-                             "variable a point sets (-var) nor a number of pair_style gran/mn")
-        if name[3:] not in numbers:
-            raise SweepError(f"{where(deck)}: its time step reads v_{name}, which "
-                             f"mn-law does not give ({', '.join(sorted(numbers))})")
-        return numbers[name[3:]]
-    return formula_value(time_step_formula(deck), value, f"{where(deck)}: timestep")
-
-
-def predicted_steps(point, mn_law):
-    """Steps of a point: run_time over its time step; of an event-driven point, its guessed
-    events (EVENTS_PER_ATOM_TIME), at most its events cap."""
+def deck_question(point, paths):
+    """(executable, deck, variables) of a point's dry run: its engine's, of its scene; an
+    event-driven point's start is made by its LAMMPS deck, which takes the point's variables but
+    the engine's own."""
+    variables = deck_variables(point, paths["plugin"])
     if engine(point) == "event_driven":
-        events = positive(point, "run_time") * scene_atoms(point) * EVENTS_PER_ATOM_TIME
+        variables = {name: value for name, value in variables.items()
+                     if name not in event_driven.VARIABLES}
+    executable = paths["lammps" if engine(point) == "event_driven" else engine(point)]
+    return executable, point_deck(point), variables
+
+
+def ask_deck(point, paths):
+    """What a point's deck answers to -var dry_run yes (decks.dry_run: dt, atoms, tau_c,
+    run_time)."""
+    return dry_run(*deck_question(point, paths), f"{point['scene']}/{point_name(point)}")
+
+
+def predicted_steps(point, answer):
+    """Steps of a point: run_time over the time step its deck answered; of an event-driven
+    point, its guessed events (EVENTS_PER_ATOM_TIME), at most its events cap."""
+    if engine(point) == "event_driven":
+        events = answer["run_time"] * answer["atoms"] * EVENTS_PER_ATOM_TIME
         cap = float(point.get("events", 0))
         return math.ceil(min(events, cap) if cap > 0 else events)
-    dt = time_step(point, mn_law)
-    steps = positive(point, "run_time") / dt if dt > 0 else math.inf
+    dt = answer["dt"]
+    steps = answer["run_time"] / dt if dt > 0 else math.inf
     if not (math.isfinite(steps) and steps < 2 ** 62):
-        raise SweepError(f"{point['scene']} point: kn = {point.get('kn')!r}, run_time = "
-                         f"{point.get('run_time')!r} give no finite number of steps "
-                         f"(tau_c = {law_numbers(point, mn_law)['tau_c']:g})")
+        raise SweepError(f"{point['scene']}/{point_name(point)}: run_time = "
+                         f"{answer['run_time']:g} over its time step dt = {dt:g} (tau_c = "
+                         f"{answer['tau_c']:g}) gives no finite number of steps")
     return math.ceil(steps)
 
 
+def point_sizes(points, paths, jobs):
+    """[Size] of the points, each from its deck's dry run (ask_deck): one dry run for the points
+    that differ in START_DRAW alone, `jobs` at a time."""
+    def key(point):
+        executable, deck, variables = deck_question(point, paths)
+        return executable, deck, tuple(sorted((name, value) for name, value in
+                                              variables.items() if name != START_DRAW))
+    asked = {}
+    for point in points:
+        asked.setdefault(key(point), point)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        answers = dict(zip(asked, pool.map(lambda point: ask_deck(point, paths),
+                                           asked.values())))
+    return [Size(predicted_steps(point, answers[key(point)]), int(answers[key(point)]["atoms"]))
+            for point in points]
+
+
 class CostModel:
-    """Seconds of a point = steps * (c0 + c1 * atoms) * factor (atoms: decks.scene_atoms), of an
+    """Seconds of a point of Size `size` = steps * (c0 + c1 * atoms) * factor, of an
     event-driven point events * EVENT_COST * factor; the factor, one per engine, learnt from
     the points run."""
 
     def __init__(self):
         self.factor, self.samples = {}, {}
 
-    def predict(self, point, steps):
+    def predict(self, point, size):
         factor = self.factor.get(engine(point), 1.0)
         if engine(point) == "event_driven":
-            return steps * EVENT_COST * factor
+            return size.steps * EVENT_COST * factor
         fixed, per_atom = STEP_COST[scene_dimension(point_deck(point))]
-        return steps * (fixed + per_atom * scene_atoms(point)) * factor
+        return size.steps * (fixed + per_atom * size.atoms) * factor
 
     def learn(self, point, predicted, measured):
         name = engine(point)

@@ -1,10 +1,10 @@
 """What the runner reads from the scene decks (inputs/*.lmp, LIGGGHTS's inputs/liggghts/*.lmp,
 and the inputs/lib/ files they include): the scenes, the variables a deck takes and those it
-uses, its dimension, the atoms it makes, its time step's formula; the value of such a formula."""
-import ast
+uses, its dimension; and what a deck answers when asked (dry_run: its time step and atoms)."""
 import functools
-import operator
 import re
+import subprocess
+import tempfile
 from pathlib import Path
 
 from . import SweepError
@@ -44,12 +44,11 @@ def scenes(engine_name="lammps"):
 
 
 # Deck variables the runner sets itself for every point.
-RESERVED = {"plugin", "lib", "out", "run_token", "resume", "resume_step", "write_start"}
-# The operators of the decks' formulas that formula_value() reads; a comparison is 1 or 0.
-ARITHMETIC = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
-              ast.Div: operator.truediv}
-COMPARISONS = {ast.Lt: operator.lt, ast.LtE: operator.le, ast.Gt: operator.gt,
-               ast.GtE: operator.ge, ast.Eq: operator.eq, ast.NotEq: operator.ne}
+RESERVED = {"plugin", "lib", "out", "run_token", "resume", "resume_step", "write_start",
+            "dry_run"}
+# The line a deck prints under -var dry_run yes (inputs/lib/time_step.lmp), NAME VALUE pairs
+# after it
+DRY_RUN = "granmn dry run:"
 
 
 @functools.lru_cache(maxsize=None)
@@ -99,74 +98,29 @@ def deck_uses(deck):
     return uses
 
 
-def equal_formula(commands, name, where):
-    """The formula of `variable NAME equal FORMULA` (one such command among `commands`)."""
-    found = [re.match(rf"variable {name} equal (.+)", command) for command in commands]
-    found = [match.group(1).strip() for match in found if match]
-    if len(found) != 1:
-        raise SweepError(f"{where}: {len(found)} commands `variable {name} equal ...` (the "
-                         "runner reads one)")
-    return found[0][1:-1] if found[0][:1] == found[0][-1:] == '"' else found[0]
-
-
-@functools.lru_cache(maxsize=None)
-def time_step_formula(deck):
-    """The formula of a scene deck's time step: of its one `timestep` command (in
-    inputs/lib/time_step.lmp), the value, $(FORMULA), or ${NAME} of `variable NAME equal`."""
-    commands = deck_commands(deck)
-    steps = [command.split(None, 1)[1] for command in commands
-             if command.startswith("timestep ")]
-    if len(steps) != 1:
-        raise SweepError(f"{where(deck)}: {len(steps)} timestep commands (the runner reads one)")
-    named = re.fullmatch(r"\$\{(\w+)\}", steps[0])
-    if named:
-        return equal_formula(commands, named.group(1), where(deck))
-    immediate = re.fullmatch(r"\$\((.+)\)", steps[0])
-    return immediate.group(1) if immediate else steps[0]
-
-
-@functools.lru_cache(maxsize=None)
-def scene_atoms_formula(deck):
-    """The formula of the atoms a scene deck makes, its `variable scene_atoms equal`."""
-    return equal_formula(deck_commands(deck), "scene_atoms", where(deck))
-
-
-def scene_atoms(point):
-    """The atoms a point's scene makes (bumps and base included), of the point's variables and
-    the deck's defaults: its deck's scene_atoms, which the deck checks against the atoms it has
-    made (inputs/lib/dynamics.lmp)."""
-    deck = point_deck(point)
-    at = f"{where(deck)}: scene_atoms"
-    values = {**deck_defaults(deck), **point}
-
-    def value(name):
+def dry_run(executable, deck, variables, what):
+    """{name: value} a deck prints under -var dry_run yes (inputs/lib/time_step.lmp: dt, atoms,
+    tau_c, run_time), as `executable` (lmp, or LIGGGHTS) makes them of `variables` ({name: value
+    as the deck gets it}): it runs the deck in a directory of its own, where the deck ends
+    before anything has run or is written. The line decides, not the exit status: LIGGGHTS 3.8
+    ends every `quit` with status 1. Refused, naming `what` (the point) and the deck's ERROR
+    line: a point the deck refuses."""
+    with tempfile.TemporaryDirectory(prefix="granmn-dry-run-") as directory:
+        command = [str(executable), "-in", str(deck), "-log", "none", "-nocite"]
+        for name, value in {**variables, "out": directory, "dry_run": "yes"}.items():
+            command += ["-var", name, str(value)]
         try:
-            return float(values[name])
-        except (KeyError, ValueError):
-            raise SweepError(f"{at}: v_{name} is no number a point sets or the deck defaults")
-    return formula_value(scene_atoms_formula(deck), value, at)
-
-
-def formula_value(formula, value, where):
-    """The value of a deck's formula as LAMMPS computes it, in doubles: numbers, the variables
-    v_NAME (value(NAME)), + - * /, a comparison (1 or 0), parentheses; anything else is
-    refused, by name, rather than read otherwise than LAMMPS reads it."""
-    def evaluate(node):
-        if isinstance(node, ast.Constant) and type(node.value) in (int, float):
-            return float(node.value)
-        if isinstance(node, ast.Name) and node.id.startswith("v_"):
-            return value(node.id[2:])
-        if isinstance(node, ast.BinOp) and type(node.op) in ARITHMETIC:
-            return ARITHMETIC[type(node.op)](evaluate(node.left), evaluate(node.right))
-        if isinstance(node, ast.Compare) and len(node.ops) == 1 and \
-                type(node.ops[0]) in COMPARISONS:
-            return float(COMPARISONS[type(node.ops[0])](evaluate(node.left),
-                                                        evaluate(node.comparators[0])))
-        raise SweepError(f"{where}: the runner reads no {ast.unparse(node)!r} in the formula "
-                         f"{formula!r} (it reads numbers, v_NAME, + - * /, a comparison, "
-                         "parentheses)")
-    try:
-        tree = ast.parse(formula, mode="eval")
-    except SyntaxError:
-        raise SweepError(f"{where}: the runner cannot read the formula {formula!r}")
-    return evaluate(tree.body)
+            ran = subprocess.run(command, cwd=directory, stdin=subprocess.DEVNULL,
+                                 capture_output=True, text=True, errors="replace")
+        except OSError as error:
+            raise SweepError(f"{what}: {executable} cannot be run: {error.strerror}")
+    lines = (ran.stdout + ran.stderr).splitlines()
+    for line in lines:
+        if line.startswith(DRY_RUN):
+            words = line[len(DRY_RUN):].split()
+            return {name: float(value) for name, value in zip(words[::2], words[1::2])}
+    errors = [line for line in lines if line.startswith("ERROR")]
+    said = errors[0] if errors else \
+        f"no ERROR line (exit status {ran.returncode}; it ended with: {' | '.join(lines[-3:])})"
+    raise SweepError(f"{what}: {where(deck)} refuses it in its dry run (-var dry_run yes): "
+                     f"{said}")

@@ -9,18 +9,16 @@ import sys
 
 from . import SweepError
 from . import processes
-from .config import RUNNER_KEYS, format_value
+from .config import deck_variables, format_value
 from .cost import format_seconds
-from .decks import LIB, ROOT, engine, point_deck
+from .decks import ROOT, engine, point_deck
 from .points import cpu_seconds, error_lines, failed_to_start, finish, \
     resume_or_prepare, set_aside_failed_resume, wrote_done
 from .mpirun_slots import slots_problem
 
 
 def point_variables(point, directory, paths, token):
-    variables = {k: v for k, v in point.items() if k not in RUNNER_KEYS}
-    variables.update(plugin=paths["plugin"], lib=LIB, out=directory, run_token=token)
-    return variables
+    return {**deck_variables(point, paths["plugin"]), "out": directory, "run_token": token}
 
 
 def run_serial(point, directory, paths, env, ranks, extra, notes):
@@ -169,7 +167,7 @@ def check_slots(mpiexec, slots, env, asked):
 
 def run_points(plan, todo, output, paths, env, jobs, partitions, ranks, extra, model,
                processes_at_once):
-    """Runs the points to do (todo: [(point, directory, predicted steps)] of the sweep's plan)
+    """Runs the points to do (todo: [(point, directory, cost.Size)] of the sweep's plan)
     as serial runs, `jobs` at a time, or `partitions` at a time as one mpirun's partitions,
     `ranks` ranks each, with a line per point that ends (the ETA: what the cost model predicts
     for the points left, over processes_at_once); the exit status (cli's docstring), with the

@@ -18,7 +18,7 @@ from test_sweep import (BUILD, ROOT, SWEEP, kill_processes_mentioning, kill_sess
                         processes_mentioning, signal_all, sweep, wait_for)
 
 from scripts.granmn_sweep import checkpoints
-from granmn_run import PLUGIN, SERIAL, SERIAL_REASON, run_lammps
+from granmn_run import LMP, PLUGIN, SERIAL, SERIAL_REASON, run_lammps
 
 # A contact-rich stretch: the frictional pile falls and flows (friction, multiple contacts,
 # the floor wall); the single disk bounces over its bumps. Checkpoints every 2 time units, the
@@ -248,16 +248,25 @@ def test_a_point_whose_fresh_start_fails_too_keeps_its_run(tmp_path):
     and read_restart meets an unknown pair style), every resume fails and so does the fresh
     start: the run so far must not be lost with the checkpoints it blamed. It is kept aside,
     failed.txt says where and what to do, and once the build is mended and the run put back,
-    the point resumes to the uninterrupted run's outputs."""
+    the point resumes to the uninterrupted run's outputs. (A plugin at fault in the decks' dry
+    runs too has the sweep refused before anything runs: here the runs alone get the broken
+    one, through an lmp that swaps it in.)"""
     config = write_config(tmp_path, "single_disk")
     sweep(config, tmp_path / "whole", "--jobs", "1")
     directory, _ = kill_mid_chunk(config, tmp_path / "killed")
     broken = tmp_path / "broken"
     (broken / "plugin").mkdir(parents=True)
     (broken / "lammps").mkdir()
-    (broken / "lammps" / "lmp").symlink_to(BUILD / "lammps" / "lmp")
-    (broken / "plugin" / "mn-law").symlink_to(BUILD / "plugin" / "mn-law")
     (broken / "plugin" / "granmnplugin.so").write_text("not a library\n")
+    lmp = Path(LMP).resolve()
+    (broken / "lammps" / "lmp").write_text(
+        f"#!{sys.executable}\nimport os, sys\nwords = sys.argv[1:]\n"
+        "if 'dry_run' not in words:\n"
+        f"    words[words.index('plugin') + 1] = {str(broken / 'plugin' / 'granmnplugin.so')!r}\n"
+        "else:\n"
+        f"    words[words.index('plugin') + 1] = {str(Path(PLUGIN).resolve())!r}\n"
+        f"os.execv({str(lmp)!r}, [{str(lmp)!r}] + words)\n")
+    (broken / "lammps" / "lmp").chmod(0o755)
     proc = subprocess.run(SWEEP + [str(config), "--output", str(tmp_path / "killed"), "--build",
                                    str(broken), "--jobs", "1"], cwd=ROOT, capture_output=True,
                           text=True, timeout=120)
@@ -283,11 +292,13 @@ def test_failed_txt_says_how_the_run_began_and_what_to_do(tmp_path):
     """failed.txt gave the exit status and the ERROR alone: whether the run had resumed, and
     what to do about it, were left to guess."""
     config = write_config(tmp_path, "single_disk")
-    config.write_text(config.read_text().replace("average_start = 5", "average_start = 50"))
+    # a deck check past the dry run's end (inputs/lib/outputs.lmp): it fails the run
+    config.write_text(config.read_text().replace("average_start = 5",
+                                                 "average_start = 5\nsnapshot_interval = 1e12"))
     proc = sweep(config, tmp_path / "out", "--jobs", "1", check=False)
     assert proc.returncode == 1
     failed = (point_dir(tmp_path / "out") / "failed.txt").read_text()
-    assert "ERROR: deck variable average_start = 50 must lie in [0, run_time = 40)" in failed
+    assert "ERROR: deck variable snapshot_interval = 1e+12 is more than 2^31 - 1 steps" in failed
     assert "this run began afresh" in failed
     assert "what to do: mend what the ERROR names, then run the sweep again" in failed
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from granmn_run import MPIEXEC, PLUGIN, needs_mpi
+from granmn_run import LMP, MPIEXEC, PLUGIN, needs_mpi
 
 ROOT = Path(__file__).resolve().parents[2]
 # the runner's command, run from ROOT (as is a child python that imports its modules)
@@ -276,7 +276,7 @@ BAD_CONFIGS = {
     "stiffness not a number": ('[[grid]]\nscene = "single_disk"\nkn = "soft"\n',
                                "kn = 'soft' is not a number"),
     "zero time step": ('[[grid]]\nscene = "single_disk"\ndt_fraction = 0\n',
-                       "dt_fraction = 0 must be > 0"),
+                       "ERROR: deck variable dt_fraction = 0 must lie in (0,0.5]"),
     "negative run time": ('[[grid]]\nscene = "single_disk"\nrun_time = -5\n',
                           "run_time = -5 must be > 0"),
     "table value": ('[[grid]]\nscene = "single_disk"\n[grid.kn]\na = 1\n',
@@ -290,7 +290,11 @@ BAD_CONFIGS = {
     "name not a word": ('name = 5\n[[grid]]\nscene = "single_disk"\n', "name = 5 must be a word"),
     "grid not tables": ('grid = [1, 2]\n', "grid must be a list of tables"),
     "stiffness without a finite step": ('[[grid]]\nscene = "single_disk"\nkn = 1e308\n',
-                                        "give no finite number of steps"),
+                                        "kn is too large: the derived coefficients (tau_c, "
+                                        "eta_n, kt) overflow"),
+    "a step too short for a finite number of steps": (
+        '[[grid]]\nscene = "single_disk"\ndt_cap = 1e-300\n',
+        "run_time = 200 over its time step dt = 1e-300"),
     "a word for a number": ('[[grid]]\nscene = "frictional_flow"\nrow_spacing = "wide"\n',
                             "row_spacing = 'wide' is not a number"),
     # single_disk has no random start: three seeds would be three copies of one run, averaged
@@ -410,16 +414,24 @@ def single_disk_config(tmp_path, text):
     return config
 
 
+# a point whose deck quits past its dry run (inputs/lib/outputs.lmp: more snapshot steps than
+# LAMMPS counts), its sibling, and the deck's ERROR line
+QUITS = "run_time = 1\naverage_start = 0.5\nsnapshot_interval = [10, 1e12]\n"
+QUIT_POINT = "average_start0.5_run_time1_snapshot_interval1e+12"
+QUIT_SIBLING = "average_start0.5_run_time1_snapshot_interval10"
+QUIT_ERROR = "ERROR: deck variable snapshot_interval = 1e+12 is more than 2^31 - 1 steps of dt"
+
+
 def test_failed_point_records_its_error_and_the_sweep_goes_on(tmp_path):
     """The deck's checks print their ERROR into log.lammps (lmp runs with -screen none):
     failed.txt must carry it, not an empty output."""
-    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = [0.5, 5]\n")
+    config = single_disk_config(tmp_path, QUITS)
     proc = sweep(config, tmp_path / "out", check=False)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     points = tmp_path / "out" / "single_disk"
-    failed = (points / "average_start5_run_time1" / "failed.txt").read_text()
-    assert "ERROR: deck variable average_start = 5 must lie in [0, run_time = 1)" in failed
-    assert (points / "average_start0.5_run_time1" / "done.txt").exists()
+    failed = (points / QUIT_POINT / "failed.txt").read_text()
+    assert QUIT_ERROR in failed
+    assert (points / QUIT_SIBLING / "done.txt").exists()
 
 
 @needs_mpi
@@ -427,31 +439,35 @@ def test_partition_that_quits_is_a_failed_point_and_its_sibling_is_done(tmp_path
     """A deck check's `quit 1` in one partition leaves mpirun waiting for ever (that partition
     is in MPI_Finalize, its sibling in MPI_Barrier): the runner must end the batch, record the
     failure, keep the sibling's result and leave no process behind."""
-    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = [0.5, 5]\n")
+    config = single_disk_config(tmp_path, QUITS)
     output = tmp_path / "out"
     proc = sweep(config, output, "--partitions", "2", check=False, timeout=120)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     points = output / "single_disk"
-    failed = (points / "average_start5_run_time1" / "failed.txt").read_text()
-    assert "ERROR: deck variable average_start = 5 must lie in [0, run_time = 1)" in failed
-    assert (points / "average_start0.5_run_time1" / "done.txt").exists()
+    failed = (points / QUIT_POINT / "failed.txt").read_text()
+    assert QUIT_ERROR in failed
+    assert (points / QUIT_SIBLING / "done.txt").exists()
     assert not processes_mentioning(output)
 
 
 @needs_mpi
 def test_partition_error_reruns_its_healthy_sibling(tmp_path):
     """A LAMMPS ERROR in one partition aborts the whole mpirun (MPI_Abort): the sibling it took
-    down did not fail, and is run again, with a word."""
-    config = single_disk_config(tmp_path, "run_time = 1\naverage_start = 0.5\nmu = [0.5, -1]\n")
+    down did not fail, and is run again, with a word. The ERROR: a stiffness too soft to hold
+    the disk, which passes through a bump during the run (its dry run is sound)."""
+    # the sibling runs ten times as long: the ERROR, a tenth of the way, takes it down
+    config = single_disk_config(tmp_path, 'run_time = 2\naverage_start = 0.5\nkn = 0.001\n'
+                                          '[[grid]]\nscene = "single_disk"\nrun_time = 20\n'
+                                          'average_start = 0.5\n')
     output = tmp_path / "out"
     proc = sweep(config, output, "--partitions", "2", check=False, timeout=120)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     points = output / "single_disk"
-    failed = (points / "average_start0.5_mu-1_run_time1" / "failed.txt").read_text()
-    assert "mu must be a finite number >= 0" in failed
-    healthy = points / "average_start0.5_mu0.5_run_time1"
+    failed = (points / "average_start0.5_kn0.001_run_time2" / "failed.txt").read_text()
+    assert "have passed through each other" in failed
+    healthy = points / "average_start0.5_run_time20"
     assert (healthy / "done.txt").exists() and not (healthy / "failed.txt").exists()
-    assert re.search(r"rerun single_disk/average_start0.5_mu0.5_run_time1: .*mu-1", proc.stdout)
+    assert re.search(r"rerun single_disk/average_start0.5_run_time20: .*kn0.001", proc.stdout)
     assert not processes_mentioning(output)
 
 
@@ -568,23 +584,21 @@ def test_done_txt_of_another_run_is_not_taken(tmp_path):
     assert "3 already done, 0 to run" in sweep(config, output).stdout
 
 
-def test_dry_run_asks_the_law_once_per_material(tmp_path, monkeypatch, capsys):
-    """A grid of 2000 points made of 10 materials (k_n, e, beta) asks build/plugin/mn-law 10
-    times: it started mn-law once per point (44 s for the --dry-run of such a grid)."""
+def test_dry_run_asks_the_deck_once_per_point_but_its_seed(tmp_path, monkeypatch, capsys):
+    """A grid of 60 points, 3 k_n by 20 seeds, asks its deck 3 times (cost.point_sizes): the
+    seed draws the start, not its atoms nor its law, and each dry run starts lmp."""
     from scripts.granmn_sweep import cli, cost
-    cost.law.cache_clear()     # no material known yet
     asked = []
-    law = cost.derived
-    monkeypatch.setattr(cost, "derived",
-                        lambda tool, *material: asked.append(material) or law(tool, *material))
+    ask = cost.dry_run
+    monkeypatch.setattr(cost, "dry_run",
+                        lambda *arguments: asked.append(arguments[2]) or ask(*arguments))
     config = tmp_path / "grid.toml"
-    config.write_text('[[grid]]\nscene = "collisional_flow"\n'
-                      f'kn = [{", ".join(str(5e4 * 2 ** k) for k in range(10))}]\n'
-                      f'seed = [{", ".join(str(seed) for seed in range(1, 201))}]\n')
+    config.write_text('[[grid]]\nscene = "collisional_flow"\nkn = [5e4, 1e5, 2e5]\n'
+                      f'seed = [{", ".join(str(seed) for seed in range(1, 21))}]\n')
     assert cli.main([str(config), "--output", str(tmp_path / "out"), "--build", str(BUILD),
-                       "--dry-run"]) == 0
-    assert "2000 points" in capsys.readouterr().out
-    assert sorted(asked) == sorted(set(asked)) and len(asked) == 10
+                     "--dry-run"]) == 0
+    assert "60 points" in capsys.readouterr().out
+    assert sorted(variables["kn"] for variables in asked) == ["100000", "200000", "50000"]
 
 
 # scripts/granmn_sweep's modules in the order of docs/index.md (mn_law, mpirun_slots and
@@ -617,82 +631,103 @@ TIME_STEP_POINTS = {
     "3D": {"scene": "chute_3d", "kn": 2e5, "dt_fraction": 0.05, "spheres": 5, "length": 3,
            "width": 3},
 }
+BUILD_PATHS = {"lammps": Path(LMP), "plugin": Path(PLUGIN)}
 
 
 @pytest.mark.parametrize("name", sorted(TIME_STEP_POINTS))
-def test_the_runner_takes_the_time_step_and_atoms_lmp_takes(tmp_path, name):
-    """The cost model's time step of a point is the one lmp runs the deck with (params.txt's
-    dt, %.10g: 1e-9 apart at most), whichever of dt_fraction x tau_c and dt_cap is the step; its
-    atoms are those of the run (its log's `with N atoms`), bumps and base included."""
-    from scripts.granmn_sweep.cost import time_step
-    from scripts.granmn_sweep.decks import scene_atoms
+def test_the_dry_run_answers_the_time_step_and_atoms_of_the_run(tmp_path, name):
+    """The deck's dry run (-var dry_run yes) answers the time step the run takes (done.txt's
+    dt, every digit), whichever of dt_fraction x tau_c and dt_cap is the step, and the atoms
+    of the run (its log's `with N atoms`), bumps and base included."""
+    from scripts.granmn_sweep.cost import ask_deck
     from granmn_run import run_scene
     point = TIME_STEP_POINTS[name]
     run_scene(point["scene"], tmp_path, run_time=0.2, average_start=0.1,
               **{k: v for k, v in point.items() if k != "scene"})
-    params = dict(line.split(None, 1) for line in (tmp_path / "params.txt").read_text()
-                  .splitlines() if line.strip())
-    assert time_step(point, BUILD / "plugin" / "mn-law") == \
-        pytest.approx(float(params["dt"]), rel=1e-9)
+    answer = ask_deck({**point, "run_time": 0.2, "average_start": 0.1}, BUILD_PATHS)
+    done = (tmp_path / "done.txt").read_text().split()
+    assert answer["dt"] == float(done[done.index("dt") + 1])
     made = {int(n) for n in re.findall(r" with (\d+) atoms\n",
                                          (tmp_path / "log.lammps").read_text())}
-    assert made == {scene_atoms(point)}
+    assert made == {answer["atoms"]} and answer["run_time"] == 0.2
 
 
-def test_a_deck_that_makes_other_atoms_than_it_declares_stops(tmp_path):
-    """A scene deck whose scene_atoms (the runner's size of its points) is not the number of
-    atoms it makes stops with an ERROR naming both, rather than the cost model going wrong."""
-    from granmn_run import INPUTS, LMP
-    deck = tmp_path / "collisional_flow.lmp"
-    text = (INPUTS / "collisional_flow.lmp").read_text()
-    assert "variable scene_atoms equal 100\n" in text
-    deck.write_text(text.replace("variable scene_atoms equal 100\n",
-                                 "variable scene_atoms equal 99\n"))
-    proc = subprocess.run([LMP, "-in", str(deck), "-log", "none", "-nocite", "-var", "plugin",
-                           PLUGIN, "-var", "lib", str(INPUTS / "lib"), "-var", "out",
-                           str(tmp_path)], capture_output=True, text=True, timeout=120)
-    assert proc.returncode != 0 and "ERROR: inputs/collisional_flow.lmp made 100 atoms, not " \
-        "the scene_atoms = 99 it declares" in proc.stdout, proc.stdout[-2000:]
+def test_the_dry_run_makes_the_atoms_the_deck_makes_and_writes_nothing(tmp_path):
+    """The frictional scene is ten rows of `width` disks: 400 at width 40, as lmp makes them;
+    the dry run ends before the deck writes anything into its out."""
+    from scripts.granmn_sweep.config import deck_variables
+    from scripts.granmn_sweep.decks import DRY_RUN, deck_path, dry_run
+    for width in (10, 40):
+        variables = deck_variables({"scene": "frictional_flow", "width": width}, PLUGIN)
+        assert dry_run(LMP, deck_path("frictional_flow"), variables, "a point")["atoms"] == \
+            10 * width
+    command = [LMP, "-in", str(deck_path("frictional_flow")), "-log", "none", "-nocite"]
+    for name, value in {**variables, "out": tmp_path, "dry_run": "yes"}.items():
+        command += ["-var", name, str(value)]
+    proc = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0 and DRY_RUN in proc.stdout, proc.stdout[-2000:]
+    assert list(tmp_path.iterdir()) == []
 
 
-def test_the_runner_follows_the_decks_time_step_rule(tmp_path, monkeypatch):
-    """The runner reads the time step's rule from the decks (inputs/lib/time_step.lmp's
-    timestep): decks whose rule is dt = tau_c/50 give run_time/(tau_c/50) steps. A copy of the
-    rule in Python (min(dt_fraction x tau_c, dt_cap)) predicted the old rule's steps."""
+@pytest.mark.parametrize("scene", ["single_disk", "collisional_flow", "frictional_flow",
+                                   "chute_3d"])
+def test_a_decks_seed_changes_neither_its_atoms_nor_its_time_step(scene):
+    """cost.point_sizes asks a deck once for the points that differ in their seed alone: the
+    seed draws the start (sizes, heights), never how many atoms there are nor the law."""
+    from scripts.granmn_sweep.cost import ask_deck
+    small = {"spheres": 20, "length": 3, "width": 3} if scene == "chute_3d" else {}
+    one, other = (ask_deck({"scene": scene, "seed": seed, "kn": 1e5, **small}, BUILD_PATHS)
+                  for seed in (1, 7))
+    assert one == other
+
+
+def test_an_event_driven_points_events_are_guessed_from_its_decks_atoms():
+    """An event-driven point's size: its LAMMPS deck's atoms (the engine runs the start the deck
+    makes), and EVENTS_PER_ATOM_TIME events per atom and time unit, at most its events cap;
+    the engine's own variables (rule, events) are not the deck's."""
+    from scripts.granmn_sweep import cost
+    point = {"scene": "collisional_flow", "engine": "event_driven", "seed": 1, "run_time": 300}
+    size, capped = cost.point_sizes([point, {**point, "rule": "soft", "events": 1000}],
+                                    BUILD_PATHS, 2)
+    atoms = cost.ask_deck({"scene": "collisional_flow", "seed": 1}, BUILD_PATHS)["atoms"]
+    assert size == (math.ceil(300 * atoms * cost.EVENTS_PER_ATOM_TIME), atoms)
+    assert capped == (1000, atoms)
+
+
+def test_the_runner_follows_the_decks_time_step_rule(tmp_path):
+    """The time step is the deck's, whatever its rule: decks whose rule is dt = tau_c/50 answer
+    tau_c/50 (tau_c: the law's, build/plugin/mn-law). A copy of the rule in Python predicted
+    the old rule's steps."""
     import shutil
-    from scripts.granmn_sweep import decks
-    from scripts.granmn_sweep.cost import predicted_steps
+    from scripts.granmn_sweep.config import deck_variables
+    from scripts.granmn_sweep.decks import dry_run
     from scripts.granmn_sweep.mn_law import derived
     shutil.copytree(ROOT / "inputs", tmp_path / "inputs")
-    dynamics = tmp_path / "inputs" / "lib" / "time_step.lmp"
-    text = dynamics.read_text()
+    time_step = tmp_path / "inputs" / "lib" / "time_step.lmp"
+    text = time_step.read_text()
     assert "timestep ${dt_resolved}\n" in text
-    dynamics.write_text(text.replace("timestep ${dt_resolved}\n", "timestep $(v_mn_tau_c/50)\n"))
-    monkeypatch.setattr(decks, "ROOT", tmp_path)
-    monkeypatch.setattr(decks, "LIB", tmp_path / "inputs" / "lib")
-    decks.time_step_formula.cache_clear()
-    try:
-        tau_c = derived(BUILD / "plugin" / "mn-law", 2e5, 0.7, 0.7)["tau_c"]
-        point = {"scene": "collisional_flow", "kn": 2e5, "e": 0.7, "beta": 0.7, "run_time": 10}
-        assert predicted_steps(point, BUILD / "plugin" / "mn-law") == math.ceil(10 / (tau_c / 50))
-    finally:
-        decks.time_step_formula.cache_clear()
+    time_step.write_text(text.replace("timestep ${dt_resolved}\n", "timestep $(v_mn_tau_c/50)\n"))
+    variables = {**deck_variables({"kn": 2e5, "e": 0.7, "beta": 0.7}, PLUGIN),
+                 "lib": str(tmp_path / "inputs" / "lib")}
+    answer = dry_run(LMP, tmp_path / "inputs" / "collisional_flow.lmp", variables, "a point")
+    tau_c = derived(BUILD / "plugin" / "mn-law", 2e5, 0.7, 0.7)["tau_c"]
+    assert answer["dt"] == pytest.approx(tau_c / 50, rel=1e-14)
 
 
-def test_a_deck_formula_the_runner_cannot_read_is_refused_by_name():
-    """The formulas the runner reads from the decks (the time step, the atoms) take LAMMPS's
-    meaning, a comparison 1 or 0, or are refused naming the part it does not read: Python would
-    read ^ as xor, a < b < c as a chain, and dt (a thermo keyword) is no deck variable."""
-    from scripts.granmn_sweep import SweepError
-    from scripts.granmn_sweep.decks import formula_value
-    values = {"a": 2.0, "b": 3.0}.__getitem__
-    assert formula_value("(v_a < v_b)*v_a + (v_a >= v_b)*v_b", values, "x") == 2.0
-    assert formula_value("(v_b < v_a)*v_a + (v_b >= v_a)*v_b/2", values, "x") == 1.5
-    for formula, part in (("v_a^2", "v_a ^ 2"), ("v_a < v_b < 4", "v_a < v_b < 4"),
-                          ("sqrt(v_a)", "sqrt(v_a)"), ("-v_a", "-v_a"), ("v_a*dt", "dt")):
-        with pytest.raises(SweepError, match=re.escape(f"x: the runner reads no {part!r} in the "
-                                                       f"formula {formula!r}")):
-            formula_value(formula, values, "x")
+def test_a_point_its_deck_refuses_is_refused_before_anything_runs(tmp_path):
+    """A point whose deck stops with its ERROR (a width of 2.5 disks per row) is refused by
+    the runner, --dry-run or not, naming the point and the deck's ERROR line; nothing is made
+    or run."""
+    config = tmp_path / "sweep.toml"
+    config.write_text('[[grid]]\nscene = "frictional_flow"\nseed = 1\nwidth = [10, 2.5]\n')
+    for options in ([], ["--dry-run"]):
+        proc = sweep(config, tmp_path / "out", *options, check=False)
+        assert proc.returncode == 2, proc.stdout + proc.stderr
+        assert "sweep: frictional_flow/seed1_width2.5: inputs/frictional_flow.lmp refuses it " \
+            "in its dry run (-var dry_run yes): ERROR: deck variable width = 2.5 must be an " \
+            "integer >= 2 (disks per row)" in proc.stderr, proc.stderr
+        assert "Traceback" not in proc.stderr and not (tmp_path / "out").exists()
+
 
 # --output that names a file, or a path through one: {case: (script and options, message)};
 # it gave a traceback (FileExistsError, NotADirectoryError), and --dry-run listed every point

@@ -176,3 +176,18 @@ def test_what_the_liggghts_deck_cannot_do_is_refused(tmp_path, case):
     variables, message = BAD[case]
     proc = run_liggghts_chute(tmp_path, check=False, **{**SHORT, **variables})
     assert proc.returncode != 0 and message in proc.stdout, proc.stdout[-2000:]
+
+
+def test_the_dry_runs_of_both_engines_agree():
+    """Asked for a point's size (-var dry_run yes, scripts/granmn_sweep/decks.py), the LIGGGHTS
+    deck answers what the LAMMPS deck does: the same atoms, law and time step (tau_c to 1e-12:
+    one header compiled twice); LIGGGHTS's `quit` ends with exit status 1, the runner reads the
+    line."""
+    from scripts.granmn_sweep.cost import ask_deck
+    paths = {"lammps": Path(LMP), "liggghts": Path(LIGGGHTS), "plugin": Path(PLUGIN)}
+    point = {"scene": "chute_3d", "kn": 2e5, "spheres": 50, "seed": 1}
+    lammps, liggghts = (ask_deck({**point, "engine": engine}, paths)
+                        for engine in ("lammps", "liggghts"))
+    assert liggghts["atoms"] == lammps["atoms"] and liggghts["run_time"] == lammps["run_time"]
+    assert liggghts["tau_c"] == pytest.approx(lammps["tau_c"], rel=1e-12)
+    assert liggghts["dt"] == pytest.approx(lammps["dt"], rel=1e-12)
