@@ -7,7 +7,8 @@ from postprocess.__main__ import main
 from test_main_job import TINY as MAIN_JOB_TINY
 from test_sweep import sweep
 
-# the main job's tiny sweep, and a frictional run long enough to keep a steady part
+# the main job's tiny sweep, a frictional run long enough to keep a steady part, and a point
+# that fails past the deck's dry run (more snapshot steps than LAMMPS counts)
 TINY = MAIN_JOB_TINY + """
 [[grid]]
 scene = "frictional_flow"
@@ -20,7 +21,7 @@ average_start = 100
 [[grid]]
 scene = "collisional_flow"
 kn = [1e5]
-timer = "fast"
+snapshot_interval = 1e12
 """
 
 
@@ -35,7 +36,7 @@ def test_a_real_sweeps_report_from_summaries_matches_the_report_from_its_outputs
     config.write_text(TINY)
     results = tmp_path / "results"
     ran = sweep(config, results, check=False)
-    assert ran.returncode == 1            # the point with a bad timer failed, the others ran
+    assert ran.returncode == 1            # the point past LAMMPS's step count failed, the others ran
     data = tmp_path / "data"
     assert main(["summarize", str(results), "--to", str(data)]) == 0
     sizes = [p.stat().st_size for p in data.glob("*/*.json")]
@@ -50,7 +51,7 @@ def test_a_real_sweeps_report_from_summaries_matches_the_report_from_its_outputs
         assert raw and raw == table(tmp_path / "from_summaries" / name), name
     # the failed point: crashed, with lmp's error, from both sources
     crashed = [line for line in said.splitlines() if "crashed (exit status 1; ERROR:" in line]
-    assert len(crashed) == 2 and "timer = fast" in crashed[0], said
+    assert len(crashed) == 2 and "snapshot_interval = 1e+12" in crashed[0], said
     # the frictional run of 700 (seed 2, dt = tau_c/20: ~4 s of CPU) flows with a steady part
     # kept at resolution 1, so observables_frictional_flow.csv above has its row and the
     # selection's path is compared (which seed has one is chance: the trajectory is chaotic,
