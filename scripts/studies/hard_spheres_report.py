@@ -5,6 +5,7 @@ collapse.txt, kept beside them (data/<sweep>/event_driven/<scene>/<point>.summar
 
     python3 -m scripts.studies.hard_spheres_report collapse DATA_DIR
     python3 -m scripts.studies.hard_spheres_report tc DATA_DIR SOFT_DATA_DIR
+            [--energy-range LOW HIGH] [--min-span T] [--max-width W]
     python3 -m scripts.studies.hard_spheres_report keep RESULTS_DIR DATA_DIR
 
 collapse  rule 1: per scene and e_w, the runs, how many collapsed before run_time, the times to
@@ -12,15 +13,28 @@ collapse  rule 1: per scene and e_w, the runs, how many collapsed before run_tim
           or disks too)
 tc        rule 3: per k_n, over the seeds (mean and standard error): the TC fraction of the
           event-driven runs, their N_w, and the soft runs' N_w and multiple-contact fraction
-          (t_c - N_c tau_c) / t_c
+          (t_c - N_c tau_c) / t_c. A scene that selects steady parts (the frictional flow)
+          gets its own table: the event-driven runs that reached run_time only (those a cap
+          or a collapse ended are counted, never averaged), N_w and E over the averaging
+          window [average_start, run_time] against the soft runs that flowed to run_time over
+          the same window, and the soft series' N_w and (t_c - N_c tau_c) / t_c over the steady
+          parts its selection keeps (--energy-range, --min-span, --max-width: as postprocess's,
+          for the soft summaries); the soft runs are those of the event-driven runs' tangential
+          law in the soft sweep's main series (the variables other than kn and seed shared by
+          the most k_n), so that a step check at one k_n is not mixed in
 keep      copies each point's summary.txt and collapse.txt into DATA_DIR/event_driven/
 """
+import argparse
 import shutil
 import statistics
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from postprocess.runs import load_runs
+from postprocess.scenes import SCENES
+from postprocess.selection import Selection
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -66,11 +80,21 @@ def collapse(data):
               f"{', '.join(sorted(kinds)) or '-'} | {cpu:.1f} |")
 
 
-def tc(data, soft):
+def tc(data, soft, selection=Selection()):
+    """The rule 3 tables: the collisional one of the scenes averaged over their whole window,
+    then frictional_tc's of those that select steady parts."""
+    records = [r for r in load_runs(data) if r.params is not None]
+    windowed = [r for r in records if not SCENES[r.scene].selects_steady_parts]
+    if windowed:
+        collisional_tc(data, windowed, soft)
+    for scene in sorted({r.scene for r in records} - {r.scene for r in windowed}):
+        frictional_tc(data, [r for r in records if r.scene == scene], soft, selection)
+
+
+def collisional_tc(data, records, soft):
     hard = {}
-    for r in load_runs(data):
-        if r.params is not None:
-            hard.setdefault(float(r.params["kn"]), []).append(r)
+    for r in records:
+        hard.setdefault(float(r.params["kn"]), []).append(r)
     softs = {}
     for r in load_runs(soft):
         if r.observables is not None:
@@ -91,6 +115,94 @@ def tc(data, soft):
               f"{mc[0]:.3g} +- {mc[1]:.2g} | {len(s)} |")
 
 
+# what ended an event-driven run before run_time, by the engine's summary.txt `end`
+ENDED_BY = {"events": "the cap on events", "collapse": "a collapse"}
+
+
+def reached_run_time(data, record):
+    """The event-driven run ran to run_time (not ended by its cap on events or by a collapse
+    the TC model could not break) and its averaging window was measured."""
+    return (engine_summary(data, record)["end"] == "time" and record.ended == "flowing"
+            and record.measured is not None and record.measured["problem"] is None)
+
+
+def window_mean(record, quantity):
+    """A run's quantity over its whole averaging window: the mean over the window's blocks
+    (equal pieces of it), as the observables average a part."""
+    return float(np.mean(record.measured["window"]["blocks"][quantity]))
+
+
+def main_series(records):
+    """The records of the series shared by the most k_n: those whose variables other than kn
+    and seed are the same (ties: the first in sorted order)."""
+    def key(r):
+        return repr(sorted((k, v) for k, v in r.variables.items() if k not in ("kn", "seed")))
+    kns = {}
+    for r in records:
+        kns.setdefault(key(r), set()).add(float(r.params["kn"]))
+    if not kns:
+        return []
+    best = max(sorted(kns), key=lambda k: len(kns[k]))
+    return [r for r in records if key(r) == best]
+
+
+def value_error(values, digits=4):
+    """A mean over runs with its standard error; '-' for none, the error 'n/a' for one run
+    (not estimable)."""
+    if not values:
+        return "-"
+    m, e = mean_error(values)
+    return f"{m:.{digits}g} +- " + (f"{e:.2g}" if len(values) > 1 else "n/a")
+
+
+def frictional_tc(data, records, soft, selection):
+    """Rule 3's table for a scene that averages selected steady parts (the frictional flow):
+    per k_n of the event-driven runs, those that reached run_time against the soft runs of the
+    same tangential law in the soft sweep's main series, over the same averaging window and,
+    for the soft series' own values, over the steady parts the selection keeps."""
+    scene = records[0].scene
+    laws = {r.params["tangential"] for r in records}
+    softs = main_series([r for r in load_runs(soft, selection)
+                         if r.scene == scene and r.params is not None
+                         and r.params["tangential"] in laws])
+    hard = {}
+    for r in records:
+        hard.setdefault(float(r.params["kn"]), []).append(r)
+    print(f"{scene}: N_w and E per disk over the averaging window [average_start, run_time]; "
+          "selected: the soft series' steady parts")
+    print()
+    print("| k_n | t_c = tau_c | runs | reached run_time | TC fraction | E hard | N_w hard | "
+          "soft runs to run_time | E soft | N_w soft | soft runs selected | N_w soft, selected "
+          "| (t_c - N_c tau_c)/t_c soft, selected |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    left_out = {}
+    for kn, runs in sorted(hard.items()):
+        ended = [r for r in runs if reached_run_time(data, r)]
+        for r in runs:
+            if r not in ended:
+                why = ENDED_BY.get(engine_summary(data, r)["end"], "no averaging window")
+                left_out[why] = left_out.get(why, 0) + 1
+        s = [r for r in softs if float(r.params["kn"]) == kn]
+        flowed = [r for r in s if r.ended == "flowing" and r.measured is not None
+                  and r.measured["problem"] is None]
+        selected = [r.observables for r in s if r.observables is not None]
+        print(f"| {kn:g} | {float(runs[0].params['tc_time']):.4g} | {len(runs)} | {len(ended)} | "
+              f"{value_error([float(engine_summary(data, r)['tc_fraction']) for r in ended])} | "
+              f"{value_error([window_mean(r, 'E_total') for r in ended])} | "
+              f"{value_error([window_mean(r, 'N_w') for r in ended])} | {len(flowed)} | "
+              f"{value_error([window_mean(r, 'E_total') for r in flowed])} | "
+              f"{value_error([window_mean(r, 'N_w') for r in flowed])} | {len(selected)} | "
+              f"{value_error([o['N_w'] for o in selected])} | "
+              f"{value_error([o['mc_c'] / o['t_c'] for o in selected], 3)} |")
+    print()
+    series = ", ".join(f"{k} {v}" for k, v in sorted(softs[0].variables.items())
+                       if k not in ("kn", "seed", "scene")) if softs else "none"
+    print("Event-driven runs left out: "
+          + (", ".join(f"{n} ended by {why}" for why, n in sorted(left_out.items())) or "none")
+          + f". Soft series: tangential {', '.join(sorted(laws))}, {series}; selection: "
+          f"{selection.describe()}.")
+
+
 def keep(results, data):
     kept = 0
     for summary in Path(results).glob("*/*/summary.txt"):
@@ -104,8 +216,26 @@ def keep(results, data):
     print(f"kept the engine's summaries of {kept} runs in {Path(data) / 'event_driven'}")
 
 
+def tc_command(args):
+    """tc's arguments: the event-driven sweep, the soft sweep, the soft summaries' selection."""
+    parser = argparse.ArgumentParser(prog="hard_spheres_report tc", usage=__doc__)
+    parser.add_argument("data", type=Path)
+    parser.add_argument("soft", type=Path)
+    parser.add_argument("--energy-range", type=float, nargs=2,
+                        default=Selection.energy_range)
+    parser.add_argument("--min-span", type=float, default=Selection.min_length)
+    parser.add_argument("--max-width", type=float, default=Selection.max_width)
+    options = parser.parse_args(args)
+    tc(options.data, options.soft,
+       Selection(energy_range=tuple(options.energy_range), min_length=options.min_span,
+                 max_width=options.max_width))
+
+
 def main(argv):
-    commands = {"collapse": (collapse, 1), "tc": (tc, 2), "keep": (keep, 2)}
+    commands = {"collapse": (collapse, 1), "keep": (keep, 2)}
+    if argv and argv[0] == "tc":
+        tc_command(argv[1:])
+        return 0
     if not argv or argv[0] not in commands or len(argv) - 1 != commands[argv[0]][1]:
         print(__doc__, file=sys.stderr)
         return 2
