@@ -20,13 +20,14 @@ import statistics
 import sys
 from pathlib import Path
 
+from postprocess.record import run_name
 from postprocess.runs import load_runs
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def engine_files(data, record, suffix):
-    return data / "event_driven" / record.scene / (Path(record.point).stem + suffix)
+    return data / "event_driven" / (run_name(record) + suffix)
 
 
 def engine_summary(data, record):
