@@ -9,6 +9,7 @@ import numpy as np
 
 from . import limit
 from .durations import DISSIPATION_NAMES, ROWS_MARGIN
+from .rundir import point_name
 
 # the shares a series reports per k_n (the lasting share is the one the rule judges)
 SHARES = ("lasting", "multiple", "binary", "sliding", "negative_sliding")
@@ -42,7 +43,7 @@ def run_values(record):
     if values["lasting"] is None:
         return "its contacts dissipated nothing in the rows window"
     rows_time = float(record.variables.get("rows_time", 0))
-    return {"point": record.point.name.removesuffix(".json"), "kn": float(record.params["kn"]),
+    return {"point": point_name(record.variables), "kn": float(record.params["kn"]),
             "span": rows_time - ROWS_MARGIN,
             "budget_problem": (record.measured or {}).get("budget_problem") or "",
             "cpu_seconds": record.cpu_seconds,

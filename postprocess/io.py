@@ -336,15 +336,18 @@ def read_stopped(point):
 
 
 def read_variables(point):
-    """point.json: the point's deck variables, as the sweep runner wrote them."""
-    path = Path(point) / rundir.POINT
+    """point.json: the point's scene and deck variables, as the sweep runner wrote them: the
+    run's identity (rundir), which its directory's name must give."""
+    point = Path(point)
+    path = point / rundir.POINT
     if not path.exists():
         raise DataError(f"{path}: missing (not a sweep's point)")
     try:
         variables = json.loads(read_text(path), object_pairs_hook=unique_keys(path))
     except ValueError as error:
         raise DataError(f"{path}: not valid JSON ({error})")
-    return checked_variables(variables, path)
+    return checked_name(checked_variables(variables, path),
+                        f"{point.parent.name}/{point.name}", path, "its directory")
 
 
 def unique_keys(path):
@@ -369,6 +372,21 @@ def checked_variables(variables, path):
     for name, value in variables.items():
         if isinstance(value, bool) or not isinstance(value, (int, float, str)):
             raise DataError(f"{path}: variable {name} is {value!r}, not a number or a word")
+    return variables
+
+
+def checked_name(variables, name, variables_from, named_by):
+    """variables if they give the run the name (<scene>/<point>) that `named_by`, its
+    directory or summary file, gives it: the runner names a point's directory, and summarize
+    its summary, after the variables (rundir.run_name), so a name that says otherwise is a
+    renamed directory or file, or the variables of another run. Else a DataError naming
+    both."""
+    if "scene" not in variables:
+        raise DataError(f"{variables_from}: no scene (the sweep runner writes each point's)")
+    given = rundir.run_name(variables)
+    if name != given:
+        raise DataError(f"{variables_from} gives the run {given}, but {named_by} names it "
+                        f"{name}: they disagree (renamed, or the variables of another run?)")
     return variables
 
 

@@ -86,5 +86,7 @@ def energy_curve(record):
 
 def run_name(record):
     """What a run is called, whatever holds it: its scene and point, <scene>/<point> (a
-    point directory <scene>/<point>/ or its summary <scene>/<point>.json)."""
+    point directory <scene>/<point>/ or its summary <scene>/<point>.json), the name reading
+    checked against its variables' (rundir.run_name; a run whose variables could not be read
+    has this name alone)."""
     return f"{record.scene}/{record.point.stem if record.source == 'summary' else record.point.name}"

@@ -1,6 +1,11 @@
-"""A sweep point's directory, <output>/<scene>/<point>/ (docs/scenes.md, docs/sweeps.md): the
-names of its files and what state it is in, for the sweep runner (scripts/sweep.py) and the
-post-processing alike. Standard library only: the runner imports it without numpy.
+"""A sweep point's directory, <output>/<scene>/<point>/ (docs/scenes.md, docs/sweeps.md): its
+name, the names of its files and what state it is in, for the sweep runner (scripts/sweep.py)
+and the post-processing alike. Standard library only: the runner imports it without numpy.
+
+A run's identity is its point.json: the scene and the deck variables the runner set, written
+before the run starts. Everything else that names the run is derived from it (run_name: its
+directory, its summary's file) or checked against it on reading (postprocess.io: the directory's
+or summary's name, and params.txt, where the deck prints the variables it was given).
 
 The states of a point, from its files:
 
@@ -36,6 +41,29 @@ LOG = "log.lammps"
 # A point's summary (postprocess summarize) is named by the point: <scene>/<point>.json, so a
 # point's name must leave room for it
 SUMMARY_SUFFIX = ".json"
+
+
+def format_value(value):
+    """A value as the deck and the point's name get it: %g where that is exact, else every
+    digit (1234567.8 is not 1.23457e+06); an integer and its float alike (1e6 is 1000000)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return str(value)
+    short = f"{float(value):g}"
+    if float(short) == value:
+        return short
+    return str(int(value)) if float(value).is_integer() and abs(value) < 2 ** 53 else repr(value)
+
+
+def point_name(variables):
+    """A point's directory name (and its summary's, with SUMMARY_SUFFIX): its variables but the
+    scene, sorted, each name followed by its value."""
+    return "_".join(f"{k}{format_value(v)}" for k, v in sorted(variables.items()) if k != "scene")
+
+
+def run_name(variables):
+    """How a run is known, <scene>/<point>, from its point.json's variables: where the runner
+    puts its directory and summarize its summary, and what the reports call it."""
+    return f"{variables['scene']}/{point_name(variables)}"
 
 
 def read_timing(directory):

@@ -17,11 +17,12 @@ import math
 from pathlib import Path
 
 from .durations import DISSIPATION_NAMES, DURATION_EDGES, LASTING, LASTING_ALSO, SPLIT_NAMES
-from .io import CONTACT_KINDS, DataError, checked_agreement, checked_params, checked_values, \
-    checked_variables, unique_keys
+from .io import CONTACT_KINDS, DataError, checked_agreement, checked_name, checked_params, \
+    checked_values, checked_variables, unique_keys
 from .observables import RESOLUTIONS
 from .quantities import BLOCKS, SIGNED
-from .record import DRAWN_WINDOW, ENDINGS, RunRecord
+from .record import DRAWN_WINDOW, ENDINGS, RunRecord, run_name
+from .rundir import SUMMARY_SUFFIX
 from .scenes import scene
 from .selection import Selection
 
@@ -41,7 +42,7 @@ def summary_text(record, selection):
                             "max_width": selection.max_width}}
     for name in FIELDS:
         data[name] = getattr(record, name)
-    data["point"] = f"{record.point.parent.name}/{record.point.name}"
+    data["point"] = run_name(record)
     if data["measured"] is not None:
         measured = dict(data["measured"])
         measured["steady"] = {f"{r:g}": parts for r, parts in measured["steady"].items()}
@@ -329,6 +330,9 @@ def read_summary(path, selection=Selection()):
                        cpu_seconds=check.number(data["cpu_seconds"], "cpu_seconds",
                                                 optional=True),
                        reason=check.text(data["reason"], "reason", optional=True))
+    name = f"{path.parent.name}/{path.name.removesuffix(SUMMARY_SUFFIX)}"
+    if check.text(data["point"], "point") != name:
+        check.fail("point", f"is {data['point']!r}, but the file is {name}{SUMMARY_SUFFIX}")
     if record.scene != path.parent.name:
         check.fail("scene", f"is {record.scene!r}, but the file is in {path.parent.name}/")
     try:
@@ -336,7 +340,8 @@ def read_summary(path, selection=Selection()):
     except KeyError as error:
         check.fail("the summary", f"names an {error.args[0]}")
     if record.variables is not None:
-        checked_variables(record.variables, f"{path}: corrupt summary: variables")
+        checked_name(checked_variables(record.variables, f"{path}: corrupt summary: variables"),
+                     name, f"{path}: corrupt summary: variables", "its file")
     params = check.mapping(data["params"], "params", optional=True)
     if params is not None:
         # numbers as params.txt gives them (floats: a JSON integer is one too)

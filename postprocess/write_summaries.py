@@ -6,6 +6,7 @@ from pathlib import Path
 from . import rundir
 from .io import DataError
 from .observables import RESOLUTIONS
+from .record import run_name
 from .runs import read_run
 from .selection import Selection
 from .summary import lost, read_summary, summary_text
@@ -25,8 +26,8 @@ def write_summaries(results_dir, to, selection=Selection(), replace=False):
         raise DataError(f"{results_dir}: no sweep points here (no <scene>/<point>/point.json)")
     written, kept = [], []
     for point in points:
-        path = Path(to) / point.parent.name / f"{point.name}{rundir.SUMMARY_SUFFIX}"
         record = read_run(point, RESOLUTIONS, selection)
+        path = Path(to) / f"{run_name(record)}{rundir.SUMMARY_SUFFIX}"
         if path.exists() and not replace:
             try:
                 why = lost(read_summary(path, selection=None), record)

@@ -88,13 +88,13 @@ from pathlib import Path
 
 from . import SweepError
 from . import processes
-from .config import expand, load_config, point_name, with_settings
+from .config import expand, load_config, with_settings
 from .cost import CostModel, format_seconds, point_sizes
 from .decks import ROOT, engine
 from .points import check_names, check_output, check_path, foreign, lock_output, \
     unlock_output
 from .schedule import check_slots, run_points
-from postprocess.rundir import completed
+from postprocess.rundir import SUMMARY_SUFFIX, completed, point_name, run_name
 from postprocess.summary import read_summary
 from postprocess.io import DataError
 
@@ -108,7 +108,7 @@ def summarized_points(directories, plan):
         if not directory.is_dir():
             raise SweepError(f"--done-in {directory}: not a directory of run summaries")
         for _, point_dir, _ in plan:
-            path = directory / point_dir.parent.name / (point_dir.name + ".json")
+            path = directory / point_dir.parent.name / (point_dir.name + SUMMARY_SUFFIX)
             if not path.exists():
                 continue
             try:
@@ -216,7 +216,7 @@ def main(argv=None):
         return 2
 
     model = CostModel()
-    plan = [(p, output / p["scene"] / point_name(p), s) for p, s in zip(points, sizes)]
+    plan = [(p, output / run_name(p), s) for p, s in zip(points, sizes)]
     try:
         summarized = summarized_points(args.done_in, plan)
     except SweepError as error:

@@ -1,5 +1,5 @@
 """A config's points: loading a TOML config, expanding its grids into points (checked against
-the scene decks), one spelling of each number, the points' names."""
+the scene decks), one spelling of each number."""
 import math
 import re
 import tomllib
@@ -9,6 +9,7 @@ from pathlib import Path
 from . import SweepError, event_driven
 from .decks import ENGINES, LIB, RESERVED, deck_defaults, deck_uses, engine, point_deck, \
     scenes, where
+from postprocess.rundir import format_value, point_name, run_name
 
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 # The keys of a point that the runner reads itself, not a deck: which deck (the scene, of the
@@ -146,7 +147,7 @@ def expand(config, path):
                              "scene: a point's directory is named by its variables, and this one "
                              f"would be <output>/{p['scene']}, where the scene's points are; set "
                              "one (e.g. seed or kn)")
-        name = f"{p['scene']}/{point_name(p)}"
+        name = run_name(p)
         if name in seen:
             raise SweepError(f"{path}: the grids repeat the point {name} (equal numbers are one "
                              "value, however spelt)")
@@ -158,21 +159,6 @@ def canonical_number(value):
     """One value, one spelling: seed 1 and "01" are 1; kn 5e4, 50000 and "5e4" are 50000."""
     number = float(value)
     return int(number) if number.is_integer() and abs(number) < 2 ** 53 else number
-
-
-def format_value(value):
-    """A value as the deck and the point's name get it: %g where that is exact, else every
-    digit (1234567.8 is not 1.23457e+06); an integer and its float alike (1e6 is 1000000)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        return str(value)
-    short = f"{float(value):g}"
-    if float(short) == value:
-        return short
-    return str(int(value)) if float(value).is_integer() and abs(value) < 2 ** 53 else repr(value)
-
-
-def point_name(point):
-    return "_".join(f"{k}{format_value(v)}" for k, v in sorted(point.items()) if k != "scene")
 
 
 def is_number(value):

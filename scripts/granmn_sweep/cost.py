@@ -6,8 +6,9 @@ import math
 from typing import NamedTuple
 
 from . import SweepError, event_driven
-from .config import deck_variables, point_name
+from .config import deck_variables
 from .decks import dry_run, engine, point_deck, scene_dimension
+from postprocess.rundir import run_name
 
 # Seconds per step by the scene's dimension: a fixed part and a part per atom; refined as points
 # finish. 3D: the dense chute's CPU seconds per atom-step, measured (docs/scenes.md): 9.9e-8 at
@@ -47,7 +48,7 @@ def deck_question(point, paths):
 def ask_deck(point, paths):
     """What a point's deck answers to -var dry_run yes (decks.dry_run: dt, atoms, tau_c,
     run_time)."""
-    return dry_run(*deck_question(point, paths), f"{point['scene']}/{point_name(point)}")
+    return dry_run(*deck_question(point, paths), run_name(point))
 
 
 def predicted_steps(point, answer):
@@ -60,7 +61,7 @@ def predicted_steps(point, answer):
     dt = answer["dt"]
     steps = answer["run_time"] / dt if dt > 0 else math.inf
     if not (math.isfinite(steps) and steps < 2 ** 62):
-        raise SweepError(f"{point['scene']}/{point_name(point)}: run_time = "
+        raise SweepError(f"{run_name(point)}: run_time = "
                          f"{answer['run_time']:g} over its time step dt = {dt:g} (tau_c = "
                          f"{answer['tau_c']:g}) gives no finite number of steps")
     return math.ceil(steps)

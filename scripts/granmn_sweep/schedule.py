@@ -9,12 +9,13 @@ import sys
 
 from . import SweepError
 from . import processes
-from .config import deck_variables, format_value
+from .config import deck_variables
 from .cost import format_seconds
 from .decks import ROOT, engine, point_deck
 from .points import cpu_seconds, error_lines, failed_to_start, finish, \
     resume_or_prepare, set_aside_failed_resume, wrote_done
 from .mpirun_slots import slots_problem
+from postprocess.rundir import format_value
 
 
 def point_variables(point, directory, paths, token):

@@ -32,6 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
+from postprocess.record import run_name
 from postprocess.runs import load_runs
 from postprocess.scenes import SCENES
 from postprocess.selection import Selection
@@ -40,7 +41,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def engine_files(data, record, suffix):
-    return data / "event_driven" / record.scene / (Path(record.point).stem + suffix)
+    return data / "event_driven" / (run_name(record) + suffix)
 
 
 def engine_summary(data, record):

@@ -21,7 +21,8 @@ def hard_run(data, kn, seed, end, n_w, energy=1.0, tc_fraction=0.5):
     summary = data / "event_driven" / SCENE / (point.stem + ".summary.txt")
     summary.parent.mkdir(parents=True, exist_ok=True)
     summary.write_text(f"end {end}\ntc_fraction {tc_fraction}\n")
-    return SimpleNamespace(scene=SCENE, point=point, ended="flowing", measured=window(n_w, energy),
+    return SimpleNamespace(scene=SCENE, point=point, source="summary", ended="flowing",
+                           measured=window(n_w, energy),
                            params={"kn": kn, "tc_time": 1e-4, "tangential": "literal"},
                            variables={"kn": kn, "seed": seed, "engine": "event_driven"})
 

@@ -431,11 +431,12 @@ def test_compare_on_a_directory_without_points_is_an_error(tmp_path, capsys):
     assert "no sweep points here" in capsys.readouterr().err
 
 
-def left_out_of_a_sweep(tmp_path, scene, point_json):
-    """What analyse leaves out of a sweep holding one completed synthetic point."""
+def left_out_of_a_sweep(tmp_path, scene, point_json, name="kn200000"):
+    """What analyse leaves out of a sweep holding one completed synthetic point, in the
+    directory <scene>/<name>."""
     from postprocess.study import analyse
-    (tmp_path / scene / "p1").mkdir(parents=True)
-    point = write_point(tmp_path / scene / "p1")
+    (tmp_path / scene / name).mkdir(parents=True)
+    point = write_point(tmp_path / scene / name)
     (point / "point.json").write_text(point_json)
     completed(point)
     return point, analyse(tmp_path)[1]
@@ -464,10 +465,29 @@ def test_a_point_json_and_params_that_disagree_are_named(tmp_path):
     """The deck prints the variables it was given into params.txt: a point.json that says
     otherwise is of another run (or one of them was edited); the run was grouped by point.json
     and averaged with params.txt's values."""
-    point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow", '{"kn": 100000}')
+    point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow",
+                                          '{"kn": 100000, "scene": "collisional_flow"}',
+                                          name="kn100000")
     assert left_out == [(point, "point.json gives kn = 100000, but params.txt gives 200000.0: "
                                 "they disagree (the outputs of another run, or an edited "
                                 "file?)")]
+
+
+def test_a_directory_named_for_another_run_is_named(tmp_path):
+    """A run's identity is its point.json, and the runner names its directory after it: a
+    directory whose name says another k_n (renamed, or another run's point.json copied in)
+    would be reported under one run's name with another's values."""
+    point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow",
+                                          '{"kn": 200000, "scene": "collisional_flow"}',
+                                          name="kn100000")
+    assert left_out == [(point, "point.json gives the run collisional_flow/kn200000, but its "
+                                "directory names it collisional_flow/kn100000: they disagree "
+                                "(renamed, or the variables of another run?)")]
+
+
+def test_a_point_json_without_its_scene_is_named(tmp_path):
+    point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow", '{"kn": 200000}')
+    assert left_out == [(point, "point.json: no scene (the sweep runner writes each point's)")]
 
 
 def test_a_list_valued_variable_is_named(tmp_path):
@@ -503,20 +523,19 @@ def test_a_run_that_came_to_rest_has_no_steady_motion_to_average(tmp_path):
 # ---- points the report cannot use are each a 'left out: why' line
 
 def sweep_of(tmp_path, points):
-    """A sweep directory of synthetic points: {(scene, name): writer(point directory)}; each
-    point gets point.json ({"kn": ..., "seed": 1}), the same kn in its params.txt if its writer
-    writes one, and the files of a completed run (done.txt and timing.json) unless its writer
-    removes them."""
-    for (scene, name), write in points.items():
-        point = tmp_path / scene / name
+    """A sweep directory of synthetic points: {(scene, kn): writer(point directory)}; each
+    point gets, as the runner makes it, the directory <scene>/kn<kn>_seed1 and point.json
+    saying so, the same kn in its params.txt if its writer writes one, and the files of a
+    completed run (done.txt and timing.json) unless its writer removes them."""
+    for (scene, kn), write in points.items():
+        point = tmp_path / scene / f"kn{kn}_seed1"
         point.mkdir(parents=True)
-        (point / "point.json").write_text(f'{{"kn": {len(name)}, "seed": 1}}')
+        (point / "point.json").write_text(f'{{"kn": {kn}, "scene": "{scene}", "seed": 1}}')
         completed(point)
         write(point)
         params = point / "params.txt"
         if params.exists():
-            params.write_bytes(params.read_bytes().replace(b"kn 200000\n",
-                                                           f"kn {len(name)}\n".encode()))
+            params.write_bytes(params.read_bytes().replace(b"kn 200000\n", f"kn {kn}\n".encode()))
     return tmp_path
 
 
@@ -537,7 +556,7 @@ def single_disk_trajectory(point, end, spacing=0.5):
 def test_an_energy_file_with_one_data_row_is_left_out_by_name(tmp_path):
     """A run killed right after its first output line (it raised IndexError)."""
     from postprocess.study import analyse
-    sweep = sweep_of(tmp_path, {("collisional_flow", "p1"): lambda p: keep_data_rows(
+    sweep = sweep_of(tmp_path, {("collisional_flow", 2): lambda p: keep_data_rows(
         write_point(p), lambda k, n: k == n - 1)})
     (point, reason), = analyse(sweep)[1]
     assert reason == "energy.txt: 1 data row, the analysis needs at least 2: truncated?"
@@ -550,7 +569,7 @@ def test_a_single_disk_run_ending_soon_after_average_start_is_left_out_by_name(t
     def short(point):
         write_point(point, scene="single_disk", run_time=21.0)
         single_disk_trajectory(point, 21.0)
-    (point, reason), = analyse(sweep_of(tmp_path, {("single_disk", "p1"): short}))[1]
+    (point, reason), = analyse(sweep_of(tmp_path, {("single_disk", 2): short}))[1]
     assert reason == ("trajectory.txt: 2 samples after average_start 20, the v_y period needs "
                       "at least 4")
 
@@ -563,12 +582,12 @@ def test_a_broken_point_json_beside_a_usable_point_is_a_left_out_line(tmp_path, 
     def broken(point):
         write_point(point)
         (point / "point.json").write_text("{kn: 5")
-    sweep = sweep_of(tmp_path, {("collisional_flow", "p1"): write_point,
-                                ("collisional_flow", "p2"): broken})
+    sweep = sweep_of(tmp_path, {("collisional_flow", 2): write_point,
+                                ("collisional_flow", 3): broken})
     assert main(["report", str(sweep)]) == 0
     err = capsys.readouterr().err
-    assert f"left out {sweep / 'collisional_flow' / 'p2'}: point.json: not valid JSON" in err
-    assert "\n| 2 | 0.5999 " in (sweep / "report" / "report.md").read_text()   # p1's row (kn 2)
+    assert f"left out {sweep / 'collisional_flow' / 'kn3_seed1'}: point.json: not valid JSON" in err
+    assert "\n| 2 | 0.5999 " in (sweep / "report" / "report.md").read_text()   # the usable point's row (kn 2)
 
 
 def test_a_profile_that_cannot_be_read_is_listed_not_dropped(tmp_path):
@@ -576,12 +595,12 @@ def test_a_profile_that_cannot_be_read_is_listed_not_dropped(tmp_path):
     was dropped silently)."""
     from postprocess.__main__ import main
     sweep = sweep_of(tmp_path, {
-        ("collisional_flow", "p1"): lambda p: write_profile(write_point(p)),
-        ("collisional_flow", "p22"): lambda p: write_profile(write_point(p), PROFILE_BINS[:2])})
+        ("collisional_flow", 2): lambda p: write_profile(write_point(p)),
+        ("collisional_flow", 3): lambda p: write_profile(write_point(p), PROFILE_BINS[:2])})
     assert main(["report", str(sweep)]) == 0
     report = (sweep / "report" / "report.md").read_text()
     assert "![profiles](profiles_collisional_flow.png)" in report
-    assert (f"- figure profiles_collisional_flow.png: {sweep / 'collisional_flow' / 'p22'}/"
+    assert (f"- figure profiles_collisional_flow.png: {sweep / 'collisional_flow' / 'kn3_seed1'}/"
             "profile.txt: 2 bins, the header says 3: truncated?") in report
 
 
@@ -593,7 +612,7 @@ def test_the_report_reads_each_file_of_a_point_once(tmp_path, monkeypatch):
     def disk(point):
         write_point(point, scene="single_disk")
         single_disk_trajectory(point, 100.0)
-    sweep = sweep_of(tmp_path, {("single_disk", "p1"): disk, ("single_disk", "p22"): disk})
+    sweep = sweep_of(tmp_path, {("single_disk", 2): disk, ("single_disk", 3): disk})
     reads, read_text = [], Path.read_text
     monkeypatch.setattr(Path, "read_text",
                         lambda self, *a, **k: reads.append(self) or read_text(self, *a, **k))
@@ -601,7 +620,7 @@ def test_the_report_reads_each_file_of_a_point_once(tmp_path, monkeypatch):
     assert "![v_y(t) at the softest and the stiffest point]" in \
         (sweep / "report" / "report.md").read_text()
     counts = Counter(p.relative_to(sweep) for p in reads if sweep / "single_disk" in p.parents)
-    assert Path("single_disk/p1/trajectory.txt") in counts
+    assert Path("single_disk/kn2_seed1/trajectory.txt") in counts
     # energy.txt twice in its one reading: its header names the columns, then its table
     assert all(n == (2 if p.name == "energy.txt" else 1) for p, n in counts.items()), counts
 
@@ -616,19 +635,19 @@ def crashed(point):
 
 def test_a_crashed_point_is_reported_as_crashed(tmp_path):
     from postprocess.study import analyse
-    sweep = sweep_of(tmp_path, {("collisional_flow", "p1"): crashed,
-                                ("collisional_flow", "p2"): lambda p: (p / "done.txt").unlink()})
+    sweep = sweep_of(tmp_path, {("collisional_flow", 2): crashed,
+                                ("collisional_flow", 3): lambda p: (p / "done.txt").unlink()})
     left_out = dict(analyse(sweep)[1])
-    assert left_out[sweep / "collisional_flow" / "p1"] == (
+    assert left_out[sweep / "collisional_flow" / "kn2_seed1"] == (
         "crashed (exit status 1; ERROR: Lost atoms: original 4 current 3 (x.cpp:1); "
         "see failed.txt)")
-    assert left_out[sweep / "collisional_flow" / "p2"] == "did not complete (no done.txt and timing.json of one run)"
+    assert left_out[sweep / "collisional_flow" / "kn3_seed1"] == "did not complete (no done.txt and timing.json of one run)"
 
 
 def test_compare_fails_when_nothing_could_be_evaluated(tmp_path, capsys):
     from postprocess.__main__ import main
     from postprocess.reference import load_claims
-    sweep = sweep_of(tmp_path, {("collisional_flow", "p1"): crashed})
+    sweep = sweep_of(tmp_path, {("collisional_flow", 2): crashed})
     assert main(["compare", str(sweep)]) == 1
     assert (f"comparison: 0 pass, 0 differ from the paper, 0 FAIL, {len(load_claims())} not "
             "evaluated: nothing could be evaluated") in capsys.readouterr().out
@@ -670,13 +689,13 @@ def test_a_byte_that_is_not_text_is_named_by_file_and_line(tmp_path, capsys, nam
         lines = path.read_bytes().splitlines(keepends=True)
         lines[line - 1] = lines[line - 1][:3] + b"\xff" + lines[line - 1][3:]
         path.write_bytes(b"".join(lines))
-    sweep = sweep_of(tmp_path / "results", {("collisional_flow", "p1"): write_point,
-                                            ("collisional_flow", "p22"): damaged})
+    sweep = sweep_of(tmp_path / "results", {("collisional_flow", 2): write_point,
+                                            ("collisional_flow", 3): damaged})
     said = f"{name}:{line}: byte 0xff is not UTF-8 text: a damaged or binary file?"
     assert main(["report", str(sweep)]) == 0
-    assert f"left out {sweep / 'collisional_flow' / 'p22'}: {said}" in capsys.readouterr().err
+    assert f"left out {sweep / 'collisional_flow' / 'kn3_seed1'}: {said}" in capsys.readouterr().err
     assert main(["summarize", str(sweep), "--to", str(tmp_path / "data")]) == 0
-    summary = json.loads((tmp_path / "data" / "collisional_flow" / "p22.json").read_text())
+    summary = json.loads((tmp_path / "data" / "collisional_flow" / "kn3_seed1.json").read_text())
     assert said in (summary["reason"] or summary["measured"]["problem"])
 
 
@@ -688,7 +707,7 @@ def test_an_output_directory_that_is_a_file_is_refused(tmp_path, capsys, command
     """--output or --to naming a file, or a directory below one (FileExistsError,
     NotADirectoryError tracebacks): refused before any analysis, exit status 2."""
     from postprocess.__main__ import main
-    sweep = sweep_of(tmp_path / "results", {("collisional_flow", "p1"): write_point})
+    sweep = sweep_of(tmp_path / "results", {("collisional_flow", 2): write_point})
     (tmp_path / "file").write_text("mine\n")
     out = tmp_path / "file" / "sub" if below else tmp_path / "file"
     assert main([command, str(sweep), option, str(out)]) == 2

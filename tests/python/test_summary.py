@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from postprocess.__main__ import main
+from postprocess.rundir import run_name
 from postprocess.runs import load_runs
 from postprocess.selection import Selection
 from test_postprocess import completed, crashed, single_disk_trajectory, write_point
@@ -40,7 +41,6 @@ def frictional(point, seed, energy=lambda t: 0.6 + 0.01 * np.sin(t), stop=None):
     params = point / "params.txt"
     params.write_text(params.read_text().replace("seed 1\n", f"seed {seed}\n"))
     with_energy(point, energy, stop=stop)
-    (point / "point.json").write_text(json.dumps({"kn": 200000, "seed": seed}))
 
 
 def sweep(tmp_path):
@@ -50,32 +50,35 @@ def sweep(tmp_path):
     after a steady part and before average_start, a crashed and an unfinished point."""
     out = tmp_path / "results"
 
-    def point(scene, name, variables):
-        p = out / scene / name
+    def point(scene, variables):
+        """A point's directory as the runner makes it: named by its variables, which its
+        point.json holds."""
+        variables = {"scene": scene, **variables}
+        p = out / run_name(variables)
         p.mkdir(parents=True)
         (p / "point.json").write_text(json.dumps(variables))
         completed(p)
         return p
 
     for kn in (1e5, 4e5):
-        p = write_point(point("collisional_flow", f"kn{kn:g}", {"kn": kn}))
+        p = write_point(point("collisional_flow", {"kn": kn}))
         p.joinpath("params.txt").write_text(p.joinpath("params.txt").read_text().replace(
             "kn 200000", f"kn {kn:g}"))
         with_energy(p, lambda t, kn=kn: 0.6 * (kn / 1e5) ** -0.05 + 0.01 * np.sin(t))
-        p = point("single_disk", f"kn{kn:g}", {"kn": kn})
+        p = point("single_disk", {"kn": kn})
         write_point(p, scene="single_disk")
         p.joinpath("params.txt").write_text(p.joinpath("params.txt").read_text().replace(
             "kn 200000", f"kn {kn:g}"))
         single_disk_trajectory(p, 100.0, spacing=0.1)
     noise = RNG.uniform(-0.3, 0.3, 10001)
-    frictional(point("frictional_flow", "s1", {}), 1)
-    frictional(point("frictional_flow", "s2", {}), 2,
+    frictional(point("frictional_flow", {"kn": 200000, "seed": 1}), 1)
+    frictional(point("frictional_flow", {"kn": 200000, "seed": 2}), 2,
                lambda t: 0.65 + noise[int(round(t / 0.1))])
-    frictional(point("frictional_flow", "s3", {}), 3, lambda t: 0.95 + 0.01 * np.sin(t))
-    frictional(point("frictional_flow", "s4", {}), 4, stop=800.0)
-    frictional(point("frictional_flow", "s5", {}), 5, stop=40.0)
-    crashed(point("collisional_flow", "crashed", {"kn": 8e5}))
-    (point("collisional_flow", "running", {"kn": 1.6e6}) / "done.txt").unlink()
+    frictional(point("frictional_flow", {"kn": 200000, "seed": 3}), 3, lambda t: 0.95 + 0.01 * np.sin(t))
+    frictional(point("frictional_flow", {"kn": 200000, "seed": 4}), 4, stop=800.0)
+    frictional(point("frictional_flow", {"kn": 200000, "seed": 5}), 5, stop=40.0)
+    crashed(point("collisional_flow", {"kn": 8e5}))
+    (point("collisional_flow", {"kn": 1.6e6}) / "done.txt").unlink()
     return out
 
 
@@ -142,17 +145,18 @@ def test_summaries_say_how_each_run_ended_and_what_it_is(summarized):
     summaries = {r.point.relative_to(data).with_suffix(""): r for r in load_runs(data)}
     assert raw.keys() == summaries.keys()
     ended = {str(k): r.ended for k, r in summaries.items()}
-    assert ended["collisional_flow/crashed"] == "failed"
-    assert ended["collisional_flow/running"] == "incomplete"
-    assert ended["frictional_flow/s4"] == ended["frictional_flow/s5"] == "stopped"
-    assert ended["frictional_flow/s1"] == "flowing"
+    assert ended["collisional_flow/kn800000"] == "failed"
+    assert ended["collisional_flow/kn1.6e+06"] == "incomplete"
+    assert ended["frictional_flow/kn200000_seed4"] == ended["frictional_flow/kn200000_seed5"] \
+        == "stopped"
+    assert ended["frictional_flow/kn200000_seed1"] == "flowing"
     for key, r in raw.items():
         s = summaries[key]
         assert (s.ended, s.stopped_at, s.variables, s.params, s.reason) == \
             (r.ended, r.stopped_at, r.variables, r.params, r.reason)
         assert s.observables == r.observables
     # the frictional seed with wide samples: kept at resolutions 1 and 5, not at 0.1
-    noisy = summaries[next(k for k in summaries if str(k) == "frictional_flow/s2")]
+    noisy = summaries[next(k for k in summaries if str(k) == "frictional_flow/kn200000_seed2")]
     assert noisy.kept(Selection(), (0.1, 1.0, 5.0)) == {0.1: 0, 1.0: 1, 5.0: 1}
 
 
@@ -209,14 +213,20 @@ def test_a_resolution_the_summaries_do_not_hold_is_refused(summarized, capsys):
     ("disagreeing params", "corrupt summary: variables gives kn = 100000.0, but params gives "
                            "300000.0: they disagree"),
     ("key twice", "cpu_seconds given twice: which value is meant cannot be told"),
+    # a run's identity is its variables (point.json's): the name is derived from them
+    ("point", "corrupt summary: point is 'collisional_flow/kn300000', but the file is "
+              "collisional_flow/kn100000.json"),
+    ("variables of another run", "corrupt summary: variables gives the run "
+                                 "collisional_flow/kn300000, but its file names it "
+                                 "collisional_flow/kn100000: they disagree"),
 ])
 def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, damage, message):
     _, data = summarized
     path = tmp_path / "data" / "collisional_flow" / "kn100000.json"
     original = data / path.parent.name / path.name
     if damage in ("rule", "negative span"):
-        path = tmp_path / "data" / "frictional_flow" / "s1.json"
-        original = data / "frictional_flow" / "s1.json"
+        path = tmp_path / "data" / "frictional_flow" / "kn200000_seed1.json"
+        original = data / "frictional_flow" / "kn200000_seed1.json"
     if damage == "unknown scene":
         path = tmp_path / "data" / "avalanche" / "kn100000.json"
     path.parent.mkdir(parents=True)
@@ -248,7 +258,7 @@ def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, dama
     if damage == "flowing and stopped":
         summary["stopped_at"] = 50.0
     if damage == "unknown scene":
-        summary["scene"] = "avalanche"
+        summary.update(scene="avalanche", point="avalanche/kn100000")
     if damage == "variables null":
         summary["variables"] = None
     if damage == "list variable":
@@ -257,6 +267,10 @@ def test_a_summary_that_is_not_one_is_refused_by_name(summarized, tmp_path, dama
         summary["measured"]["window"]["blocks"]["E_total"][0] = 1e308
     if damage == "disagreeing params":
         summary["params"]["kn"] = 300000.0
+    if damage == "point":
+        summary["point"] = "collisional_flow/kn300000"
+    if damage == "variables of another run":
+        summary["variables"]["kn"] = summary["params"]["kn"] = 300000.0
     if damage in ("histogram", "tail", "contacts", "split", "split part"):
         # a run with contact rows (durations.run_contacts), damaged
         histogram = [0] * 50
@@ -337,7 +351,7 @@ def test_the_report_lists_a_summary_it_cannot_group_and_goes_on(summarized, tmp_
         path.unlink()
         path = tmp_path / "data" / "avalanche" / "kn100000.json"
         path.parent.mkdir()
-        summary["scene"] = "avalanche"
+        summary.update(scene="avalanche", point="avalanche/kn100000")
     if damage == "variables null":
         summary["variables"] = None
     if damage == "list variable":
