@@ -62,15 +62,17 @@ def write_transition_report(sweep_dir, runs, groups, left_out, out):
              f"the fractions of disk (boundary) contacts longer than {durations.TAIL_CUT:g} "
              "tau_c (tau_w). Errors: across seeds, or block errors of a single seed.", ""]
     made = []
-    for name, caption, job in (
-            ("transition.png", "exponents and multiple contacts against sin theta",
-             lambda p: figures.transition_figure(table, p)),
-            ("durations.png", "P(tau/tau_c) for a few inclinations",
-             lambda p: figures.duration_figure(_few_densities(runs, table),
-                                               durations.DURATION_EDGES, p))):
-        if any(row.get("kn_stiffest") for row in table):
-            job(out / name)
-            made.append((caption, name))
+    if any(row.get("kn_stiffest") for row in table):
+        figures.transition_figure(table, out / "transition.png")
+        made.append(("exponents and multiple contacts against sin theta", "transition.png"))
+        # P(tau) needs the contact rows (deck variable rows), which a sweep may not have asked for
+        densities = _few_densities(runs, table)
+        if densities:
+            figures.duration_figure(densities, durations.DURATION_EDGES, out / "durations.png")
+            made.append(("P(tau/tau_c) for a few inclinations", "durations.png"))
+        else:
+            lines += ["No P(tau) figure: no flowing inclination has contact rows (deck "
+                      "variable rows).", ""]
     for scene in sorted({row["scene"] for row in table}):
         lines += [f"## {scene_of(scene).base} (`{scene}`)", "",
                   "| sin theta | runs: flowing / stopped / accelerating / drifting | k_n flowing | "

@@ -141,3 +141,27 @@ def test_the_transition_study_of_summaries_says_it_needs_the_raw_outputs(tmp_pat
             "are run summaries (<scene>/<point>.json): summaries hold E(t) only as its means "
             "over windows of 1") in capsys.readouterr().err
     assert not (tmp_path / "t").exists()
+
+
+def test_a_transition_sweep_without_contact_rows_gets_its_report_without_p_tau(tmp_path):
+    """A sweep run without the deck variable rows has no contact durations: the report and the
+    exponents' figure are written, the P(tau) figure is left out with the reason (an empty
+    figure raised from matplotlib)."""
+    from postprocess.quantities import COLUMNS
+    from postprocess.study import combine_seeds
+    from postprocess.write_transition import write_transition_report
+    kn = [5e4, 2e5, 8e5]
+    runs = [run("frictional_flow", 0.2, k, s, "flowing", N_c=20 * (k / 5e4) ** 0.4,
+                N_w=5 * (k / 5e4) ** 0.4, t_c=0.4, mc_c=0.1, t_multiple=0.3, z=2.5,
+                E_total=0.6) for k in kn for s in (1, 2)]
+    for r in runs:
+        r["durations"] = {"disk": np.array([]), "boundary": np.array([])}
+        r["point"] = f"kn{r['kn']:g}_seed{r['seed']}"
+        r["observables"].update(tau_c=1e-3, tau_w=1e-3, n_boundary=10)
+        for q in COLUMNS:
+            r["observables"].setdefault(q, 1.0)
+            r["observables"].setdefault(q + "_err", 0.0)
+    groups = {("frictional_flow", 0.2): combine_seeds([r["observables"] for r in runs])}
+    report = write_transition_report("sweep", runs, groups, [], tmp_path)
+    assert (tmp_path / "transition.png").exists() and not (tmp_path / "durations.png").exists()
+    assert "No P(tau) figure: no flowing inclination has contact rows" in report.read_text()
