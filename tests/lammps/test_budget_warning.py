@@ -92,14 +92,20 @@ def test_a_budget_that_does_not_close_is_warned_of_and_the_run_goes_on(tmp_path)
     check_warning_against_energy_txt(tmp_path, warnings[0])
     problem = budget_problem(energy_table(tmp_path), params_of(tmp_path))
     assert problem is not None and f"at step {warnings[0][0]} " in problem, problem
-    # the run went on: every output, energy.txt to the last output step
+    # the run went on as it would have without the check: every output, and the trajectory
+    # of energies = no (which has none) to the bit, to the last output step
     assert (tmp_path / "done.txt").exists()
     for name in ("counts.txt", "profile.txt", "snapshots.lammpstrj"):
         assert (tmp_path / name).exists(), name
-    step, _, _ = residual_and_bound(tmp_path)
-    dt = params_of(tmp_path)["dt"]
-    assert step[-1] * dt > UNSTABLE["run_time"] - 0.1 - 1e-9
     assert not (tmp_path / "budget_reference.lmp").exists()
+    run_scene("collisional_flow", tmp_path / "off", **{**variables, "energies": "no"})
+    on, off = energy_table(tmp_path), energy_table(tmp_path / "off")
+    for name in ("step", "e_trans", "e_rot"):
+        assert np.array_equal(on[name], off[name]), name
+    assert data_lines(tmp_path / "snapshots.lammpstrj") == data_lines(
+        tmp_path / "off" / "snapshots.lammpstrj")
+    output_interval = 0.1    # the decks' default
+    assert on["time"][-1] > variables["run_time"] - output_interval - 1e-9
 
 
 def test_a_budget_that_closes_is_not_warned_of(tmp_path):
