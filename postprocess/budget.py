@@ -9,7 +9,13 @@ at the start) (docs/model.md section 9). A contact's force is at most m v omega,
 tau_c, on a disk of kinetic energy E = m v^2/2, which puts the term at (pi dt/tau_c)^2 E / 4 =
 2.5 (dt/tau_c)^2 E per disk; forces that hold a pile up under gravity add (m g H dt)^2/(8 m) per
 disk, below 1e-5 (dt/tau_c)^2 for the piles of these decks. BOUND_FACTOR keeps a factor of four
-over the collision's term, and E is counted as at least the energy scale m g d = 1."""
+over the collision's term, and E is counted as at least the energy scale m g d = 1.
+
+The decks apply the same bound as they run (inputs/lib/outputs.lmp's budget_bound,
+inputs/lib/budget_check.lmp: a WARNING naming the step), in LAMMPS's variables: one definition
+(docs/model.md section 9, this derivation) in two languages, which
+tests/lammps/test_budget_warning.py holds to one verdict. A change to the bound is a change to
+both."""
 import numpy as np
 
 BOUND_FACTOR = 10.0

@@ -5,6 +5,7 @@ from pathlib import Path
 
 import test_bad_input
 import test_bad_input_liggghts
+import test_budget_warning
 import test_checkpoint
 import test_chute
 import test_chute_3d
@@ -27,7 +28,7 @@ def test_every_bad_input_case_is_in_the_table():
               test_sweep.BAD_CONFIGS, test_sweep.BAD_OUTPUTS,
               test_sweep_runner.BAD_SETTINGS, test_chute_3d.BAD_3D,
               test_checkpoint.BAD_WINDOWS, test_bad_input_liggghts.BAD,
-              test_chute.BAD, test_energy.BAD]
+              test_chute.BAD, test_energy.BAD, test_budget_warning.BAD]
     for table in tables:
         for case, (_, message) in table.items():
             assert f"| {case}" in DOC and message.replace("|", "\\|") in DOC, case
