@@ -64,7 +64,7 @@ from pathlib import Path
 
 from . import limit
 from .io import DataError
-from .selection import Selection
+from .selection import add_selection_arguments, selection_of
 from .study import analyse
 from .transition import analyse_transition
 from .runs import load_runs
@@ -90,11 +90,7 @@ def main(argv=None):
     parser.add_argument("--output", type=Path)
     parser.add_argument("--to", type=Path)
     parser.add_argument("--replace", action="store_true")
-    parser.add_argument("--resolution", type=float, default=1.0)
-    parser.add_argument("--energy-range", type=float, nargs=2, default=(0.4, 0.8),
-                        metavar=("LOW", "HIGH"))
-    parser.add_argument("--min-span", type=float, default=Selection.min_length)
-    parser.add_argument("--max-width", type=float, default=Selection.max_width)
+    add_selection_arguments(parser)
     parser.add_argument("--rule", type=int, choices=limit.RULES, default=limit.RULE)
     args = parser.parse_args(argv)
     if args.rule != limit.RULE and args.command not in ("limit", "compare"):
@@ -104,17 +100,7 @@ def main(argv=None):
     args.sweep = args.sweeps[0]
     sources = args.sweeps if len(args.sweeps) > 1 else args.sweep
     named = " + ".join(str(p) for p in args.sweeps)
-    if not args.resolution > 0:
-        parser.error(f"--resolution {args.resolution:g} must be > 0")
-    low, high = args.energy_range
-    if not 0 <= low < high:
-        parser.error(f"--energy-range {low:g} {high:g} must satisfy 0 <= LOW < HIGH")
-    if not args.min_span > 0:
-        parser.error(f"--min-span {args.min_span:g} must be > 0")
-    if not args.max_width > 0:
-        parser.error(f"--max-width {args.max_width:g} must be > 0")
-    selection = Selection(resolution=args.resolution, energy_range=(low, high),
-                          min_length=args.min_span, max_width=args.max_width)
+    selection = selection_of(parser, args)
     if (args.to is not None or args.replace) and args.command != "summarize":
         parser.error("--to and --replace are for summarize")
     in_repository = (DATA.parent / "pyproject.toml").exists()

@@ -21,6 +21,31 @@ class Selection:
                 f"windows of {self.resolution:g}")
 
 
+def add_selection_arguments(parser):
+    """The selection's command-line options, for every command that selects steady parts."""
+    parser.add_argument("--resolution", type=float, default=Selection.resolution)
+    parser.add_argument("--energy-range", type=float, nargs=2, default=Selection.energy_range,
+                        metavar=("LOW", "HIGH"))
+    parser.add_argument("--min-span", type=float, default=Selection.min_length)
+    parser.add_argument("--max-width", type=float, default=Selection.max_width)
+
+
+def selection_of(parser, args):
+    """The Selection the options of add_selection_arguments ask for; a value that selects
+    nothing meaningful is the parser's error."""
+    if not args.resolution > 0:
+        parser.error(f"--resolution {args.resolution:g} must be > 0")
+    low, high = args.energy_range
+    if not 0 <= low < high:
+        parser.error(f"--energy-range {low:g} {high:g} must satisfy 0 <= LOW < HIGH")
+    if not args.min_span > 0:
+        parser.error(f"--min-span {args.min_span:g} must be > 0")
+    if not args.max_width > 0:
+        parser.error(f"--max-width {args.max_width:g} must be > 0")
+    return Selection(resolution=args.resolution, energy_range=(low, high),
+                     min_length=args.min_span, max_width=args.max_width)
+
+
 def steady_spans(t, energy, min_length=500.0, max_width=0.45):
     """Maximal spans of the series, longer than min_length, over which the width of the energy
     fluctuation (max - min) stays below max_width. Scans left to right: a span is extended as

@@ -35,7 +35,8 @@ import numpy as np
 from postprocess.record import run_name
 from postprocess.runs import load_runs
 from postprocess.scenes import SCENES
-from postprocess.selection import Selection
+from postprocess.selection import Selection, add_selection_arguments, selection_of
+from postprocess.study import label, main_series as study_main_series, varying_variables
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -134,17 +135,14 @@ def window_mean(record, quantity):
 
 
 def main_series(records):
-    """The records of the series shared by the most k_n: those whose variables other than kn
-    and seed are the same (ties: the first in sorted order)."""
-    def key(r):
-        return repr(sorted((k, v) for k, v in r.variables.items() if k not in ("kn", "seed")))
-    kns = {}
-    for r in records:
-        kns.setdefault(key(r), set()).add(float(r.params["kn"]))
-    if not kns:
-        return []
-    best = max(sorted(kns), key=lambda k: len(kns[k]))
-    return [r for r in records if key(r) == best]
+    """The records of the soft sweep's main series (postprocess.study.main_series: the label
+    shared by the most k_n)."""
+    varying = varying_variables([r.variables for r in records])
+    labels = [label(r.variables, varying) for r in records]
+    main = study_main_series([{"kn": kn, "label": name} for kn, name in
+                              sorted({(float(r.params["kn"]), name)
+                                      for r, name in zip(records, labels)})])
+    return [r for r, name in zip(records, labels) if main and name == main[0]["label"]]
 
 
 def value_error(values, digits=4):
@@ -222,14 +220,9 @@ def tc_command(args):
     parser = argparse.ArgumentParser(prog="hard_spheres_report tc", usage=__doc__)
     parser.add_argument("data", type=Path)
     parser.add_argument("soft", type=Path)
-    parser.add_argument("--energy-range", type=float, nargs=2,
-                        default=Selection.energy_range)
-    parser.add_argument("--min-span", type=float, default=Selection.min_length)
-    parser.add_argument("--max-width", type=float, default=Selection.max_width)
+    add_selection_arguments(parser)
     options = parser.parse_args(args)
-    tc(options.data, options.soft,
-       Selection(energy_range=tuple(options.energy_range), min_length=options.min_span,
-                 max_width=options.max_width))
+    tc(options.data, options.soft, selection_of(parser, options))
 
 
 def main(argv):
