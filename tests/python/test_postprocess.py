@@ -461,28 +461,22 @@ def test_a_point_json_naming_a_variable_twice_is_named(tmp_path):
                                 "told")]
 
 
-def test_a_point_json_and_params_that_disagree_are_named(tmp_path):
-    """The deck prints the variables it was given into params.txt: a point.json that says
-    otherwise is of another run (or one of them was edited); the run was grouped by point.json
-    and averaged with params.txt's values."""
-    point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow",
-                                          '{"kn": 100000, "scene": "collisional_flow"}',
+@pytest.mark.parametrize("point_json, why", [
+    # the deck prints the variables it was given into params.txt (kn 200000 here): a point.json
+    # that says otherwise is of another run, which would be grouped by point.json and averaged
+    # with params.txt's values
+    ('{"kn": 100000, "scene": "collisional_flow"}',
+     "point.json gives kn = 100000, but params.txt gives 200000.0: they disagree (the outputs "
+     "of another run, or an edited file?)"),
+    # a run's identity is its point.json, and the runner names its directory after it: a
+    # directory whose name says another k_n would report one run's values under another's name
+    ('{"kn": 200000, "scene": "collisional_flow"}',
+     "point.json gives the run collisional_flow/kn200000, but its directory names it "
+     "collisional_flow/kn100000: they disagree (renamed, or the variables of another run?)")])
+def test_a_run_whose_identities_disagree_is_named(tmp_path, point_json, why):
+    point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow", point_json,
                                           name="kn100000")
-    assert left_out == [(point, "point.json gives kn = 100000, but params.txt gives 200000.0: "
-                                "they disagree (the outputs of another run, or an edited "
-                                "file?)")]
-
-
-def test_a_directory_named_for_another_run_is_named(tmp_path):
-    """A run's identity is its point.json, and the runner names its directory after it: a
-    directory whose name says another k_n (renamed, or another run's point.json copied in)
-    would be reported under one run's name with another's values."""
-    point, left_out = left_out_of_a_sweep(tmp_path, "collisional_flow",
-                                          '{"kn": 200000, "scene": "collisional_flow"}',
-                                          name="kn100000")
-    assert left_out == [(point, "point.json gives the run collisional_flow/kn200000, but its "
-                                "directory names it collisional_flow/kn100000: they disagree "
-                                "(renamed, or the variables of another run?)")]
+    assert left_out == [(point, why)]
 
 
 def test_a_point_json_without_its_scene_is_named(tmp_path):
