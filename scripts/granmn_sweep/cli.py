@@ -160,6 +160,9 @@ def main(argv=None):
                         "point whose summary there ended (flowing or stopped) is done and not "
                         "run; repeatable")
     args = parser.parse_args(argv)
+    # the dry runs and the points run lmp elsewhere than here: a relative --build names this
+    # directory's
+    args.build = args.build.absolute()
     if args.ranks < 1:
         parser.error(f"--ranks {args.ranks}: the MPI ranks per point must be >= 1")
     if args.jobs is None:

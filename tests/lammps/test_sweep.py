@@ -390,6 +390,19 @@ def test_one_value_is_one_point_whatever_its_spelling(tmp_path):
 
 
 
+def test_a_relative_build_is_the_build_under_the_working_directory(tmp_path):
+    """--build relative to where the runner is started: the dry run, which runs lmp in a
+    directory of its own, still finds lmp and the plugin there."""
+    config = tmp_path / "relative.toml"
+    config.write_text('[[grid]]\nscene = "single_disk"\nrun_time = 1\naverage_start = 0.5\n')
+    proc = subprocess.run(SWEEP + [str(config), "--output", str(tmp_path / "out"), "--build",
+                                   os.path.relpath(BUILD, BUILD.parent), "--dry-run"],
+                          cwd=BUILD.parent, capture_output=True, text=True, timeout=120,
+                          env={**os.environ, "PYTHONPATH": str(ROOT)})
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert re.search(r"todo single_disk/average_start0\.5_run_time1 \d+ steps", proc.stdout)
+
+
 def test_set_gives_every_point_the_variable(tmp_path):
     """--set NAME=VALUE is a [defaults] entry: it replaces the file's value there and names
     every point; where a grid sets NAME itself (the grid would win) and where it is not
@@ -455,19 +468,21 @@ def test_partition_error_reruns_its_healthy_sibling(tmp_path):
     """A LAMMPS ERROR in one partition aborts the whole mpirun (MPI_Abort): the sibling it took
     down did not fail, and is run again, with a word. The ERROR: a stiffness too soft to hold
     the disk, which passes through a bump during the run (its dry run is sound)."""
-    # the sibling runs ten times as long: the ERROR, a tenth of the way, takes it down
+    # the ERROR comes within milliseconds of the loop's start; the sibling's loop (2e7 steps of
+    # 1e-6) lasts seconds, so the abort reaches it mid-run even on a loaded machine
     config = single_disk_config(tmp_path, 'run_time = 2\naverage_start = 0.5\nkn = 0.001\n'
                                           '[[grid]]\nscene = "single_disk"\nrun_time = 20\n'
-                                          'average_start = 0.5\n')
+                                          'average_start = 0.5\ndt_cap = 1e-6\n')
     output = tmp_path / "out"
     proc = sweep(config, output, "--partitions", "2", check=False, timeout=120)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     points = output / "single_disk"
     failed = (points / "average_start0.5_kn0.001_run_time2" / "failed.txt").read_text()
     assert "have passed through each other" in failed
-    healthy = points / "average_start0.5_run_time20"
+    healthy = points / "average_start0.5_dt_cap1e-06_run_time20"
     assert (healthy / "done.txt").exists() and not (healthy / "failed.txt").exists()
-    assert re.search(r"rerun single_disk/average_start0.5_run_time20: .*kn0.001", proc.stdout)
+    assert re.search(r"rerun single_disk/average_start0.5_dt_cap1e-06_run_time20: .*kn0.001",
+                     proc.stdout)
     assert not processes_mentioning(output)
 
 
