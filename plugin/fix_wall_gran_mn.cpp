@@ -229,10 +229,10 @@ void FixWallGranMN::touching_side(int i, int side, double dist, double rho, doub
   const double vn = inward_normal<CYLINDER>(x, v, i, axis, normal, rho, n);
   double *ut = layout.ut >= 0 ? row + layout.ut : nullptr;
   double *vt_previous = layout.vt_previous >= 0 ? row + layout.vt_previous : nullptr;
+  const bool began = OBSERVED && row[layout.touching] == 0.0;
   if (OBSERVED) {
     granmn::ContactObserver *const events = observer;
     double &touching = row[layout.touching];
-    const bool began = touching == 0.0;
     events->update_record(row + layout.record, began, radius[i] - dist, vn);
     touching = 1.0;
     if (began) row[granmn::WallSlots::HELD] += 1.0;
@@ -258,7 +258,7 @@ void FixWallGranMN::touching_side(int i, int side, double dist, double rho, doub
   double *energy = OBSERVED ? slot_energy(i, side) : nullptr;
   if (energy)
     add_wall_contact_with_energy<DIM>(i, scale, kin, ut, dt_history, vt_previous, energy,
-                                      on_walls);
+                                      on_walls, began);
   else
     mn::add_wall_contact<DIM>(law, scale, kin, ut, dt_history, integrator, vt_previous,
                               radius[i], atom->f[i], atom->torque[i], on_walls);

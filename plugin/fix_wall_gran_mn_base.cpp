@@ -114,7 +114,8 @@ template <int DIM, class K>
 void FixWallGranMNBase::add_wall_contact_with_energy(int i, double scale, const K &kin,
                                                      double *ut, double dt_history,
                                                      double *vt_previous, double *energy,
-                                                     double *on_walls, const double *v_wall)
+                                                     double *on_walls, bool began,
+                                                     const double *v_wall)
 {
   const double radius = atom->radius[i];
   const double *omega = atom->omega[i];
@@ -132,6 +133,10 @@ void FixWallGranMNBase::add_wall_contact_with_energy(int i, double scale, const 
   // the wall takes no energy: the contact's energies are all the atom's
   const granmn::EnergyTallies *tallies = observer->energy_tallies();
   tallies->add(i, 1.0, booked, mn::stored_energy(law, scale, kin.delta, ut_squared(DIM, ut)));
+  if (began && dt_history == 0.0)
+    tallies->add(i, 1.0,
+                 mn::open_energy_account(law, scale, kin.delta, ut_squared(DIM, ut), energy),
+                 {0.0, 0.0});
   if (v_wall)
     tallies->add_wall_work(
         i, mn::book_wall_work(integrator, DIM, dt_history, tail, f, v_wall, energy));
@@ -186,10 +191,10 @@ mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy(int i, const double 
 }
 
 template void FixWallGranMNBase::add_wall_contact_with_energy<2, mn::Kinematics>(
-    int, double, const mn::Kinematics &, double *, double, double *, double *, double *,
+    int, double, const mn::Kinematics &, double *, double, double *, double *, double *, bool,
     const double *);
 template void FixWallGranMNBase::add_wall_contact_with_energy<3, mn::Kinematics3>(
-    int, double, const mn::Kinematics3 &, double *, double, double *, double *, double *,
+    int, double, const mn::Kinematics3 &, double *, double, double *, double *, double *, bool,
     const double *);
 template mn::ContactEnergy FixWallGranMNBase::book_ended_wall_energy<2>(
     int, const double *, double, double, const double *, double *, const double *);

@@ -61,11 +61,14 @@ class FixWallGranMNBase : public FixPerAtomState, public granmn::HeldContacts {
   // A touching contact of atom i (kin: mn::wall_kinematics) with its energies booked into
   // energy (slot_energy) and the observer's tallies: the force and torque on i, minus the force
   // into on_walls, as mn::add_wall_contact. v_wall: the wall's velocity at the contact (the one
-  // kin subtracts) where it moves, whose work on the atom is booked too; else nullptr.
+  // kin subtracts) where it moves, whose work on the atom is booked too; else nullptr. began: a
+  // contact new at this evaluation (at a run's setup its account opens with what its springs
+  // hold: mn::open_energy_account).
   template <int DIM, class K>
   void add_wall_contact_with_energy(int i, double scale, const K &kin, double *ut,
                                     double dt_history, double *vt_previous, double *energy,
-                                    double *on_walls, const double *v_wall = nullptr);
+                                    double *on_walls, bool began,
+                                    const double *v_wall = nullptr);
   // The first evaluation after atom i's contact along inward normal n ended (its centre at
   // dist from the wall; v_wall as above), its history not yet cleared: its last force's second
   // half booked; what it dissipated in all.

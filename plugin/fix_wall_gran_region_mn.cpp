@@ -275,7 +275,7 @@ template <int DIM> void FixWallGranRegionMN::post_force_loop()
       const double scale = mn::boundary_mass_scale(rmass[i]) * to_force;
       if (energy)
         add_wall_contact_with_energy<DIM>(i, scale, kin, ut, dt_history, vt_previous, energy,
-                                          on_walls, moving ? v_wall : nullptr);
+                                          on_walls, began, moving ? v_wall : nullptr);
       else
         mn::add_wall_contact<DIM>(contact, scale, kin, ut, dt_history, scheme, vt_previous,
                                   radius[i], f[i], torque[i], on_walls);

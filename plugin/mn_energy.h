@@ -89,18 +89,6 @@ inline ContactEnergy contact_energy(const Law &law, double force_scale, double d
   return e;
 }
 
-// A contact whose energies are asked for only from now on (it began before: a run that did not
-// keep them): its account starts with the energy its springs store now, so that it has
-// dissipated nothing yet. A re-evaluation then keeps its force (a run's setup).
-inline void start_energy_account(const Law &law, double force_scale, double delta,
-                                 double ut_squared, double *energy, int history_size)
-{
-  const StoredEnergy stored = stored_energy(law, force_scale, delta, ut_squared);
-  for (int s = 0; s < history_size; s++) energy[s] = 0.0;
-  energy[ENERGY_TAKEN_NORMAL] = stored.normal;
-  energy[ENERGY_TAKEN_TANGENTIAL] = stored.tangential;
-}
-
 // What one evaluation booked: energy taken by the normal and the tangential force, and the
 // tangential loss it booked as sliding (the hosts' per-atom and global sums add these); and the
 // power of its force on the relative velocity it saw (0 for a contact that has ended), which an
@@ -109,6 +97,25 @@ struct EnergyStep {
   double taken_normal, taken_tangential, dissipated_sliding;
   double power;
 };
+
+// A contact that touches already where a run begins (it began at the run's setup,
+// dt_history = 0: a start with overlaps, atoms placed or moved between runs): its springs hold
+// energy that no step took from the motion (and the cut-back may have set its u_t at the setup,
+// which that evaluation booked as a negative sliding loss). Its account opens after the setup's
+// evaluation with what its springs hold as taken and no loss, so that it has dissipated nothing
+// yet; the returned booking (the change, no power) goes to its atoms' sums as a step's does.
+inline EnergyStep open_energy_account(const Law &law, double force_scale, double delta,
+                                      double ut_squared, double *energy)
+{
+  const StoredEnergy stored = stored_energy(law, force_scale, delta, ut_squared);
+  const EnergyStep opened = {stored.normal - energy[ENERGY_TAKEN_NORMAL],
+                             stored.tangential - energy[ENERGY_TAKEN_TANGENTIAL],
+                             -energy[ENERGY_DISSIPATED_SLIDING], 0.0};
+  energy[ENERGY_TAKEN_NORMAL] = stored.normal;
+  energy[ENERGY_TAKEN_TANGENTIAL] = stored.tangential;
+  energy[ENERGY_DISSIPATED_SLIDING] = 0.0;
+  return opened;
+}
 
 namespace detail {
 

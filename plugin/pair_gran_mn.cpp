@@ -316,9 +316,9 @@ void PairGranMN::touching_pair(const LoopData &data, int i, int j, double dx, do
   // looked up per contact, not per atom: most atoms of a dilute flow touch nothing
   const bool i_wall = data.is_wall[data.type[i]], j_wall = data.is_wall[data.type[j]];
   const bool tally_j = data.newton_pair || j < data.nlocal;
+  const bool began = OBSERVED && !*touch;
   if (OBSERVED) {
     granmn::ContactObserver *const events = data.events;
-    const bool began = !*touch;
     events->update_record(slots + data.record_slot, began, kin.delta, kin.vn);
     if (const granmn::ContactTallies *step = events->pair_tallies()) {
       step->add(i, j_wall, began);
@@ -347,6 +347,12 @@ void PairGranMN::touching_pair(const LoopData &data, int i, int j, double dx, do
     const double share_i = energy_share(i_wall, j_wall);
     data.energies->add(i, share_i, booked, stored);
     if (tally_j) data.energies->add(j, 1.0 - share_i, booked, stored);
+    if (began && data.dt_history == 0.0) {
+      const mn::EnergyStep opened = mn::open_energy_account(
+          data.contact, scale, kin.delta, ut_squared<DIM>(ut), slots + data.energy_slot);
+      data.energies->add(i, share_i, opened, {0.0, 0.0});
+      if (tally_j) data.energies->add(j, 1.0 - share_i, opened, {0.0, 0.0});
+    }
   } else {
     mn::force_and_torques(data.contact, scale, kin, ut, data.dt_history, data.scheme,
                           vt_previous, fc_xyz, radi, torque + row(i), radj,

@@ -201,7 +201,8 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
   }
 
   // A touching contact's energies booked (mn::book_contact_energy; its energy history anew
-  // where it began), its shares to its atoms: half to each of two particles, all to the
+  // where it began, its account opened at a run's setup: mn::open_energy_account), its shares
+  // to its atoms: half to each of two particles, all to the
   // mobile one against a frozen particle (told by fix freeze's group: meff, which the counters
   // read, cannot tell which of two particles of one mass is the frozen one).
   template <class K, class F>
@@ -222,8 +223,11 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
                                        dt_history, energy);
     const mn::StoredEnergy stored = mn::stored_energy(pair_law, scale, k.delta, ut_after);
     const int *mask = atom->mask;
-    share(sidata.i, sidata.j, mask[sidata.i] & frozen_bit, mask[sidata.j] & frozen_bit, booked,
-          stored);
+    const bool i_frozen = mask[sidata.i] & frozen_bit, j_frozen = mask[sidata.j] & frozen_bit;
+    share(sidata.i, sidata.j, i_frozen, j_frozen, booked, stored);
+    if (began && dt_history == 0.0)
+      share(sidata.i, sidata.j, i_frozen, j_frozen,
+            mn::open_energy_account(pair_law, scale, k.delta, ut_after, energy), {0.0, 0.0});
   }
 
   static mn::EnergyStep book(const mn::Law &law, double scale, const mn::Kinematics &k,

@@ -605,6 +605,35 @@ def test_a_deleted_partner_is_no_contact_any_more(tmp_path, deletion, map_array)
     assert window == pytest.approx(3000 * dt, rel=1e-12)
 
 
+
+@pytest.mark.parametrize("map_array", [True, False])
+@pytest.mark.parametrize("deletion", sorted(DELETIONS))
+def test_a_deleted_partners_contact_takes_its_energy_with_it(tmp_path, deletion, map_array):
+    """The energies' columns (energy yes) after the deletion of A, as the counters above: the
+    energy stored now is the spring of B's floor contact alone, 0.5 k_n (0.5 - y_B)^2 (B
+    sits on the floor, its forces along y), and what B's contact with A dissipated stays in the
+    sums. A contact with the deleted disk kept (the counters' old fault) would add its spring,
+    0.5 k_n overlap^2 with A's last overlap (1/k_n at rest), to the same order as the floor's.
+    The stack starts with its springs loaded (2.5/k_n in all): the contacts' accounts open with
+    that energy at the setup, so what is dissipated is positive and at most that much (an
+    account opened at zero would book B's rise off the floor as -7.5e-6, negative dissipation)."""
+    dt = law(2e5, 0.7, 0.7)["tau_w"] / 50
+    text, _ = DELETIONS[deletion]
+    first = len(VECTOR) + 1
+    energies = " ".join(f"$(f_c[{first + k}]:%.17g)" for k in range(len(SCHEMA["energy_sums"])))
+    deck = stack(map_array, text, dt).replace("fix c all contacts/mn",
+                                              "fix c all contacts/mn energy yes")
+    deck += f'print "RESULT energies {energies}"\nprint "RESULT y_b $(bound(all,ymax):%.17g)"\n'
+    run = run_lammps(deck, tmp_path, header=False)
+    sums = dict(zip(SCHEMA["energy_sums"], run.result("energies")))
+    (y_b,) = run.result("y_b")
+    assert 0.5 - y_b > 0.5 / 2e5              # B (the one atom left) still presses the floor
+    assert sums["stored"] == pytest.approx(0.5 * 2e5 * (0.5 - y_b) ** 2, rel=1e-9)
+    assert sums["work_in_flight"] == pytest.approx(0.0, abs=1e-15)
+    dissipated = sums["dissipated_normal"] + sums["dissipated_sticking"] + sums["dissipated_sliding"]
+    print(f"dissipated {dissipated:.6e} of the 2.5/k_n = {2.5 / 2e5:.6e} the springs held")
+    assert 0.0 < dissipated <= 2.5 / 2e5
+
 def resting_on_walls(counters_first, map_array):
     """Disk 1 resting on the floor (fix wall/gran/mn), disk 2 resting on disk 1, disk 3 resting
     on the floor where a region wall's face (fix wall/gran/region/mn) lies on it too, each at

@@ -135,8 +135,8 @@ template <int DIM> class System {
     evaluate(0.0);
     for (auto &c : contacts_) {
       History &h = c.second;
-      mn::start_energy_account(law_, scale(c.first.first, c.first.second), h.delta,
-                               ut_squared(h, DIM), h.energy.data(), (int) h.energy.size());
+      mn::open_energy_account(law_, scale(c.first.first, c.first.second), h.delta,
+                              ut_squared(h, DIM), h.energy.data());
     }
     evaluate(0.0);
     started_ = false;
