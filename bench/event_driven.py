@@ -32,14 +32,13 @@ import sys
 import tempfile
 from pathlib import Path
 
+from scripts.granmn_sweep.build_layout import build_layout
 from scripts.granmn_sweep.event_driven import START, START_DUMP, START_FLOOR, write_start
 
 ROOT = Path(__file__).resolve().parents[1]
 
-BUILD = ROOT / "build"
-LMP = BUILD / "lammps" / "lmp"
-PLUGIN = BUILD / "plugin" / "granmnplugin.so"
-ENGINE = BUILD / "plugin" / "event_driven" / "mn-event-driven"
+BUILD = build_layout()
+LMP, PLUGIN, ENGINE = BUILD.lammps, BUILD.plugin, BUILD.event_driven
 
 
 def lammps(scene, out, variables):

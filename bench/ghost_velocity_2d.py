@@ -17,6 +17,7 @@ import tempfile
 from pathlib import Path
 
 from bench.paired import median_and_range, paired_ratios
+from scripts.granmn_sweep.build_layout import DEFAULT as DEFAULT_BUILD, build_layout
 
 ROOT = Path(__file__).resolve().parent.parent
 OWN, LAMMPS = "pair's own (vel no)", "LAMMPS's own (vel yes)"
@@ -24,9 +25,10 @@ OWN, LAMMPS = "pair's own (vel no)", "LAMMPS's own (vel yes)"
 
 def run(build, inputs, run_time, work):
     """(CPU seconds of the run's loops, energy.txt) of the frictional scene from `inputs`."""
-    out = subprocess.run([str(build / "lammps" / "lmp"), "-in",
+    paths = build_layout(build)
+    out = subprocess.run([str(paths.lammps), "-in",
                           str(inputs / "frictional_flow.lmp"), "-log", "none", "-nocite",
-                          "-var", "plugin", str(build / "plugin" / "granmnplugin.so"),
+                          "-var", "plugin", str(paths.plugin),
                           "-var", "lib", str(inputs / "lib"), "-var", "out", str(work),
                           "-var", "run_time", str(run_time), "-var", "average_start", "0"],
                          capture_output=True, text=True, errors="replace")
@@ -42,7 +44,7 @@ def run(build, inputs, run_time, work):
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--build", type=Path, default=ROOT / "build")
+    parser.add_argument("--build", type=Path, default=DEFAULT_BUILD)
     parser.add_argument("--rounds", type=int, default=7)
     parser.add_argument("--run-time", type=float, default=60.0)
     args = parser.parse_args()

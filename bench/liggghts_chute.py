@@ -39,6 +39,7 @@ from pathlib import Path
 
 from bench.equivalent_laws import liggghts_contacts
 from bench.paired import against_goal, median_and_range, paired_ratios
+from scripts.granmn_sweep.build_layout import DEFAULT as DEFAULT_BUILD, build_layout
 from scripts.granmn_sweep.mn_law import derived
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -119,16 +120,16 @@ def main():
                         help="dt in units of tau_c (the chute deck's default: 0.01, and "
                              "at most 1e-4)")
     parser.add_argument("--rounds", type=int, default=21)
-    parser.add_argument("--build", type=Path, default=ROOT / "build")
+    parser.add_argument("--build", type=Path, default=DEFAULT_BUILD)
     parser.add_argument("--baseline", type=Path, metavar="LIGGGHTS",
                         help="also the mn deck run by this LIGGGHTS executable (another build of "
                              "the project's), paired with mn")
     args = parser.parse_args()
-    build = args.build.resolve()
-    liggghts = build / "plugin" / "liggghts" / "build" / "liggghts"
+    paths = build_layout(args.build.resolve())
+    liggghts = paths.liggghts
     if not liggghts.exists():
         sys.exit(f"{liggghts} is missing: run ./scripts/build.sh first")
-    law = derived(build / "plugin" / "mn-law", KN, E, BETA, "sphere")
+    law = derived(paths.mn_law, KN, E, BETA, "sphere")
     dt = args.dt_fraction * law["tau_c"]
     variants = {HOOKE: (liggghts, deck(liggghts_contacts(law, KN, MU, types=2), dt, args.steps)),
                 MN: (liggghts, deck(mn_contacts(), dt, args.steps))}

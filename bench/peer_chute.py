@@ -45,6 +45,7 @@ import tempfile
 from pathlib import Path
 
 from bench.paired import against_goal, median_and_range, paired_ratios
+from scripts.granmn_sweep.build_layout import DEFAULT as DEFAULT_BUILD, build_layout
 from scripts.granmn_sweep.mn_law import derived
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -134,7 +135,7 @@ def main():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--steps", type=int, default=400)
     parser.add_argument("--repeat", type=int, default=3)
-    parser.add_argument("--build", type=Path, default=ROOT / "build")
+    parser.add_argument("--build", type=Path, default=DEFAULT_BUILD)
     parser.add_argument("--baseline-plugin", type=Path, metavar="PLUGIN",
                         help="also the gran/mn deck with this granmnplugin.so (another build "
                              "of the plugin against the same LAMMPS), paired with gran/mn")
@@ -147,8 +148,8 @@ def main():
     parser.add_argument("--replicate", type=int, nargs=3, metavar=("NX", "NY", "NZ"),
                         help="replicate the chute before the run (2 2 1: 128000 spheres)")
     args = parser.parse_args()
-    build = args.build.resolve()
-    lmp, plugin = build / "lammps" / "lmp", build / "plugin" / "granmnplugin.so"
+    paths = build_layout(args.build.resolve())
+    build, lmp, plugin = paths.directory, paths.lammps, paths.plugin
     cache = (build / "CMakeCache.txt").read_text()
     tree = Path(re.search(r"^LAMMPS_SOURCE_DIR:PATH=(.*)$", cache, re.M).group(1))
     version = re.search(r'LAMMPS_VERSION "(.*)"', (tree / "src" / "version.h").read_text())
@@ -156,7 +157,7 @@ def main():
           ("" if args.decks else f", best of {args.repeat}; load average "
                                  f"{os.getloadavg()[0]:.2f} at the start"))
     decks = variants((tree / "bench" / "in.chute").read_text(),
-                     gran_mn_style(build / "plugin" / "mn-law"))
+                     gran_mn_style(paths.mn_law))
     if args.variants:
         unknown = [name for name in args.variants if name not in decks]
         if unknown:

@@ -35,6 +35,7 @@ from pathlib import Path
 
 from bench.equivalent_laws import LIGGGHTS_FLOOR, hooke_history_contacts, liggghts_contacts
 from bench.paired import against_goal, median_and_range, paired_ratios
+from scripts.granmn_sweep.build_layout import build_layout
 from scripts.granmn_sweep.mn_law import derived
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -64,10 +65,9 @@ class Build(namedtuple("Build", "directory lmp plugin mn_law reference_loop")):
 
     @classmethod
     def of(cls, tree, name):
-        directory = tree / name
-        return cls(directory, directory / "lammps" / "lmp",
-                   directory / "plugin" / "granmnplugin.so", directory / "plugin" / "mn-law",
-                   directory / "bench" / "reference-loop")
+        paths = build_layout(tree / name)
+        return cls(paths.directory, paths.lammps, paths.plugin, paths.mn_law,
+                   paths.reference_loop)
 
 
 def law(build):

@@ -48,6 +48,7 @@ from pathlib import Path
 
 from postprocess.io import read_params
 from scripts.granmn_sweep import checkpoints
+from scripts.granmn_sweep.build_layout import DEFAULT as DEFAULT_BUILD, build_layout
 from scripts.granmn_sweep.mpirun_slots import slots_problem
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -64,7 +65,7 @@ class BenchError(Exception):
 def deck_variables(args, build, out, run_time):
     """The deck variables of every run: the point (the same for the settling run and each
     measurement, as the checkpoint's signature requires) and where it writes."""
-    return {"plugin": build / "plugin" / "granmnplugin.so", "lib": ROOT / "inputs" / "lib",
+    return {"plugin": build_layout(build).plugin, "lib": ROOT / "inputs" / "lib",
             "out": out, "kn": repr(args.kn), "e": repr(args.e), "beta": repr(args.beta),
             "dt_fraction": repr(args.dt_fraction), "dt_cap": repr(args.dt_cap),
             "spheres": args.spheres, "length": args.length, "width": args.width,
@@ -79,7 +80,7 @@ def mpirun(args, ranks):
 
 
 def lmp_command(args, build, ranks, out, run_time, extra=()):
-    command = mpirun(args, ranks) + [str(build / "lammps" / "lmp"), "-in", str(DECK), "-log",
+    command = mpirun(args, ranks) + [str(build_layout(build).lammps), "-in", str(DECK), "-log",
                                      str(out / "log.lammps"), "-screen", "none", "-nocite"]
     for name, value in {**deck_variables(args, build, out, run_time), **dict(extra)}.items():
         command += ["-var", name, str(value)]
@@ -283,14 +284,14 @@ def main():
     parser.add_argument("--workdir", type=Path,
                         help="keep the settled state and the runs here (default: a temporary "
                              "directory, removed)")
-    parser.add_argument("--build", type=Path, default=ROOT / "build")
+    parser.add_argument("--build", type=Path, default=DEFAULT_BUILD)
     args = parser.parse_args()
     ranks = sorted(set(args.ranks))
     if ranks[0] < 1 or args.settle_ranks < 1 or args.repeat < 1:
         parser.error("--ranks, --settle-ranks and --repeat must be >= 1")
     if not (args.span > 0 and args.settle > 0):
         parser.error("--span and --settle must be > 0")
-    for path in (args.build / "lammps" / "lmp", args.build / "plugin" / "granmnplugin.so"):
+    for path in build_layout(args.build)[1:3]:    # lmp and the plugin
         if not path.exists():
             sys.exit(f"{path} is missing: run ./scripts/build.sh first")
 

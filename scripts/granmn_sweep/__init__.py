@@ -8,7 +8,7 @@ processes), points (the output directory and its points' directories), schedule 
 points) and cli (the command); mn_law (the law's derived numbers from build/plugin/mn-law, for
 bench and tests), mpirun_slots (the slots mpirun gives) and checkpoints (a run cut back to a
 checkpoint) import none of them; command (`granmn`: the runner and the post-processing) imports
-cli."""
+cli; build_layout (the paths inside a build directory) imports none."""
 
 
 class SweepError(Exception):

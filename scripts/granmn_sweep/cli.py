@@ -88,6 +88,7 @@ from pathlib import Path
 
 from . import SweepError
 from . import processes
+from .build_layout import DEFAULT as DEFAULT_BUILD, build_layout
 from .config import expand, load_config, with_settings
 from .cost import CostModel, format_seconds, point_sizes
 from .decks import ROOT, engine
@@ -154,7 +155,7 @@ def main(argv=None):
     parser.add_argument("--dry-run", action="store_true",
                         help="list the points and the predicted cost (each deck asked for its "
                              "time step and atoms: -var dry_run yes), run no point")
-    parser.add_argument("--build", type=Path, default=ROOT / "build")
+    parser.add_argument("--build", type=Path, default=DEFAULT_BUILD)
     parser.add_argument("--done-in", type=Path, action="append", default=[], metavar="DIR",
                         help="run summaries (`python3 -m postprocess summarize --to DIR`): a "
                         "point whose summary there ended (flowing or stopped) is done and not "
@@ -162,7 +163,8 @@ def main(argv=None):
     args = parser.parse_args(argv)
     # the dry runs and the points run lmp elsewhere than here: a relative --build names this
     # directory's
-    args.build = args.build.absolute()
+    build = build_layout(args.build)
+    args.build = build.directory
     if args.ranks < 1:
         parser.error(f"--ranks {args.ranks}: the MPI ranks per point must be >= 1")
     if args.jobs is None:
@@ -174,10 +176,8 @@ def main(argv=None):
                      "(0: none)")
 
     # each engine's executable under the key of its name (decks.ENGINES)
-    paths = {"lammps": args.build / "lammps" / "lmp",
-             "liggghts": args.build / "plugin" / "liggghts" / "build" / "liggghts",
-             "event_driven": args.build / "plugin" / "event_driven" / "mn-event-driven",
-             "plugin": args.build / "plugin" / "granmnplugin.so",
+    paths = {"lammps": build.lammps, "liggghts": build.liggghts,
+             "event_driven": build.event_driven, "plugin": build.plugin,
              "mpiexec": shutil.which("mpirun") or "mpirun"}
     try:
         if not (ROOT / "inputs").is_dir():

@@ -23,6 +23,7 @@ import numpy as np
 
 from postprocess.study import analyse, fit_power
 from scripts.granmn_sweep import SweepError
+from scripts.granmn_sweep.build_layout import DEFAULT as DEFAULT_BUILD, build_layout
 from scripts.granmn_sweep.points import check_output
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -37,8 +38,9 @@ SCENES = {    # scene: (kn, run_time, average_start)
 
 
 def lmp(build, deck, variables):
-    command = [str(build / "lammps" / "lmp"), "-in", str(ROOT / "inputs" / deck), "-log", "none",
-               "-var", "plugin", str(build / "plugin" / "granmnplugin.so")]
+    paths = build_layout(build)
+    command = [str(paths.lammps), "-in", str(ROOT / "inputs" / deck), "-log", "none",
+               "-var", "plugin", str(paths.plugin)]
     for name, value in variables.items():
         command += ["-var", name, str(value)]
     out = subprocess.run(command, capture_output=True, text=True, env=ENV)
@@ -99,7 +101,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--output", type=Path, default=ROOT / "results" / "accuracy")
     parser.add_argument("--quick", action="store_true", help="a third of the spans")
-    parser.add_argument("--build", type=Path, default=ROOT / "build",
+    parser.add_argument("--build", type=Path, default=DEFAULT_BUILD,
                         help="the build whose lmp and plugin run (build-2026/ for LAMMPS 2026)")
     args = parser.parse_args()
     try:

@@ -20,9 +20,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from postprocess.figures import save_figure  # noqa: E402
+from scripts.granmn_sweep.build_layout import build_layout  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
-TOOL = ROOT / "build" / "plugin" / "event_driven" / "mn-collision-rules"
+TOOL = build_layout().collision_rules
 
 
 def outcomes(angles=360):
