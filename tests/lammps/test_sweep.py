@@ -616,10 +616,12 @@ def test_dry_run_asks_the_deck_once_per_point_but_its_seed(tmp_path, monkeypatch
     assert sorted(variables["kn"] for variables in asked) == ["100000", "200000", "50000"]
 
 
-# scripts/granmn_sweep's modules in the order of docs/index.md (mn_law, mpirun_slots and
-# checkpoints, which import none of them, first): each imports only those before it
-RUNNER_MODULES = ["mn_law", "mpirun_slots", "checkpoints", "decks", "event_driven", "config",
-                  "cost", "processes", "points", "schedule", "cli", "command"]
+# scripts/granmn_sweep's modules in the order of docs/index.md (mn_law, mpirun_slots,
+# build_layout and checkpoints, which import none of them, first): each imports only those
+# before it
+RUNNER_MODULES = ["mn_law", "mpirun_slots", "build_layout", "checkpoints", "decks",
+                  "event_driven", "config", "cost", "processes", "points", "schedule", "cli",
+                  "command"]
 
 
 @pytest.mark.parametrize("module", RUNNER_MODULES)
