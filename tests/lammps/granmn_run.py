@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from scripts.granmn_sweep.build_layout import build_layout
 from scripts.granmn_sweep.mn_law import derived
 
 LMP = os.environ.get("GRANMN_LMP", "lmp")
@@ -20,6 +21,8 @@ MPIEXEC = os.environ.get("GRANMN_MPIEXEC", "mpirun")
 # OFF: a serial LAMMPS (scripts/build.sh --serial): a test that runs more than one rank, or
 # mpirun, is skipped with this reason
 SERIAL = os.environ.get("GRANMN_MPI", "ON").upper() in ("OFF", "NO", "FALSE", "0")
+# the build the plugin is in (build/plugin/granmnplugin.so): its mn-law, engine, LIGGGHTS
+BUILD_PATHS = build_layout(Path(PLUGIN).resolve().parents[1])
 SERIAL_REASON = "a serial LAMMPS (GRANMN_MPI=OFF, LAMMPS's STUBS MPI) runs on one rank, no mpirun"
 needs_mpi = pytest.mark.skipif(SERIAL, reason=SERIAL_REASON)
 
@@ -118,7 +121,7 @@ def law(kn, e, beta, shape="disc"):
     """The coefficients of docs/model.md section 3 as the header derives them (build/plugin/mn-law,
     next to the plugin) for discs or (shape "sphere") solid spheres: one copy of the mapping,
     checked against its definitions by the unit tests."""
-    return derived(Path(PLUGIN).resolve().parent / "mn-law", kn, e, beta, shape)
+    return derived(BUILD_PATHS.mn_law, kn, e, beta, shape)
 
 
 def restitution_error_bound(e, dt_over_tau):

@@ -3,7 +3,6 @@ mid-chunk and resumed by the runner (python3 -m scripts.sweep) from its last che
 as the uninterrupted checkpointed run; what the killed run left half-written is never taken;
 a checkpoint of another point, another restart layout or a damaged file is refused."""
 import glob
-import json
 import os
 import shutil
 import signal
@@ -14,10 +13,11 @@ from pathlib import Path
 
 import pytest
 
-from test_sweep import (BUILD, ROOT, SWEEP, kill_processes_mentioning, kill_session,
-                        processes_mentioning, signal_all, sweep, wait_for)
+from test_sweep import (BUILD, ROOT, SWEEP, kill_processes_mentioning, processes_mentioning,
+                        signal_all, sweep, wait_for)
 
 from scripts.granmn_sweep import checkpoints
+from scripts.granmn_sweep.build_layout import build_layout
 from granmn_run import LMP, PLUGIN, SERIAL, SERIAL_REASON, run_lammps
 
 # A contact-rich stretch: the frictional pile falls and flows (friction, multiple contacts,
@@ -254,22 +254,22 @@ def test_a_point_whose_fresh_start_fails_too_keeps_its_run(tmp_path):
     config = write_config(tmp_path, "single_disk")
     sweep(config, tmp_path / "whole", "--jobs", "1")
     directory, _ = kill_mid_chunk(config, tmp_path / "killed")
-    broken = tmp_path / "broken"
-    (broken / "plugin").mkdir(parents=True)
-    (broken / "lammps").mkdir()
-    (broken / "plugin" / "granmnplugin.so").write_text("not a library\n")
+    broken = build_layout(tmp_path / "broken")
+    broken.plugin.parent.mkdir(parents=True)
+    broken.lammps.parent.mkdir()
+    broken.plugin.write_text("not a library\n")
     lmp = Path(LMP).resolve()
-    (broken / "lammps" / "lmp").write_text(
+    broken.lammps.write_text(
         f"#!{sys.executable}\nimport os, sys\nwords = sys.argv[1:]\n"
         "if 'dry_run' not in words:\n"
-        f"    words[words.index('plugin') + 1] = {str(broken / 'plugin' / 'granmnplugin.so')!r}\n"
+        f"    words[words.index('plugin') + 1] = {str(broken.plugin)!r}\n"
         "else:\n"
         f"    words[words.index('plugin') + 1] = {str(Path(PLUGIN).resolve())!r}\n"
         f"os.execv({str(lmp)!r}, [{str(lmp)!r}] + words)\n")
-    (broken / "lammps" / "lmp").chmod(0o755)
+    broken.lammps.chmod(0o755)
     proc = subprocess.run(SWEEP + [str(config), "--output", str(tmp_path / "killed"), "--build",
-                                   str(broken), "--jobs", "1"], cwd=ROOT, capture_output=True,
-                          text=True, timeout=120)
+                                   str(broken.directory), "--jobs", "1"], cwd=ROOT,
+                          capture_output=True, text=True, timeout=120)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     aside = tmp_path / "killed" / "unresumed" / "single_disk" / directory.name
     failed = (directory / "failed.txt").read_text()
@@ -318,9 +318,9 @@ def resume_by_hand(tmp_path, deck_vars, restart):
     out = tmp_path / "resume"
     out.mkdir(exist_ok=True)
     (out / "checkpoint.1.restart").write_bytes(restart)
-    command = [str(BUILD / "lammps" / "lmp"), "-in", str(ROOT / "inputs" / "single_disk.lmp"),
+    command = [str(build_layout(BUILD).lammps), "-in", str(ROOT / "inputs" / "single_disk.lmp"),
                "-screen", "none", "-log", str(out / "log.lammps"), "-nocite"]
-    variables = {"plugin": str(BUILD / "plugin" / "granmnplugin.so"),
+    variables = {"plugin": str(build_layout(BUILD).plugin),
                  "lib": str(ROOT / "inputs" / "lib"), "out": str(out), "run_token": "t",
                  "checkpoint_interval": 5, "run_time": 40, "average_start": 5, "resume": 1,
                  **deck_vars}

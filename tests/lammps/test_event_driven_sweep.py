@@ -8,8 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from granmn_run import PLUGIN
-from scripts.granmn_sweep.mn_law import derived
+from granmn_run import PLUGIN, law
 from postprocess.io import read_counts, read_energy, read_params, read_profile
 from postprocess.runs import read_run
 
@@ -40,7 +39,7 @@ def test_an_event_driven_point_runs_from_the_decks_start_and_postprocess_reads_i
                            "--output", str(out), "--build", str(BUILD), "--jobs", "1"],
                           cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
-    tau_c = derived(BUILD / "plugin" / "mn-law", 1.28e7, 0.7, 0.7)["tau_c"]
+    tau_c = law(1.28e7, 0.7, 0.7)["tau_c"]
     for seed in (1, 2):
         point = next(p for p in (out / "collisional_flow").iterdir()
                      if p.name.endswith(f"seed{seed}"))

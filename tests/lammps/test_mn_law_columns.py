@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from granmn_run import PLUGIN, law, run_lammps
+from granmn_run import BUILD_PATHS, law, run_lammps
 from postprocess.io import SCHEMA, output_schema
 
-MN_LAW = Path(PLUGIN).resolve().parent / "mn-law"
+MN_LAW = BUILD_PATHS.mn_law
 COPY = Path(__file__).resolve().parents[2] / "postprocess" / "output_schema.txt"
 
 

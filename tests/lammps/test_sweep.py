@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from granmn_run import LMP, MPIEXEC, PLUGIN, needs_mpi
+from granmn_run import LMP, MPIEXEC, PLUGIN, law, needs_mpi
 
 ROOT = Path(__file__).resolve().parents[2]
 # the runner's command, run from ROOT (as is a child python that imports its modules)
@@ -718,7 +718,6 @@ def test_the_runner_follows_the_decks_time_step_rule(tmp_path):
     import shutil
     from scripts.granmn_sweep.config import deck_variables
     from scripts.granmn_sweep.decks import dry_run
-    from scripts.granmn_sweep.mn_law import derived
     shutil.copytree(ROOT / "inputs", tmp_path / "inputs")
     time_step = tmp_path / "inputs" / "lib" / "time_step.lmp"
     text = time_step.read_text()
@@ -727,7 +726,7 @@ def test_the_runner_follows_the_decks_time_step_rule(tmp_path):
     variables = {**deck_variables({"kn": 2e5, "e": 0.7, "beta": 0.7}, PLUGIN),
                  "lib": str(tmp_path / "inputs" / "lib")}
     answer = dry_run(LMP, tmp_path / "inputs" / "collisional_flow.lmp", variables, "a point")
-    tau_c = derived(BUILD / "plugin" / "mn-law", 2e5, 0.7, 0.7)["tau_c"]
+    tau_c = law(2e5, 0.7, 0.7)["tau_c"]
     assert answer["dt"] == pytest.approx(tau_c / 50, rel=1e-14)
 
 
