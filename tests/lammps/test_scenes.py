@@ -349,3 +349,19 @@ def test_the_default_start_puts_most_seeds_on_the_flowing_branch(tmp_path):
     close = flowing_seeds(tmp_path, seeds, row_spacing=1.1)
     print(f"flowing at t = 100: default start {default}/8, rows 1.1 apart {close}/8")
     assert default >= 6 and close < default
+
+
+def test_a_checkpointed_single_disk_run_warns_of_nothing_and_leaves_no_checkpoint(tmp_path):
+    """A completed run removes its checkpoints, its profile chunk and its budget reference, and
+    a fresh single-disk run its old trajectory, each only where it is there: a WARNING in every
+    such run (LAMMPS's `shell rm` of a file that is not there; LAMMPS 2021's read `rm -f` as a
+    file named -f) would teach a user to skip the warnings that matter."""
+    run_scene("single_disk", tmp_path, run_time=4, average_start=1, checkpoint_interval=1,
+              energies="yes")
+    warnings = [line for line in (tmp_path / "log.lammps").read_text().splitlines()
+                if line.startswith("WARNING")]
+    assert not warnings
+    for name in ("checkpoint.1.restart", "checkpoint.2.restart", "checkpoint.txt",
+                 "profile_chunk.txt", "budget_reference.lmp"):
+        assert not (tmp_path / name).exists(), name
+    assert (tmp_path / "done.txt").exists() and (tmp_path / "trajectory.txt").exists()
