@@ -202,9 +202,9 @@ class TangentialModel<TANGENTIAL_MN> : public TangentialModelBase {
 
   // A touching contact's energies booked (mn::book_contact_energy; its energy history anew
   // where it began, its account opened at a run's setup: mn::open_energy_account), its shares
-  // to its atoms: half to each of two particles, all to the
-  // mobile one against a frozen particle (told by fix freeze's group: meff, which the counters
-  // read, cannot tell which of two particles of one mass is the frozen one).
+  // to its atoms: half to each of two particles, all to the mobile one against a frozen
+  // particle (told by fix freeze's group: meff, which the counters read, cannot tell which of
+  // two particles of one mass is the frozen one).
   template <class K, class F>
   GRANMN_CALLED void book_energy(const SurfacesIntersectData &sidata, const mn::Law &pair_law,
                                  double scale, const K &k, const F &f, double ut_before,
