@@ -16,10 +16,12 @@ from postprocess.rundir import run_name
 STEP_COST = {2: (4e-7, 4e-8), 3: (4e-7, 6e-8)}
 # An event-driven point's events: no formula gives them (a flow's collision rate, and a collapse
 # held off by the TC model, multiply them by orders of magnitude), so the guess is a rate per
-# atom (bumps included) and time unit of the dilute collisional flow, and the learnt factor
-# (kept per engine) corrects it as points finish; CPU seconds per event, measured from 50 to 1e5
-# disks (bench/event_driven.py, docs/hard_spheres.md).
-EVENTS_PER_ATOM_TIME = 1e2
+# atom (bumps included) and time unit by scene: the dense frictional flow's under the TC model
+# at t_c = tau_c (from 6e3 at k_n 1.6e6 to 4e4 at 2.56e7 in its runs of docs/hard_spheres.md),
+# elsewhere the dilute collisional flow's; the learnt factor (kept per engine) corrects it as
+# points finish; CPU seconds per event, measured from 50 to 1e5 disks (bench/event_driven.py).
+EVENTS_PER_ATOM_TIME = {"frictional_flow": 1e4}
+DILUTE_EVENTS_PER_ATOM_TIME = 1e2
 EVENT_COST = 2e-6
 # The variable that draws a start's sizes and heights in the decks: it changes neither how many
 # atoms a deck makes nor its law, so the points that differ in it alone take one dry run
@@ -51,11 +53,16 @@ def ask_deck(point, paths):
     return dry_run(*deck_question(point, paths), run_name(point))
 
 
+def events_per_atom_time(point):
+    """The guessed events per atom and time unit of an event-driven point's scene."""
+    return EVENTS_PER_ATOM_TIME.get(point["scene"], DILUTE_EVENTS_PER_ATOM_TIME)
+
+
 def predicted_steps(point, answer):
     """Steps of a point: run_time over the time step its deck answered; of an event-driven
-    point, its guessed events (EVENTS_PER_ATOM_TIME), at most its events cap."""
+    point, its guessed events (events_per_atom_time), at most its events cap."""
     if engine(point) == "event_driven":
-        events = answer["run_time"] * answer["atoms"] * EVENTS_PER_ATOM_TIME
+        events = answer["run_time"] * answer["atoms"] * events_per_atom_time(point)
         cap = float(point.get("events", 0))
         return math.ceil(min(events, cap) if cap > 0 else events)
     dt = answer["dt"]

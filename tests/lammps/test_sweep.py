@@ -700,14 +700,14 @@ def test_a_decks_seed_changes_neither_its_atoms_nor_its_time_step(scene):
 
 def test_an_event_driven_points_events_are_guessed_from_its_decks_atoms():
     """An event-driven point's size: its LAMMPS deck's atoms (the engine runs the start the deck
-    makes), and EVENTS_PER_ATOM_TIME events per atom and time unit, at most its events cap;
-    the engine's own variables (rule, events) are not the deck's."""
+    makes), and its scene's guessed events per atom and time unit, at most its events cap; the
+    engine's own variables (rule, events) are not the deck's."""
     from scripts.granmn_sweep import cost
     point = {"scene": "collisional_flow", "engine": "event_driven", "seed": 1, "run_time": 300}
     size, capped = cost.point_sizes([point, {**point, "rule": "soft", "events": 1000}],
                                     BUILD_PATHS, 2)
     atoms = cost.ask_deck({"scene": "collisional_flow", "seed": 1}, BUILD_PATHS)["atoms"]
-    assert size == (math.ceil(300 * atoms * cost.EVENTS_PER_ATOM_TIME), atoms)
+    assert size == (math.ceil(300 * atoms * cost.events_per_atom_time(point)), atoms)
     assert capped == (1000, atoms)
 
 
