@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from postprocess.io import read_energy, read_params
 from scripts.granmn_sweep.build_layout import build_layout
 from scripts.granmn_sweep.mn_law import derived
 
@@ -115,6 +116,12 @@ def run_lammps(deck, workdir, nprocs=1, header=True, check=True):
     (workdir / "in.deck").write_text(text)
     cmd = _command(nprocs) + ["-in", "in.deck", "-log", "log.lammps", "-nocite"]
     return _run(cmd, workdir, check)
+
+
+def energy_of(directory):
+    """A run directory's energy.txt as the post-processing reads it: {column: array} by its
+    header, with the time column (step * dt of its params.txt)."""
+    return read_energy(directory, read_params(directory))
 
 
 def law(kn, e, beta, shape="disc"):

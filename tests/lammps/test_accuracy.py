@@ -2,12 +2,11 @@
 import re
 import subprocess
 import sys
-from pathlib import Path
 
-from granmn_run import PLUGIN, ROOT
+from granmn_run import BUILD_PATHS, ROOT
 
 # the build under test (build-2026/ for LAMMPS 2026), not build/
-BUILD = Path(PLUGIN).resolve().parents[1]
+BUILD = BUILD_PATHS.directory
 
 
 def test_accuracy_study_writes_its_tables_and_figure(tmp_path):

@@ -9,8 +9,9 @@ import re
 import numpy as np
 import pytest
 
-from granmn_run import run_scene
+from granmn_run import energy_of, run_scene
 from postprocess.budget import BOUND_FACTOR, budget_problem
+from postprocess.io import read_params
 from test_checkpoint import data_lines, kill_mid_chunk, point_dir
 from test_sweep import sweep
 
@@ -29,27 +30,10 @@ BAD = {"a run with energies = yes whose energy budget does not close":
        (UNSTABLE, "WARNING: the energy budget does not close: its residual is ")}
 
 
-def params_of(directory):
-    words = dict(line.split() for line in (directory / "params.txt").read_text().splitlines())
-    return {"dt": float(words["dt"]), "tau_c": float(words["tau_c"])}
-
-
-def energy_table(directory):
-    """energy.txt as {column: array}, by its (last) header, with the time column of
-    postprocess.io.read_energy."""
-    lines = (directory / "energy.txt").read_text().splitlines()
-    names = [line.split()[1:] for line in lines if line.startswith("# step")][-1]
-    data = np.array([[float(x) for x in line.split()] for line in lines
-                     if line and not line.startswith("#")])
-    table = {name: data[:, k] for k, name in enumerate(names)}
-    table["time"] = table["step"] * params_of(directory)["dt"]
-    return table
-
-
 def residual_and_bound(directory):
     """Per line of energy.txt: the step, |e_budget - its first value| and the bound
     (docs/model.md section 9)."""
-    energy, params = energy_table(directory), params_of(directory)
+    energy, params = energy_of(directory), read_params(directory)
     residual = np.abs(energy["e_budget"] - energy["e_budget"][0])
     bound = (BOUND_FACTOR * (params["dt"] / params["tau_c"]) ** 2
              * np.maximum(1.0, energy["e_total"]))
@@ -90,7 +74,7 @@ def test_a_budget_that_does_not_close_is_warned_of_and_the_run_goes_on(tmp_path)
     assert len(warnings) <= 2, warnings
     assert [w[0] for w in warnings] == sorted({w[0] for w in warnings})
     check_warning_against_energy_txt(tmp_path, warnings[0])
-    problem = budget_problem(energy_table(tmp_path), params_of(tmp_path))
+    problem = budget_problem(energy_of(tmp_path), read_params(tmp_path))
     assert problem is not None and f"at step {warnings[0][0]} " in problem, problem
     # the run went on as it would have without the check: every output, and the trajectory
     # of energies = no (which has none) to the bit, to the last output step
@@ -99,7 +83,7 @@ def test_a_budget_that_does_not_close_is_warned_of_and_the_run_goes_on(tmp_path)
         assert (tmp_path / name).exists(), name
     assert not (tmp_path / "budget_reference.lmp").exists()
     run_scene("collisional_flow", tmp_path / "off", **{**variables, "energies": "no"})
-    on, off = energy_table(tmp_path), energy_table(tmp_path / "off")
+    on, off = energy_of(tmp_path), energy_of(tmp_path / "off")
     for name in ("step", "e_trans", "e_rot"):
         assert np.array_equal(on[name], off[name]), name
     assert data_lines(tmp_path / "snapshots.lammpstrj") == data_lines(
@@ -118,13 +102,13 @@ def test_a_budget_that_closes_is_not_warned_of(tmp_path):
     assert not warnings_in(log)
     assert "the energy budget does not close" not in log.replace(
         "print 'WARNING: the energy budget does not close", "")
-    energy = energy_table(tmp_path)
+    energy = energy_of(tmp_path)
     dissipated = (energy["dissipated_normal"] + energy["dissipated_sticking"]
                   + energy["dissipated_sliding"])
     assert dissipated[-1] > 1.0    # many collisions
     _, residual, bound = residual_and_bound(tmp_path)
     assert np.all(residual <= bound)
-    assert budget_problem(energy, params_of(tmp_path)) is None
+    assert budget_problem(energy, read_params(tmp_path)) is None
     assert not (tmp_path / "budget_reference.lmp").exists()
 
 

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from granmn_run import PLUGIN, ROOT, SERIAL, SERIAL_REASON, run_scene
+from granmn_run import BUILD_PATHS, ROOT, SERIAL, SERIAL_REASON, energy_of, run_scene
 
 from postprocess.io import ENERGY_COLUMNS, read_counts, read_profile, read_rows
 from postprocess.observables import point_observables
@@ -111,7 +111,7 @@ def test_the_chute_preset_is_known_to_the_runner_and_within_budget(tmp_path):
     """inputs/sweeps/chute_3d.toml: every point is a chute_3d point the runner accepts; the
     predicted cost (its cost model: spheres + base atoms, the 3D per-atom cost) stays under
     the preset's budget of ~3 CPU-hours."""
-    build = Path(PLUGIN).resolve().parents[1]    # as tests/lammps/test_sweep.py
+    build = BUILD_PATHS.directory
     proc = subprocess.run([sys.executable, "-m", "scripts.sweep",
                            str(ROOT / "inputs" / "sweeps" / "chute_3d.toml"), "--output",
                            str(tmp_path / "out"), "--build", str(build), "--dry-run"],
@@ -219,13 +219,6 @@ def contact_rows(directory, ids=None):
                                                 rows["start"], rows["duration"]))
 
 
-def energy_table(directory):
-    lines = [line.split() for line in (Path(directory) / "energy.txt").read_text().splitlines()
-             if line[:1].isdigit()]
-    return {name: np.array([float(line[k]) for line in lines])
-            for k, name in enumerate(ENERGY_COLUMNS)}
-
-
 def assert_same_run(reference, other):
     """other's outputs are reference's, the atoms matched by their start: each sphere's counters
     exactly, the contacts' multiset exactly, the energies and the counters' time sums to
@@ -239,7 +232,7 @@ def assert_same_run(reference, other):
     rows = contact_rows(reference)
     assert rows == contact_rows(other, ids), (rows - contact_rows(other, ids),
                                               contact_rows(other, ids) - rows)
-    a, b = energy_table(reference), energy_table(other)
+    a, b = energy_of(reference), energy_of(other)
     assert len(a["step"]) == len(b["step"])
     for name in ENERGY_COLUMNS:
         if name in COUNT_COLUMNS:

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from collision_decks import two_disks
-from granmn_run import (HEADER, ORDER_RATIO, PLUGIN, convergence_ratio, law, run_scene,
-                        restitution_error_bound, run_lammps)
+from granmn_run import (HEADER, ORDER_RATIO, PLUGIN, convergence_ratio, energy_of, law,
+                        restitution_error_bound, run_lammps, run_scene)
 from postprocess.io import SCHEMA, read_rows
 
 # the global vector's entries (1-based, as f_c[k]) and a row's columns by the schema's names
@@ -449,15 +449,6 @@ def test_no_contacts_keep_the_budget_at_rounding(tmp_path):
     assert table[:, 1] == pytest.approx(table[0, 1], rel=1e-13)
 
 
-def energy_table(path):
-    """energy.txt as {column: array}, by its (last) header."""
-    lines = path.read_text().splitlines()
-    names = [line.split()[1:] for line in lines if line.startswith("# step")][-1]
-    data = np.array([[float(x) for x in line.split()] for line in lines
-                     if line and not line.startswith("#")])
-    return {name: data[:, k] for k, name in enumerate(names)}
-
-
 def test_the_collisional_scenes_budget(tmp_path):
     """The collisional flow (100 disks on a bumpy slope, periodic in x; inputs/lib/energy.lmp's
     budget with energies = yes), velocity Verlet: at each line where no contact is going on the
@@ -475,8 +466,7 @@ def test_the_collisional_scenes_budget(tmp_path):
                   integration="separate")
     run_scene("collisional_flow", tmp_path / "on", energies="yes", rows="yes", **common)
     run_scene("collisional_flow", tmp_path / "off", **common)
-    on, off = energy_table(tmp_path / "on" / "energy.txt"), energy_table(
-        tmp_path / "off" / "energy.txt")
+    on, off = energy_of(tmp_path / "on"), energy_of(tmp_path / "off")
     for name in ("e_trans", "e_rot", *SCHEMA["counters"]):
         assert np.array_equal(on[name], off[name]), name
     quiet = on["contacts_now"] == 0
@@ -573,7 +563,7 @@ def test_the_3d_chutes_budget_closes_at_second_order(tmp_path):
         run_scene("chute_3d", tmp_path / f"dt{fraction}", energies="yes", spheres=100, kn=2e4,
                   dt_fraction=fraction, dt_cap=1, run_time=3, average_start=1,
                   output_interval=0.02)
-        table = energy_table(tmp_path / f"dt{fraction}" / "energy.txt")
+        table = energy_of(tmp_path / f"dt{fraction}")
         assert table["begun_boundary"][-1] > 100 and table["begun_disk"][-1] > 300
         residual = table["e_budget"] - table["e_budget"][0]
         rms.append(np.sqrt(np.mean(residual ** 2)))
@@ -847,7 +837,6 @@ def test_a_moving_regions_work_in_3d(tmp_path):
     spheres = "\n".join(f"create_atoms 1 single {x!r} {y!r} {z!r}" for x, y, z in (
         (-1.2, -0.5, 0.9), (1.1, 0.6, 1.4), (0.1, -0.2, 2.0), (-0.6, 1.2, 2.6),
         (0.9, -1.1, 3.1)))
-    work, scale_dt = [], []
     for dt_over_tau in (1 / 25, 1 / 50):
         dt = law(kn, e, beta, "sphere")["tau_c"] * dt_over_tau
         deck = HEADER.format(plugin=PLUGIN).replace("dimension 2", "dimension 3") + f"""
@@ -959,8 +948,7 @@ def test_the_frictional_scenes_budget(tmp_path):
     common = dict(kn=2e5, run_time=4, average_start=0.5, output_interval=0.05)
     run_scene("frictional_flow", tmp_path / "on", energies="yes", **common)
     run_scene("frictional_flow", tmp_path / "off", **common)
-    on, off = energy_table(tmp_path / "on" / "energy.txt"), energy_table(
-        tmp_path / "off" / "energy.txt")
+    on, off = energy_of(tmp_path / "on"), energy_of(tmp_path / "off")
     for name in ("e_trans", "e_rot", *SCHEMA["counters"]):
         assert np.array_equal(on[name], off[name]), name
     quiet = on["contacts_now"] == 0

@@ -8,12 +8,12 @@ from pathlib import Path
 
 import numpy as np
 
-from granmn_run import PLUGIN, law
+from granmn_run import BUILD_PATHS, law
 from postprocess.io import read_counts, read_energy, read_params, read_profile
 from postprocess.runs import read_run
 
 ROOT = Path(__file__).resolve().parents[2]
-BUILD = Path(PLUGIN).resolve().parents[1]
+BUILD = BUILD_PATHS.directory
 
 CONFIG = """
 [defaults]

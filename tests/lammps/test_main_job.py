@@ -3,7 +3,6 @@ report (scripts/main.sh --config)."""
 import os
 import re
 import subprocess
-from pathlib import Path
 
 from granmn_run import ROOT
 from postprocess.reference import load_claims  # noqa: E402

@@ -12,12 +12,12 @@ from pathlib import Path
 
 import pytest
 
-from granmn_run import LMP, MPIEXEC, PLUGIN, law, needs_mpi
+from granmn_run import BUILD_PATHS, LMP, MPIEXEC, PLUGIN, law, needs_mpi
 
 ROOT = Path(__file__).resolve().parents[2]
 # the runner's command, run from ROOT (as is a child python that imports its modules)
 SWEEP = [sys.executable, "-m", "scripts.sweep"]
-BUILD = Path(PLUGIN).resolve().parents[1]
+BUILD = BUILD_PATHS.directory
 
 CONFIG = """
 name = "t"
@@ -648,7 +648,7 @@ TIME_STEP_POINTS = {
     "3D": {"scene": "chute_3d", "kn": 2e5, "dt_fraction": 0.05, "spheres": 5, "length": 3,
            "width": 3},
 }
-BUILD_PATHS = {"lammps": Path(LMP), "plugin": Path(PLUGIN)}
+ENGINE_PATHS = {"lammps": Path(LMP), "plugin": Path(PLUGIN)}
 
 
 @pytest.mark.parametrize("name", sorted(TIME_STEP_POINTS))
@@ -661,7 +661,7 @@ def test_the_dry_run_answers_the_time_step_and_atoms_of_the_run(tmp_path, name):
     point = TIME_STEP_POINTS[name]
     run_scene(point["scene"], tmp_path, run_time=0.2, average_start=0.1,
               **{k: v for k, v in point.items() if k != "scene"})
-    answer = ask_deck({**point, "run_time": 0.2, "average_start": 0.1}, BUILD_PATHS)
+    answer = ask_deck({**point, "run_time": 0.2, "average_start": 0.1}, ENGINE_PATHS)
     done = (tmp_path / "done.txt").read_text().split()
     assert answer["dt"] == float(done[done.index("dt") + 1])
     made = {int(n) for n in re.findall(r" with (\d+) atoms\n",
@@ -693,7 +693,7 @@ def test_a_decks_seed_changes_neither_its_atoms_nor_its_time_step(scene):
     seed draws the start (sizes, heights), never how many atoms there are nor the law."""
     from scripts.granmn_sweep.cost import ask_deck
     small = {"spheres": 20, "length": 3, "width": 3} if scene == "chute_3d" else {}
-    one, other = (ask_deck({"scene": scene, "seed": seed, "kn": 1e5, **small}, BUILD_PATHS)
+    one, other = (ask_deck({"scene": scene, "seed": seed, "kn": 1e5, **small}, ENGINE_PATHS)
                   for seed in (1, 7))
     assert one == other
 
@@ -705,8 +705,8 @@ def test_an_event_driven_points_events_are_guessed_from_its_decks_atoms():
     from scripts.granmn_sweep import cost
     point = {"scene": "collisional_flow", "engine": "event_driven", "seed": 1, "run_time": 300}
     size, capped = cost.point_sizes([point, {**point, "rule": "soft", "events": 1000}],
-                                    BUILD_PATHS, 2)
-    atoms = cost.ask_deck({"scene": "collisional_flow", "seed": 1}, BUILD_PATHS)["atoms"]
+                                    ENGINE_PATHS, 2)
+    atoms = cost.ask_deck({"scene": "collisional_flow", "seed": 1}, ENGINE_PATHS)["atoms"]
     assert size == (math.ceil(300 * atoms * cost.events_per_atom_time(point)), atoms)
     assert capped == (1000, atoms)
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from collision_decks import two_disks
-from granmn_run import PLUGIN, law, run_lammps
+from granmn_run import BUILD_PATHS, law, run_lammps
 from postprocess.io import read_params, read_rows
 from postprocess.durations import (DURATION_EDGES, contact_durations, duration_density,
                                   tail_fraction)
@@ -76,7 +76,7 @@ average_start = 200
 def test_a_tiny_transition_sweep_and_its_report(tmp_path):
     config = tmp_path / "tiny.toml"
     config.write_text(TINY)
-    build = Path(PLUGIN).resolve().parents[1]
+    build = BUILD_PATHS.directory
     out = tmp_path / "sweep"
     subprocess.run([sys.executable, "-m", "scripts.sweep", str(config),
                     "--output", str(out), "--build", str(build)], check=True, cwd=ROOT,

@@ -16,14 +16,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from granmn_run import INPUTS, LMP, MPIEXEC, PLUGIN
+from granmn_run import BUILD_PATHS, INPUTS, LMP, MPIEXEC, PLUGIN
 from liggghts_decks import LIGGGHTS
 
 pytestmark = pytest.mark.skipif(not LIGGGHTS, reason="LIGGGHTS was not built (GRANMN_LIGGGHTS unset)")
 
 ROOT = Path(__file__).resolve().parents[2]
 DECK = ROOT / "inputs" / "liggghts" / "chute_3d.lmp"
-BUILD = Path(PLUGIN).resolve().parents[1]
+BUILD = BUILD_PATHS.directory
 SHORT = {"run_time": 0.3, "average_start": 0.1, "kn": 2e5, "dt_fraction": 0.05, "dt_cap": 1,
          "seed": 3}
 
