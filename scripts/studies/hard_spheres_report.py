@@ -145,6 +145,12 @@ def main_series(records):
     return [r for r, name in zip(records, labels) if main and name == main[0]["label"]]
 
 
+def spread(values):
+    """The range of values over runs, 'lo-hi' (one value where all agree to 4 digits)."""
+    lo, hi = f"{min(values):.4g}", f"{max(values):.4g}"
+    return lo if lo == hi else f"{lo}-{hi}"
+
+
 def value_error(values, digits=4):
     """A mean over runs with its standard error; '-' for none, the error 'n/a' for one run
     (not estimable)."""
@@ -174,9 +180,13 @@ def frictional_tc(data, records, soft, selection):
           "soft runs to run_time | E soft | N_w soft | soft runs selected | N_w soft, selected "
           "| (t_c - N_c tau_c)/t_c soft, selected |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    left_out = {}
+    left_out, growth = {}, []
     for kn, runs in sorted(hard.items()):
         ended = [r for r in runs if reached_run_time(data, r)]
+        blocks = [r.measured["window"]["blocks"]["E_total"] for r in ended]
+        if blocks:
+            growth.append((kn, len(ended), len(blocks[0]), spread([b[0] for b in blocks]),
+                           spread([b[-1] for b in blocks])))
         for r in runs:
             if r not in ended:
                 why = ENDED_BY.get(engine_summary(data, r)["end"], "no averaging window")
@@ -194,6 +204,13 @@ def frictional_tc(data, records, soft, selection):
               f"{value_error([o['N_w'] for o in selected])} | "
               f"{value_error([o['mc_c'] / o['t_c'] for o in selected], 3)} |")
     print()
+    # a flow that does not settle (E growing through the window) shows in its first and last
+    # blocks, the equal pieces the window's averages are made of
+    for kn, n, pieces, first, last in growth:
+        print(f"k_n {kn:g}: E hard over the window's first and last blocks (of {pieces}) "
+              f"{first} and {last} ({n} run{'' if n == 1 else 's'} to run_time)")
+    if growth:
+        print()
     series = ", ".join(f"{k} {v}" for k, v in sorted(softs[0].variables.items())
                        if k not in ("kn", "seed", "scene")) if softs else "none"
     print("Event-driven runs left out: "

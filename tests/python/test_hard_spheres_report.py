@@ -91,3 +91,22 @@ def test_the_soft_side_is_the_main_series_of_the_same_law_flowing_to_run_time(
     assert rows[1e9]["soft runs to run_time"] == "2"
     assert float(rows[1e9]["N_w soft"].split(" +- ")[0]) == 6.5
     assert "dt_fraction 0.05" in closing and "tangential literal" in closing
+
+
+def test_the_first_and_last_blocks_of_the_hard_runs_show_a_flow_that_does_not_settle(
+        tmp_path, monkeypatch, capsys):
+    """E over the window's first and last blocks, their range over the runs that reached
+    run_time (a capped run's blocks are not among them): a pile that accelerates shows it
+    there, where the window's mean hides it."""
+    data = tmp_path / "hard"
+    hard = [hard_run(data, 1e6, 1, "time", 10.0), hard_run(data, 1e6, 2, "time", 10.0),
+            hard_run(data, 1e6, 3, "events", 10.0)]
+    for r, scale in zip(hard, (1.0, 1.1, 100.0)):
+        r.measured["window"]["blocks"]["E_total"] = [scale * e for e in
+                                                          (200, 500, 900, 1400, 2100)]
+    monkeypatch.setattr(hard_spheres_report, "load_runs",
+                        lambda source, selection=Selection(): hard if source == data else [])
+    hard_spheres_report.tc(data, tmp_path / "soft")
+    out = capsys.readouterr().out
+    assert ("k_n 1e+06: E hard over the window's first and last blocks (of 5) 200-220 and "
+            "2100-2310 (2 runs to run_time)") in out
