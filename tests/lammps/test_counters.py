@@ -622,7 +622,7 @@ def test_a_deleted_partners_contact_takes_its_energy_with_it(tmp_path, deletion,
     (dt^2/8) |F now|^2/m, where the force on B jumps by A's weight at a deletion between runs
     (delete_atoms: 2.5e-9 of 1.1e-5; fix evaporate, within a step, leaves none). An account
     opened at zero books B's release from the load as negative dissipation (-7.5e-6, against
-    +3.75e-6); one opened twice, +2.5/k_n too much."""
+    +3.75e-6); one opened twice books what the springs held twice (+1.125e-5)."""
     kn = 2e5
     dt = law(kn, 0.7, 0.7)["tau_w"] / 50
     text, _ = DELETIONS[deletion]
