@@ -1,5 +1,6 @@
 """python3 -m postprocess {report,compare,limit} SWEEP_DIR [SWEEP_DIR ...] [--output DIR]
         [--resolution T] [--energy-range LOW HIGH] [--min-span T] [--max-width W] [--rule R]
+        [--beside SWEEP_DIR [SWEEP_DIR ...]]   (limit only)
 python3 -m postprocess transition SWEEP_DIR [--output DIR]
 python3 -m postprocess summarize RESULTS_DIR [--to DIR] [--replace]
 python3 -m postprocess engines SWEEP_DIR [SWEEP_DIR ...] [--output DIR]
@@ -57,7 +58,12 @@ have (default 0.45; the stiff preset's rule uses 1.0, docs/hard_sphere_limit.md)
 likewise hold one.
 --rule R: the hard-sphere-limit rule limit and compare apply (docs/hard_sphere_limit.md):
 2 (default) says "finite" also for a series shown not to fall; 1 is the rule the first stiff
-series was judged by."""
+series was judged by.
+--beside SWEEP_DIR ...: limit also applies the rule to another sweep's runs alone (the same
+selection) and sets its series beside this sweep's, matched by their variables other than
+those that tell the two sweeps apart (e.g. the wide series' width 40 beside the paper's width):
+both verdicts, the decay exponents' difference and, per k_n both have, the difference in
+combined errors (limit.md's "Beside" section; a line per series and quantity printed)."""
 import argparse
 import sys
 from pathlib import Path
@@ -92,7 +98,10 @@ def main(argv=None):
     parser.add_argument("--replace", action="store_true")
     add_selection_arguments(parser)
     parser.add_argument("--rule", type=int, choices=limit.RULES, default=limit.RULE)
+    parser.add_argument("--beside", type=Path, nargs="+", metavar="sweep")
     args = parser.parse_args(argv)
+    if args.beside and args.command != "limit":
+        parser.error("--beside is for limit")
     if args.rule != limit.RULE and args.command not in ("limit", "compare"):
         parser.error("--rule is for limit and compare")
     if len(args.sweeps) > 1 and args.command in ("summarize", "transition"):
@@ -156,7 +165,20 @@ def main(argv=None):
     for point, reason in left_out:
         print(f"left out {point}: {reason}", file=sys.stderr)
     if args.command == "limit":
-        return write_limit(named, scenes, out, selection, completed, args.rule)
+        beside = None
+        if args.beside:
+            try:
+                there, there_left_out, _, _ = analyse(
+                    args.beside if len(args.beside) > 1 else args.beside[0], selection)
+            except DataError as error:
+                print(f"postprocess: {error}", file=sys.stderr)
+                return 2
+            beside_name = " + ".join(str(p) for p in args.beside)
+            if there_left_out:
+                print(f"beside {beside_name}: {len(there_left_out)} runs left out (limit on it "
+                      "alone names them)", file=sys.stderr)
+            beside = (beside_name, there)
+        return write_limit(named, scenes, out, selection, completed, args.rule, beside)
     if args.command == "report":
         path = write_report(named, scenes, left_out, completed, out, runs, selection)
         print(f"report: {path}")

@@ -322,7 +322,37 @@ def decide_within_levels(runs, quantity, levels, samples=BOOTSTRAP, rule=RULE):
     return out
 
 
-# ---- what the multiple-contact time is made of (docs/hard_sphere_limit.md)
+@dataclass
+class Beside:
+    """One quantity of a series against its counterpart in another sweep, by the rule's per-k_n
+    values and pooled errors (per_kn): at each k_n both have (kn, here, its error, its runs,
+    there, its error, its runs, z = (here - there) / the combined error, here / there - 1), and
+    the pure power law's decay exponents' difference here - there with its error (nan where
+    either series has no fit)."""
+    quantity: str
+    shared: list
+    exponent_difference: tuple = (np.nan, np.nan)
+
+
+def beside(here, there):
+    """Beside of two Decisions on one quantity (here: this sweep's, there: the other's)."""
+    shared = []
+    for k, v, e, n in zip(here.series.kn, here.series.value, here.series.error,
+                          here.series.runs):
+        match = np.flatnonzero(np.isclose(there.series.kn, k, rtol=1e-9, atol=0.0))
+        if not len(match):
+            continue
+        i = match[0]
+        w, f, m = there.series.value[i], there.series.error[i], there.series.runs[i]
+        combined = np.hypot(e, f)
+        shared.append((float(k), float(v), float(e), int(n), float(w), float(f), int(m),
+                       float((v - w) / combined) if combined > 0 else np.nan,
+                       float(v / w - 1.0) if w else np.nan))
+    difference = (np.nan, np.nan)
+    if here.fits and there.fits:
+        difference = (here.fits.b_power - there.fits.b_power,
+                      float(np.hypot(here.fits.b_power_error, there.fits.b_power_error)))
+    return Beside(here.quantity, shared, difference)
 
 
 # ---- runaway events of the literal law (docs/hard_sphere_limit.md)

@@ -259,3 +259,26 @@ def contact_series(rows):
         if points:
             out.append((name, points))
     return out
+
+
+def counterparts(rows_here, rows_there):
+    """One scene's series in two sweeps matched by their variables: ({name: (value here,
+    value there)} of the variables that tell the sweeps apart as wholes, each with one value
+    throughout each sweep but not the same one (None: the deck's default), and {label here:
+    label there, or None where the other sweep has no such series}). Two series match where
+    their other variables than kn and seed are the same."""
+    def values(rows, name):
+        return {repr(o["variables"].get(name)) for o in rows}
+    names = set().union(*(o["variables"] for o in rows_here + rows_there)) - {"kn", "seed"}
+    apart = {}
+    for name in sorted(names):
+        here, there = values(rows_here, name), values(rows_there, name)
+        if len(here) == len(there) == 1 and here != there:
+            apart[name] = (rows_here[0]["variables"].get(name),
+                           rows_there[0]["variables"].get(name))
+
+    def key(o):
+        return tuple(sorted((k, repr(v)) for k, v in o["variables"].items()
+                            if k not in apart and k not in ("kn", "seed")))
+    there_of = {key(o): o["label"] for o in rows_there}
+    return apart, {o["label"]: there_of.get(key(o)) for o in rows_here}

@@ -8,7 +8,7 @@ from . import durations, figures, limit
 from .formatting import split_lines, tail_lines
 from .quantities import TABLE
 from .scenes import SCENES, scene as scene_of
-from .study import label, main_series, varying_variables
+from .study import counterparts, label, main_series, varying_variables
 
 
 def report_lines(decisions, within, levels):
@@ -111,11 +111,12 @@ def runaway_lines(records):
     return lines + [""]
 
 
-def write_limit(sweep, scenes, out, selection, completed, rule=limit.RULE):
+def write_limit(sweep, scenes, out, selection, completed, rule=limit.RULE, beside=None):
     """The limit command: limit.md and a figure per series in out, for each scene the rule
     applies to (Scene.decides_limit): its main series first, then each variant with enough
     k_n; the verdicts on the terminal. completed: {scene: [RunRecord of each completed run]},
-    for the runaway events; rule: 1 or 2."""
+    for the runaway events; rule: 1 or 2; beside: (name, scenes) of another sweep, analysed
+    alike, whose series are set beside this one's (beside_lines)."""
     names = [name for name in scenes if scene_of(name).decides_limit and scenes[name]]
     if not names:
         print(f"postprocess: {sweep}: no usable points of a scene the rule applies to ("
@@ -127,30 +128,48 @@ def write_limit(sweep, scenes, out, selection, completed, rule=limit.RULE):
              f"Selection of the steady parts (scenes that select them): {selection.describe()}.",
              ""]
     for name in names:
-        lines += limit_scene_lines(name, scenes[name], out, completed.get(name, []), rule)
+        series = scene_series(name, scenes[name], rule)
+        lines += limit_scene_lines(name, series, out, completed.get(name, []), rule)
+        if beside is not None:
+            lines += beside_lines(name, scenes[name], series, beside, rule)
     (out / "limit.md").write_text("\n".join(lines))
     print(f"limit report: {out / 'limit.md'}")
     return 0
 
 
-def limit_scene_lines(name, rows, out, records, rule):
-    """limit.md's lines for one scene (its series, figures written to out) under rule 1 or 2;
-    the verdicts printed."""
-    scene_def = scene_of(name)
-    levels = dict(scene_def.limit_levels)
+def scene_series(name, rows, rule):
+    """[(number, label, runs, decisions)] of one scene's series (rows: its analysed rows) that
+    the rule is applied to: the main series (number 0) first, then each variant, unless the
+    rule is applied to none of its quantities."""
+    quantities = scene_of(name).limit_quantities
     main = main_series(rows)
     labels = [main[0]["label"]] + sorted({o["label"] for o in rows} - {main[0]["label"]})
-    lines = [f"# {scene_def.title}", ""]
+    out = []
     for number, series_label in enumerate(labels):
         runs = [run for o in rows if o["label"] == series_label for run in o.get("runs", [o])]
-        decisions = [limit.decide(runs, q, rule=rule) for q in scene_def.limit_quantities]
+        decisions = [limit.decide(runs, q, rule=rule) for q in quantities]
         if number and all(d.verdict.startswith("not applied") for d in decisions):
             continue    # a variant at too few k_n (a check of the step at one k_n: the report's
                         # variant table compares it with the main series)
+        out.append((number, series_label, runs, decisions))
+    return out
+
+
+def series_title(number, series_label):
+    return (f"{'main series' if number == 0 else 'variant'} "
+            f"{series_label or '(no variable varies)'}")
+
+
+def limit_scene_lines(name, series, out, records, rule):
+    """limit.md's lines for one scene (series: scene_series; figures written to out) under
+    rule 1 or 2; the verdicts printed."""
+    scene_def = scene_of(name)
+    levels = dict(scene_def.limit_levels)
+    lines = [f"# {scene_def.title}", ""]
+    for number, series_label, runs, decisions in series:
         within = {q: limit.decide_within_levels(runs, q, levels, rule=rule)
                   for q in scene_def.limit_quantities}
-        title = (f"{'main series' if number == 0 else 'variant'} "
-                 f"{series_label or '(no variable varies)'}")
+        title = series_title(number, series_label)
         lines += [f"## {title}: {len(runs)} selected runs", ""]
         lines += report_lines(decisions, within, levels)
         if any(d.fits for d in decisions):
@@ -195,3 +214,80 @@ def limit_scene_lines(name, rows, out, records, rule):
                   f"{limit.SETTLED:g}, in every completed run (selected or not):", ""]
         lines += runaway_lines(records)
     return lines
+
+
+def beside_lines(name, rows, series, beside, rule):
+    """limit.md's section setting one scene's series (rows, series: scene_series) beside their
+    counterparts in another sweep (beside: (its name, its scenes), study.counterparts), the
+    rule applied to each sweep's runs alone; a line per series and quantity printed."""
+    there_name, there_scenes = beside
+    there_rows = there_scenes.get(name, [])
+    scene_def = scene_of(name)
+    if not there_rows:
+        print(f"beside {there_name}: {scene_def.title}: no usable runs there")
+        return [f"## Beside {there_name}", "", "No usable runs of the scene there.", ""]
+    apart, there_label = counterparts(rows, there_rows)
+    there_series = {label_: (number, runs, decisions) for number, label_, runs, decisions
+                    in scene_series(name, there_rows, rule)}
+    told = "; ".join(f"{k}: {default(a)} here, {default(b)} there"
+                     for k, (a, b) in apart.items())
+    lines = [f"## Beside {there_name}", "",
+             f"The rule applied to the other sweep's runs alone; its series matched with this "
+             f"sweep's by their variables other than kn, seed and those that tell the two "
+             f"sweeps apart ({told or 'none'}). Per quantity, both verdicts and the pure power "
+             "law's decay exponents b (m ~ k_n^-b) with their difference here - there; at "
+             "each k_n both have, here - there in combined errors (z, the rule's pooled "
+             "errors) and relative to there.", ""]
+    for number, series_label, _, decisions in series:
+        title = series_title(number, series_label)
+        other = there_series.get(there_label.get(series_label))
+        if other is None:
+            print(f"beside {there_name}: {scene_def.title}, {title}: no counterpart there "
+                  "(none, or at too few k_n for the rule)")
+            lines += [f"### {title}: no counterpart there", ""]
+            continue
+        there_title = series_title(other[0], there_label[series_label])
+        lines += [f"### {title} beside {there_title}", "",
+                  "| quantity | verdict there | verdict here | b there | b here | "
+                  "b here - there |", "|---|---|---|---|---|---|"]
+        pairs = [(d, t, limit.beside(d, t)) for d, t in zip(decisions, other[2])]
+        for d, t, b in pairs:
+            lines.append(f"| {TABLE[d.quantity].label} | {t.verdict} | {d.verdict} | "
+                         f"{exponent(t)} | {exponent(d)} | {difference(b)} |")
+        lines.append("")
+        for d, t, b in pairs:
+            lines += [f"{TABLE[d.quantity].label}:", "",
+                      "| k_n | there (runs) | here (runs) | z | here / there - 1 |",
+                      "|---|---|---|---|---|"]
+            lines += [f"| {k:.4g} | {w:.4g} +- {f:.2g} ({m}) | {v:.4g} +- {e:.2g} ({n}) | "
+                      f"{z:+.2f} | {r:+.1%} |" for k, v, e, n, w, f, m, z, r in b.shared]
+            lines.append("")
+            print(f"beside {there_name}: {scene_def.title}, {title}: {TABLE[d.quantity].label}:"
+                  f" there {t.verdict}, here {d.verdict}; {shared_summary(b)}")
+    return lines
+
+
+def default(value):
+    return "the deck's default" if value is None else value
+
+
+def exponent(decision):
+    f = decision.fits
+    return f"{f.b_power:.3f} +- {f.b_power_error:.3f}" if f else "-"
+
+
+def difference(b):
+    d, e = b.exponent_difference
+    return f"{d:+.3f} +- {e:.3f}" if np.isfinite(d) else "-"
+
+
+def shared_summary(b):
+    """One line of a Beside: where here lies against there over the shared k_n."""
+    if not b.shared:
+        return "no k_n in common"
+    z = np.array([s[7] for s in b.shared])
+    r = np.array([s[8] for s in b.shared])
+    lower, higher = int((z < 0).sum()), int((z > 0).sum())
+    return (f"here lower at {lower}, higher at {higher} of {len(z)} shared k_n; z from "
+            f"{z.min():+.2f} to {z.max():+.2f}, here / there - 1 from {r.min():+.0%} to "
+            f"{r.max():+.0%}; b here - there {difference(b)}")

@@ -380,3 +380,64 @@ def test_an_undecided_verdict_says_why_its_exponent_has_no_error():
     assert "inf" not in d.why
     assert f"(no error: its delta chi2 = 1 interval is open within the scanned b >= " \
            f"{limit.EXPONENTS[0]:g})" in d.why
+
+
+def rows_of_series(series):
+    """A scene's rows as the analysis gives them from several series: series is [(variables
+    other than kn and seed, runs)]; labels by the variables that vary, as study.combine_seeds."""
+    from postprocess.study import label, varying_variables
+    varying = varying_variables([v for v, _ in series])
+    rows = []
+    for variables, runs in series:
+        for k in sorted({r["kn"] for r in runs}):
+            rows.append({"kn": k, "label": label(variables, varying),
+                         "variables": dict(variables, kn=k),
+                         "runs": [r for r in runs if r["kn"] == k]})
+    return rows
+
+
+def scaled(runs, factor):
+    return [dict(r, **{q: factor * r[q] for q in ("mc_c", "mc_w", "t_multiple")}) for r in runs]
+
+
+def test_limit_beside_another_sweep_matches_its_series_and_measures_the_difference(tmp_path,
+                                                                                   capsys):
+    # There: the paper's width, two time steps of the literal law and the cut-back law; here:
+    # width 40, the two laws at dt_fraction 0.05, each 0.8 times its counterpart's runs. A
+    # series matched with the wrong one (the other law, 1.5 times; the other step, 2 times)
+    # would be 40-60 % lower, not 20 %.
+    from postprocess.write_limit import write_limit
+    from postprocess.selection import Selection
+    from postprocess.study import counterparts
+    base = synthetic_runs(power, 0.1)
+    for i, r in enumerate(base):
+        r.update(mc_w=0.2 + 0.01 * np.sin(i), t_multiple=3 * r["mc_c"])
+    literal, step = {"dt_fraction": 0.05}, {"dt_fraction": 0.025}
+    cutback = {"dt_fraction": 0.05, "tangential": "cutback"}
+    there = rows_of_series([(literal, base), (step, scaled(base, 2.0)),
+                            (cutback, scaled(base, 1.5))])
+    here = rows_of_series([(dict(literal, width=40), scaled(base, 0.8)),
+                           (dict(cutback, width=40), scaled(base, 1.2))])
+    apart, match = counterparts(here, there)
+    assert apart == {"width": (40, None)}
+    assert match == {"": "dt_fraction 0.05",
+                     "tangential cutback": "dt_fraction 0.05, tangential cutback"}
+    assert write_limit(tmp_path, {"frictional_flow": here}, tmp_path / "limit", Selection(), {},
+                       beside=("width 10", {"frictional_flow": there})) == 0
+    out = capsys.readouterr().out
+    lines = [line for line in out.splitlines() if line.startswith("beside width 10")]
+    assert len(lines) == 6
+    for line in lines:
+        # a copy scaled by a constant: lower at every k_n by exactly that factor, the same
+        # decay exponent (the fit's chi^2 does not change under the scaling)
+        assert "here lower at 6, higher at 0 of 6 shared k_n" in line
+        assert "here / there - 1 from -20% to -20%" in line
+        assert "b here - there +0.000 +- " in line
+    text = (tmp_path / "limit" / "limit.md").read_text()
+    assert "width: 40 here, the deck's default there" in text
+    assert "### variant tangential cutback beside variant dt_fraction 0.05, tangential cutback" \
+        in text
+    # here alone has a series there lacks: not matched with another
+    lone = rows_of_series([(dict(literal, width=40), base),
+                           (dict(literal, width=40, integrator="ab2"), base)])
+    assert counterparts(lone, there)[1] == {"": "dt_fraction 0.05", "integrator ab2": None}
