@@ -34,7 +34,10 @@ PROFILE_CHUNKS = "profile_chunks.txt"   # the profile of a run with checkpoints,
 TRAJECTORY = "trajectory.txt"
 STOPPED = "stopped.txt"     # the pile stopped: the run ended early
 DONE = "done.txt"           # the deck's last output, with the run's token
-TIMING = "timing.json"      # the runner's, once it saw the run end: seconds and the token
+TIMING = "timing.json"      # the runner's, once it saw the run end: the wall and CPU seconds
+                            # of it and of the runs it resumed from, and its token
+EARLIER_RUNS = "earlier_runs.json"  # the runner's: the seconds of the point's runs that ended
+                                    # before it completed (a resumed run went on from them)
 FAILED = "failed.txt"       # the runner's, for a run that failed
 RUNNING = "running.json"    # the runner's, while a run of the point is under way
 LOG = "log.lammps"

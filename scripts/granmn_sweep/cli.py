@@ -27,7 +27,8 @@ refused. A number is one value whatever its spelling: kn 5e4, 50000 and "5e4" ar
 Layout: <output>/<scene>/<point>/ holds the deck's outputs (energy.txt, counts.txt, ...),
 point.json (the point's variables), runner.json (the runner's: the checkpoint interval of
 --checkpoint-interval), command.txt (the exact command), log.lammps, run.out (what
-lmp printed), timing.json (wall and CPU seconds), running.json while its lmp runs, failed.txt
+lmp printed), timing.json (wall and CPU seconds, a resumed run's with those of the runs it
+went on from: earlier_runs.json), running.json while its lmp runs, failed.txt
 (the ERROR lines and the output) if it failed, and done.txt, written by the deck last.
 A point is done when done.txt and timing.json carry the token of one run (the runner gives
 each run its own and writes timing.json once that run has ended): such a point is never run

@@ -13,7 +13,7 @@ import signal
 from . import checkpoints
 from . import SweepError
 from . import processes
-from postprocess.rundir import SUMMARY_SUFFIX
+from postprocess.rundir import EARLIER_RUNS, SUMMARY_SUFFIX
 
 # What LAMMPS's input syntax does not carry in a file name: a word ends at whitespace;
 # quotes, $ (a variable) and # (a comment) are syntax.
@@ -332,19 +332,34 @@ def failed_to_start(directory, error):
                                   "choose another --output), then run the sweep again\n")
 
 
+def earlier_runs(directory):
+    """{"seconds", "cpu_seconds", "runs"} summed over the point's runs that ended before it
+    completed (stopped, failed; EARLIER_RUNS), so that the run that completes, resumed from
+    their checkpoints, records what the point cost in all, not its own part alone; zeros
+    where there were none (a fresh start's directory is new)."""
+    try:
+        return json.loads((directory / EARLIER_RUNS).read_text())
+    except (OSError, ValueError):
+        return {"seconds": 0.0, "cpu_seconds": 0.0, "runs": 0}
+
+
 def finish(directory, token, status, elapsed, cpu, logs, output, variables, notes, note=""):
     """A point's outcome, and a note on it for the progress line: "done" (done.txt carries the
-    run's token; timing.json is written with it), "stopped" (by a signal to the sweep), else
+    run's token; timing.json is written with it: the wall and CPU seconds of this run and of
+    the earlier ones it resumed from, and how many runs they were), "stopped" (by a signal to
+    the sweep; its seconds added to EARLIER_RUNS), else
     "failed" (failed.txt: the exit status and the cause (failure_cause: a full disk, a signal,
     an end without an ERROR), the ERROR lines of logs, how the run began (afresh or from which
     checkpoint) and what went before it (notes: failed resumes), what to do, the end of
     output; the note: its first line and first ERROR). A write that fails here (timing.json,
     failed.txt: a full disk) fails the point with its cause."""
     aside = kept_aside(directory)
+    earlier = earlier_runs(directory)
+    total = {"seconds": earlier["seconds"] + elapsed,
+             "cpu_seconds": earlier["cpu_seconds"] + cpu, "runs": earlier["runs"] + 1}
     if wrote_done(directory, token):
         try:
-            (directory / "timing.json").write_text(
-                json.dumps({"seconds": elapsed, "cpu_seconds": cpu, "run": token}) + "\n")
+            (directory / "timing.json").write_text(json.dumps({**total, "run": token}) + "\n")
         except OSError as error:
             (directory / "timing.json").unlink(missing_ok=True)
             return "failed", write_failed(
@@ -361,6 +376,10 @@ def finish(directory, token, status, elapsed, cpu, logs, output, variables, note
             except OSError:
                 pass
         return "done", ""
+    try:
+        (directory / EARLIER_RUNS).write_text(json.dumps(total) + "\n")
+    except OSError:
+        pass    # a full disk: the point fails or stops with that said; only its cost is short
     if processes.stopped_by:
         return "stopped", ""
     errors = error_lines(*logs)

@@ -322,3 +322,25 @@ def test_a_point_whose_summary_says_it_ended_is_not_run_again(tmp_path):
         summarized_points([tmp_path / "summaries"], plan)
     with pytest.raises(SweepError, match=r"--done-in .*absent: not a directory of run summaries"):
         summarized_points([tmp_path / "absent"], plan)
+
+
+def test_a_resumed_run_records_what_the_point_cost_in_all(tmp_path, monkeypatch):
+    """A point stopped by a signal, then failed, then resumed to its end: timing.json holds the
+    three runs' seconds (it held the last run's alone, so that a summary's cpu_seconds left out
+    all a resumed run went on from); a fresh start counts anew."""
+    directory = a_run_that_ended(tmp_path, None)
+    logs = [directory / "log.lammps", directory / "run.out"]
+    monkeypatch.setattr(processes, "stopped_by", [15])
+    assert runner_points.finish(directory, "a" * 16, -15, 10.0, 9.0, logs, logs[1], {},
+                                [])[0] == "stopped"
+    monkeypatch.setattr(processes, "stopped_by", [])
+    assert runner_points.finish(directory, "b" * 16, 1, 5.0, 4.0, logs, logs[1],
+                                {"resume": 1, "resume_step": 100}, [])[0] == "failed"
+    (directory / "done.txt").write_text(f"kn 50000 steps 1 dt 1 run {TOKEN}\n")
+    assert finish(directory) == ("done", "")
+    timing = json.loads((directory / "timing.json").read_text())
+    assert timing == {"seconds": 16.0, "cpu_seconds": 14.0, "runs": 3, "run": TOKEN}
+    runner_points.prepare(directory, {"scene": "single_disk", "kn": 50000}, {})
+    (directory / "done.txt").write_text(f"kn 50000 steps 1 dt 1 run {TOKEN}\n")
+    assert finish(directory) == ("done", "")
+    assert json.loads((directory / "timing.json").read_text())["cpu_seconds"] == 1.0
