@@ -11,9 +11,11 @@ from .decks import dry_run, engine, point_deck, scene_dimension
 from postprocess.rundir import run_name
 
 # Seconds per step by the scene's dimension: a fixed part and a part per atom; refined as points
-# finish. 3D: the dense chute's CPU seconds per atom-step, measured (docs/scenes.md): 9.9e-8 at
+# finish. 2D: the frictional flow's, measured at its widths (the committed summaries of the
+# paper preset and the finite-size check): 3.4e-6 at 100 disks, 4.1e-6 at 200, 8.2e-6 at 400.
+# 3D: the dense chute's CPU seconds per atom-step, measured (docs/scenes.md): 9.9e-8 at
 # kn 2e4, 6.2e-8 at 2e5, 5.6e-8 at 2e6 (the stiff points, where a series' time goes).
-STEP_COST = {2: (4e-7, 4e-8), 3: (4e-7, 6e-8)}
+STEP_COST = {2: (1.5e-6, 1.5e-8), 3: (4e-7, 6e-8)}
 # An event-driven point's events: no formula gives them (a flow's collision rate, and a collapse
 # held off by the TC model, multiply them by orders of magnitude), so the guess is a rate per
 # atom (bumps included) and time unit by scene: the dense frictional flow's under the TC model
