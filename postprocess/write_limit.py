@@ -138,10 +138,12 @@ def write_limit(sweep, scenes, out, selection, completed, rule=limit.RULE, besid
 
 
 def scene_series(name, rows, rule):
-    """[(number, label, runs, decisions)] of one scene's series (rows: its analysed rows) that
-    the rule is applied to: the main series (number 0) first, then each variant, unless the
-    rule is applied to none of its quantities."""
+    """[(number, label, runs, decisions, within)] of one scene's series (rows: its analysed
+    rows) that the rule is applied to: the main series (number 0) first, then each variant,
+    unless the rule is applied to none of its quantities; within: {quantity: {level:
+    Decision}} in the scene's energy levels."""
     quantities = scene_of(name).limit_quantities
+    levels = dict(scene_of(name).limit_levels)
     main = main_series(rows)
     labels = [main[0]["label"]] + sorted({o["label"] for o in rows} - {main[0]["label"]})
     out = []
@@ -151,7 +153,8 @@ def scene_series(name, rows, rule):
         if number and all(d.verdict.startswith("not applied") for d in decisions):
             continue    # a variant at too few k_n (a check of the step at one k_n: the report's
                         # variant table compares it with the main series)
-        out.append((number, series_label, runs, decisions))
+        within = {q: limit.decide_within_levels(runs, q, levels, rule=rule) for q in quantities}
+        out.append((number, series_label, runs, decisions, within))
     return out
 
 
@@ -166,9 +169,7 @@ def limit_scene_lines(name, series, out, records, rule):
     scene_def = scene_of(name)
     levels = dict(scene_def.limit_levels)
     lines = [f"# {scene_def.title}", ""]
-    for number, series_label, runs, decisions in series:
-        within = {q: limit.decide_within_levels(runs, q, levels, rule=rule)
-                  for q in scene_def.limit_quantities}
+    for number, series_label, runs, decisions, within in series:
         title = series_title(number, series_label)
         lines += [f"## {title}: {len(runs)} selected runs", ""]
         lines += report_lines(decisions, within, levels)
@@ -227,8 +228,7 @@ def beside_lines(name, rows, series, beside, rule):
         print(f"beside {there_name}: {scene_def.title}: no usable runs there")
         return [f"## Beside {there_name}", "", "No usable runs of the scene there.", ""]
     apart, there_label = counterparts(rows, there_rows)
-    there_series = {label_: (number, runs, decisions) for number, label_, runs, decisions
-                    in scene_series(name, there_rows, rule)}
+    there_series = {entry[1]: entry for entry in scene_series(name, there_rows, rule)}
     told = "; ".join(f"{k}: {default(a)} here, {default(b)} there"
                      for k, (a, b) in apart.items())
     lines = [f"## Beside {there_name}", "",
@@ -238,7 +238,7 @@ def beside_lines(name, rows, series, beside, rule):
              "law's decay exponents b (m ~ k_n^-b) with their difference here - there; at "
              "each k_n both have, here - there in combined errors (z, the rule's pooled "
              "errors) and relative to there.", ""]
-    for number, series_label, _, decisions in series:
+    for number, series_label, _, decisions, within in series:
         title = series_title(number, series_label)
         other = there_series.get(there_label.get(series_label))
         if other is None:
@@ -250,11 +250,26 @@ def beside_lines(name, rows, series, beside, rule):
         lines += [f"### {title} beside {there_title}", "",
                   "| quantity | verdict there | verdict here | b there | b here | "
                   "b here - there |", "|---|---|---|---|---|---|"]
-        pairs = [(d, t, limit.beside(d, t)) for d, t in zip(decisions, other[2])]
+        _, _, _, there_decisions, there_within = other
+        pairs = [(d, t, limit.beside(d, t)) for d, t in zip(decisions, there_decisions)]
         for d, t, b in pairs:
             lines.append(f"| {TABLE[d.quantity].label} | {t.verdict} | {d.verdict} | "
                          f"{exponent(t)} | {exponent(d)} | {difference(b)} |")
         lines.append("")
+        levels = [level for level, _ in scene_def.limit_levels]
+        if levels:
+            lines += ["Within one energy level, the verdict there / here:", "",
+                      "| quantity | " + " | ".join(levels) + " |", "|---|" + "---|" * len(levels)]
+            for q in scene_def.limit_quantities:
+                pair = {n: (short(there_within[q][n]), short(within[q][n])) for n in levels}
+                lines.append(f"| {TABLE[q].label} | " +
+                             " | ".join(f"{a} / {b}" for a, b in pair.values()) + " |")
+                applied = [f"{n} {a} / {b}" for n, (a, b) in pair.items()
+                           if (a, b) != ("not applied", "not applied")]
+                if applied:
+                    print(f"beside {there_name}: {scene_def.title}, {title}: {TABLE[q].label}, "
+                          "within a level, there / here: " + "; ".join(applied))
+            lines.append("")
         for d, t, b in pairs:
             lines += [f"{TABLE[d.quantity].label}:", "",
                       "| k_n | there (runs) | here (runs) | z | here / there - 1 |",
@@ -265,6 +280,11 @@ def beside_lines(name, rows, series, beside, rule):
             print(f"beside {there_name}: {scene_def.title}, {title}: {TABLE[d.quantity].label}:"
                   f" there {t.verdict}, here {d.verdict}; {shared_summary(b)}")
     return lines
+
+
+def short(decision):
+    """A verdict without a 'not applied' one's reason."""
+    return decision.verdict.split(":")[0]
 
 
 def default(value):

@@ -425,7 +425,8 @@ def test_limit_beside_another_sweep_matches_its_series_and_measures_the_differen
     assert write_limit(tmp_path, {"frictional_flow": here}, tmp_path / "limit", Selection(), {},
                        beside=("width 10", {"frictional_flow": there})) == 0
     out = capsys.readouterr().out
-    lines = [line for line in out.splitlines() if line.startswith("beside width 10")]
+    lines = [line for line in out.splitlines()
+             if line.startswith("beside width 10") and "shared k_n" in line]
     assert len(lines) == 6
     for line in lines:
         # a copy scaled by a constant: lower at every k_n by exactly that factor, the same
@@ -437,6 +438,15 @@ def test_limit_beside_another_sweep_matches_its_series_and_measures_the_differen
     assert "width: 40 here, the deck's default there" in text
     assert "### variant tangential cutback beside variant dt_fraction 0.05, tangential cutback" \
         in text
+    # every run at E 0.6: the middle level alone is judged, alike in a copy scaled by a constant
+    within = [line for line in text.splitlines()
+              if line.startswith("| t_c - N_c tau_c | not applied / ")]
+    assert len(within) == 2
+    for line in within:
+        low, middle, high = line.strip(" |").split(" | ")[1:]
+        verdict_there, verdict_here = middle.split(" / ")
+        assert low == high == "not applied / not applied"
+        assert verdict_there == verdict_here != "not applied"
     # here alone has a series there lacks: not matched with another
     lone = rows_of_series([(dict(literal, width=40), base),
                            (dict(literal, width=40, integrator="ab2"), base)])
