@@ -210,12 +210,13 @@ def error_lines(*paths):
     return lines
 
 
-def describe(error):
+def describe(error, path=None):
     """An OSError in words: its message, its errno's name, the file (No space left on device
-    (ENOSPC): <path>)."""
+    (ENOSPC): <path>); `path` where the error names none (a write, not an open, failed)."""
     name = errno.errorcode.get(error.errno)
+    path = error.filename or path
     return (f"{error.strerror or error}" + (f" ({name})" if name else "") +
-            (f": {error.filename}" if error.filename else ""))
+            (f": {path}" if path else ""))
 
 
 # Bytes: a filesystem with less free than this is full for a run, which writes MBs. A write that
@@ -316,7 +317,8 @@ def write_failed(directory, text):
         (directory / "failed.txt").write_text(text)
     except OSError as error:
         (directory / "failed.txt").unlink(missing_ok=True)
-        note += f"; failed.txt could not be written ({describe(error)})"
+        note += (f"; failed.txt could not be written "
+                 f"({describe(error, directory / 'failed.txt')})")
     return note
 
 
@@ -364,9 +366,9 @@ def finish(directory, token, status, elapsed, cpu, logs, output, variables, note
             (directory / "timing.json").unlink(missing_ok=True)
             return "failed", write_failed(
                 directory, f"exit status {status}{note}: the run completed, but the runner "
-                f"could not write timing.json: {describe(error)}\nwhat to do: free space "
-                "there (or choose another --output), then run the sweep again: it runs this "
-                "point again\n")
+                f"could not write timing.json: {describe(error, directory / 'timing.json')}\n"
+                "what to do: free space there (or choose another --output), then run the "
+                "sweep again: it runs this point again\n")
         # a fresh start that completed: the run it replaced is of no more use
         if notes and "resume" not in variables and aside.exists() and \
                 not foreign(aside, json.loads((directory / "point.json").read_text())):
@@ -376,11 +378,8 @@ def finish(directory, token, status, elapsed, cpu, logs, output, variables, note
             except OSError:
                 pass
         return "done", ""
-    try:
-        (directory / EARLIER_RUNS).write_text(json.dumps(total) + "\n")
-    except OSError:
-        pass    # a full disk: the point fails or stops with that said; only its cost is short
     if processes.stopped_by:
+        record_earlier_runs(directory, total)
         return "stopped", ""
     errors = error_lines(*logs)
     cause, todo = failure_cause(directory, token, status, errors)
@@ -399,7 +398,18 @@ def finish(directory, token, status, elapsed, cpu, logs, output, variables, note
         directory, f"exit status {status}{note}" + (f": {cause}" if cause else "") + "\n" +
         "\n".join(errors) + f"\nthis run began {began}\n" + history + f"what to do: {todo}\n"
         f"--- the end of {output}\n{printed[-40000:]}\n")
+    record_earlier_runs(directory, total)
     return "failed", said if cause else f"{said}; {errors[0]}"
+
+
+def record_earlier_runs(directory, total):
+    """EARLIER_RUNS of a point whose run ended without completing, after what it says of its
+    end (failed.txt comes first where the disk is full)."""
+    try:
+        (directory / EARLIER_RUNS).write_text(json.dumps(total) + "\n")
+    except OSError:
+        # a full disk: the point has failed or stopped with that said; only its cost is short
+        (directory / EARLIER_RUNS).unlink(missing_ok=True)
 
 
 def lock_output(output):
