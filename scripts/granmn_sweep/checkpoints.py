@@ -5,10 +5,11 @@ frame included, and so do the outputs only a completed run writes."""
 import re
 from pathlib import Path
 
+from postprocess.rundir import COUNTS, DONE, FAILED, PROFILE, STOPPED, TIMING
+
 LINE = re.compile(r"^checkpoint (\d+) (checkpoint\.([12])\.restart)$")
 # written once a run has completed (or stopped), or by the runner after it
-FINAL = ("counts.txt", "stopped.txt", "profile.txt", "profile_chunk.txt", "done.txt",
-         "timing.json", "failed.txt")
+FINAL = (COUNTS, STOPPED, PROFILE, "profile_chunk.txt", DONE, TIMING, FAILED)
 
 
 def candidates(directory):

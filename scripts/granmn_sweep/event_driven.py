@@ -22,6 +22,7 @@ import subprocess
 from pathlib import Path
 
 from .decks import deck_defaults
+from postprocess.rundir import DONE, STOPPED
 
 # mn-event-driven's parameters a point may set (their defaults are the engine's: main.cpp)
 VARIABLES = ("rule", "collapse", "tc_time", "tc_beta", "e_w", "beta_w", "collapse_count",
@@ -136,8 +137,8 @@ def main(argv=None):
         return status
     summary = dict(line.split(None, 1) for line in (out / "summary.txt").read_text().splitlines())
     if summary["end"].strip() == "collapse":
-        (out / "stopped.txt").write_text(f"stopped_at {float(summary['time']):.10g}\n")
-    (out / "done.txt").write_text(f"kn {variables.get('kn', defaults.get('kn'))} events "
-                                  f"{summary['events'].strip()} end {summary['end'].strip()} "
-                                  f"run {variables['run_token']}\n")
+        (out / STOPPED).write_text(f"stopped_at {float(summary['time']):.10g}\n")
+    (out / DONE).write_text(f"kn {variables.get('kn', defaults.get('kn'))} events "
+                            f"{summary['events'].strip()} end {summary['end'].strip()} "
+                            f"run {variables['run_token']}\n")
     return 0

@@ -13,7 +13,7 @@ import signal
 from . import checkpoints
 from . import SweepError
 from . import processes
-from postprocess.rundir import EARLIER_RUNS, SUMMARY_SUFFIX
+from postprocess.rundir import DONE, EARLIER_RUNS, FAILED, POINT, SUMMARY_SUFFIX, TIMING
 
 # What LAMMPS's input syntax does not carry in a file name: a word ends at whitespace;
 # quotes, $ (a variable) and # (a comment) are syntax.
@@ -88,11 +88,11 @@ def foreign(directory, point):
     if not directory.is_dir():
         return "it is a file"
     entries = list(directory.iterdir())
-    if not entries or (len(entries) == 1 and entries[0].name == "point.json"
+    if not entries or (len(entries) == 1 and entries[0].name == POINT
                        and entries[0].is_file() and entries[0].stat().st_size == 0):
         return None     # a runner stopped between making the directory and writing point.json
     try:
-        record = json.loads((directory / "point.json").read_text())
+        record = json.loads((directory / POINT).read_text())
     except (OSError, ValueError):
         return "it holds no point.json (the runner writes one into each point it makes)"
     if not isinstance(record, dict) or record.get("scene") != point["scene"]:
@@ -115,7 +115,7 @@ def prepare(directory, point, extra):
         shutil.rmtree(directory)
     directory.mkdir(parents=True)
     try:
-        (directory / "point.json").write_text(json.dumps(point, indent=1, sort_keys=True) + "\n")
+        (directory / POINT).write_text(json.dumps(point, indent=1, sort_keys=True) + "\n")
     except OSError:
         # a point.json cut short (a full disk) would make the directory not the runner's
         shutil.rmtree(directory, ignore_errors=True)
@@ -139,7 +139,7 @@ def resume_or_prepare(directory, point, extra, keep=False):
     ERROR may be lmp's or the plugin's rather than the checkpoints'), the directory a fresh
     start replaces is kept aside (kept_aside), not removed."""
     try:
-        same_point = json.loads((directory / "point.json").read_text()) == point
+        same_point = json.loads((directory / POINT).read_text()) == point
         found = same_point and checkpoints.candidates(directory)
         if found:
             step, slot = found[0]
@@ -192,7 +192,7 @@ def set_aside_failed_resume(directory, variables):
 
 def wrote_done(directory, token):
     try:
-        return re.search(rf"\brun {token}\b", (directory / "done.txt").read_text()) is not None
+        return re.search(rf"\brun {token}\b", (directory / DONE).read_text()) is not None
     except OSError:
         return False
 
@@ -255,7 +255,7 @@ def done_state(directory, token):
     """What done.txt, the deck's last output, is in a run that did not write it with its
     token."""
     try:
-        text = (directory / "done.txt").read_text(errors="replace")
+        text = (directory / DONE).read_text(errors="replace")
     except FileNotFoundError:
         return "done.txt, the deck's last output, is missing"
     except OSError as error:
@@ -314,9 +314,9 @@ def write_failed(directory, text):
     half-written, the point then reads as not completed)."""
     note = text.split("\n", 1)[0]
     try:
-        (directory / "failed.txt").write_text(text)
+        (directory / FAILED).write_text(text)
     except OSError as error:
-        (directory / "failed.txt").unlink(missing_ok=True)
+        (directory / FAILED).unlink(missing_ok=True)
         note += (f"; failed.txt could not be written "
                  f"({describe(error, directory / 'failed.txt')})")
     return note
@@ -361,9 +361,9 @@ def finish(directory, token, status, elapsed, cpu, logs, output, variables, note
              "cpu_seconds": earlier["cpu_seconds"] + cpu, "runs": earlier["runs"] + 1}
     if wrote_done(directory, token):
         try:
-            (directory / "timing.json").write_text(json.dumps({**total, "run": token}) + "\n")
+            (directory / TIMING).write_text(json.dumps({**total, "run": token}) + "\n")
         except OSError as error:
-            (directory / "timing.json").unlink(missing_ok=True)
+            (directory / TIMING).unlink(missing_ok=True)
             return "failed", write_failed(
                 directory, f"exit status {status}{note}: the run completed, but the runner "
                 f"could not write timing.json: {describe(error, directory / 'timing.json')}\n"
@@ -371,7 +371,7 @@ def finish(directory, token, status, elapsed, cpu, logs, output, variables, note
                 "sweep again: it runs this point again\n")
         # a fresh start that completed: the run it replaced is of no more use
         if notes and "resume" not in variables and aside.exists() and \
-                not foreign(aside, json.loads((directory / "point.json").read_text())):
+                not foreign(aside, json.loads((directory / POINT).read_text())):
             shutil.rmtree(aside)
             try:    # unresumed/<scene>/ and unresumed/, if nothing else is kept there
                 os.removedirs(aside.parent)
@@ -462,7 +462,7 @@ def cpu_seconds(directories):
     total = 0.0
     for d in directories:
         try:
-            total += json.loads((d / "timing.json").read_text()).get("cpu_seconds", 0.0)
+            total += json.loads((d / TIMING).read_text()).get("cpu_seconds", 0.0)
         except (OSError, ValueError):
             pass
     return total
