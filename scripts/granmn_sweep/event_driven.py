@@ -22,7 +22,6 @@ import subprocess
 from pathlib import Path
 
 from .decks import deck_defaults
-from postprocess.rundir import DONE, STOPPED
 
 # mn-event-driven's parameters a point may set (their defaults are the engine's: main.cpp)
 VARIABLES = ("rule", "collapse", "tc_time", "tc_beta", "e_w", "beta_w", "collapse_count",
@@ -135,10 +134,12 @@ def main(argv=None):
     status = subprocess.run([args.engine] + parameters).returncode
     if status not in (0, 3):
         return status
+    # the point's file names spelled here, not taken from postprocess/rundir.py: this runs as
+    # scripts/event_driven_point.py, where only granmn_sweep is importable
     summary = dict(line.split(None, 1) for line in (out / "summary.txt").read_text().splitlines())
     if summary["end"].strip() == "collapse":
-        (out / STOPPED).write_text(f"stopped_at {float(summary['time']):.10g}\n")
-    (out / DONE).write_text(f"kn {variables.get('kn', defaults.get('kn'))} events "
-                            f"{summary['events'].strip()} end {summary['end'].strip()} "
-                            f"run {variables['run_token']}\n")
+        (out / "stopped.txt").write_text(f"stopped_at {float(summary['time']):.10g}\n")
+    (out / "done.txt").write_text(f"kn {variables.get('kn', defaults.get('kn'))} events "
+                                  f"{summary['events'].strip()} end {summary['end'].strip()} "
+                                  f"run {variables['run_token']}\n")
     return 0
