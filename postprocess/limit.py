@@ -335,7 +335,7 @@ class Beside:
 
 
 def beside(here, there):
-    """Beside of two Decisions on one quantity (here: this sweep's, there: the other's)."""
+    """Two Decisions on one quantity set side by side (here: this sweep's, there: the other's)."""
     shared = []
     for k, v, e, n in zip(here.series.kn, here.series.value, here.series.error,
                           here.series.runs):

@@ -318,7 +318,7 @@ def write_failed(directory, text):
     except OSError as error:
         (directory / FAILED).unlink(missing_ok=True)
         note += (f"; failed.txt could not be written "
-                 f"({describe(error, directory / 'failed.txt')})")
+                 f"({describe(error, directory / FAILED)})")
     return note
 
 
@@ -366,7 +366,7 @@ def finish(directory, token, status, elapsed, cpu, logs, output, variables, note
             (directory / TIMING).unlink(missing_ok=True)
             return "failed", write_failed(
                 directory, f"exit status {status}{note}: the run completed, but the runner "
-                f"could not write timing.json: {describe(error, directory / 'timing.json')}\n"
+                f"could not write timing.json: {describe(error, directory / TIMING)}\n"
                 "what to do: free space there (or choose another --output), then run the "
                 "sweep again: it runs this point again\n")
         # a fresh start that completed: the run it replaced is of no more use
