@@ -1,4 +1,4 @@
-"""What a sweep's runs cost, from their records (timing.json's cpu_seconds, kept in the
+"""What a sweep's time-stepped runs cost (LAMMPS's, LIGGGHTS's), from their records (timing.json's cpu_seconds, kept in the
 summaries): per scene, tangential law, mobile atoms and k_n, the CPU seconds per step (steps:
 the time a run reached, run_time or where its pile stopped, over dt) and per atom-step; per scene
 and atoms, the median per step, which the runner's cost model (scripts/granmn_sweep/cost.py)
@@ -28,14 +28,17 @@ MIN_GROUP = 3    # runs that flowed to the end a group needs for its median to j
 
 
 def run_cost(record):
-    """(group key, steps, atoms, cpu_seconds, flowed to the end) of a completed run that
-    recorded its CPU, else None."""
+    """(group key, steps, atoms, cpu_seconds, flowed to the end) of a completed time-stepped
+    run that recorded its CPU, else None (an event-driven run has events, not steps)."""
     if record.ended not in ("flowing", "stopped") or not record.cpu_seconds or not record.params:
+        return None
+    engine = (record.variables or {}).get("engine", "lammps")
+    if engine == "event_driven":
         return None
     p = record.params
     reached = record.stopped_at if record.ended == "stopped" else float(p["run_time"])
     atoms = int(float(p["n_mobile"]))
-    key = (record.scene, p.get("tangential", "literal"), atoms, float(p["kn"]))
+    key = (record.scene, engine, p.get("tangential", "literal"), atoms, float(p["kn"]))
     return key, reached / float(p["dt"]), atoms, record.cpu_seconds, record.ended == "flowing"
 
 
@@ -80,23 +83,25 @@ def main(argv=None):
         return 2
     groups, short_runs = costs(records, args.short)
     if not groups:
-        print("run_costs: no completed run that recorded its CPU", file=sys.stderr)
+        print("run_costs: no completed time-stepped run that recorded its CPU (an event-driven "
+              "run has events, not steps)", file=sys.stderr)
         return 2
-    print("| scene | law | atoms | k_n | runs | flowed | CPU s per step (median) | "
+    print("| scene | engine | law | atoms | k_n | runs | flowed | CPU s per step (median) | "
           "ns per atom-step (median) | CPU s |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     by_size = {}
     for key, members in sorted(groups.items()):
         per_step = [cpu / steps for _, steps, _, cpu, _ in members]
-        by_size.setdefault(key[:1] + key[2:3], []).extend(per_step)
-        print(f"| {key[0]} | {key[1]} | {key[2]} | {key[3]:.4g} | {len(members)} | "
+        scene, engine, law, atoms, kn = key
+        by_size.setdefault((scene, engine, atoms), []).extend(per_step)
+        print(f"| {scene} | {engine} | {law} | {atoms} | {kn:.4g} | {len(members)} | "
               f"{sum(m[4] for m in members)} | {statistics.median(per_step):.3g} | "
-              f"{1e9 * statistics.median(per_step) / key[2]:.1f} | "
+              f"{1e9 * statistics.median(per_step) / atoms:.1f} | "
               f"{sum(m[3] for m in members):.0f} |")
     print()
-    for (scene, atoms), per_step in sorted(by_size.items()):
-        print(f"{scene}, {atoms} atoms: {statistics.median(per_step):.3g} CPU s per step "
-              f"(median of {len(per_step)} runs)")
+    for (scene, engine, atoms), per_step in sorted(by_size.items()):
+        print(f"{scene} ({engine}), {atoms} atoms: {statistics.median(per_step):.3g} CPU s per "
+              f"step (median of {len(per_step)} runs)")
     counted = sum(m[3] for members in groups.values() for m in members)
     missing = sum(m for _, _, m in short_runs)
     print()

@@ -24,7 +24,7 @@ def test_a_run_counted_short_is_found_and_what_it_lacks_is_its_groups_rate():
     runs += [record("resumed", 20.0), record("stopped", 10.0, "stopped", stopped_at=10.0)]
     runs += [record(f"stiff{i}", 400.0, kn=1e8, dt=2.5e-4) for i in range(3)]
     groups, short = costs(runs)
-    assert sorted(k[3] for k in groups) == [1e6, 1e8]
+    assert sorted(k[-1] for k in groups) == [1e6, 1e8]
     (found, ratio, missing), = short
     assert found.point == Path("resumed")
     # the short run is left out of the median it is judged by (with it: 97.5 s, 77.5 lacking)
@@ -35,3 +35,10 @@ def test_a_run_counted_short_is_found_and_what_it_lacks_is_its_groups_rate():
 def test_a_group_of_too_few_whole_runs_judges_none():
     runs = [record("a", 100.0), record("b", 20.0)]
     assert costs(runs)[1] == []
+
+
+def test_an_event_driven_run_has_no_steps_to_cost():
+    runs = [record(f"w{i}", 100.0) for i in range(3)] + [record("event", 1.0)]
+    runs[-1].variables = {"engine": "event_driven"}
+    groups, short = costs(runs)
+    assert [len(m) for m in groups.values()] == [3] and short == []
