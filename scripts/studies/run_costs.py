@@ -76,6 +76,8 @@ def main(argv=None):
     add_selection_arguments(parser)
     args = parser.parse_args(argv)
     selection = selection_of(parser, args)
+    if not 0 < args.short < 1:
+        parser.error(f"--short {args.short:g}: a fraction of the median, between 0 and 1")
     try:
         records = load_runs(args.sweeps if len(args.sweeps) > 1 else args.sweeps[0], selection)
     except DataError as error:
